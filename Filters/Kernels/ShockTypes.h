@@ -1,0 +1,93 @@
+/**
+ * @file ShockTypes.h
+ * @brief Parameters, reports and callbacks shared by the VTK-free shock-filter kernels.
+ *
+ * The kernels implement F. Prada and M. Kazhdan, "Unconditionally Stable Shock
+ * Filters for Image and Geometry Processing", Computer Graphics Forum 34(5), 2015.
+ * All quantities here are in the kernels' normalised units: intensities are
+ * divided by the data range of the filtered signal and lengths by the mean edge
+ * length of the domain, so that a parameter means the same on any data.
+ */
+#ifndef ShockTypes_h
+#define ShockTypes_h
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace shock
+{
+
+/// How the flow field evolves during the advection (paper section 3.3).
+enum class FlowMode : int
+{
+  Fixed = 0,    ///< one flow from the input, traced for the whole time t (the paper's choice)
+  Composed = 1, ///< flow recomputed K times; back-traces composed, only the input is sampled
+  Naive = 2     ///< flow recomputed K times; the signal is resampled after each step
+};
+
+/// How the signal is read at a back-traced position.
+enum class Sampling : int
+{
+  Linear = 0, ///< multilinear (grids) or barycentric (meshes) interpolation
+  Nearest = 1 ///< value of the nearest sample
+};
+
+/// How a flow line is followed.
+enum class Tracing : int
+{
+  /// Exact piecewise-linear tracing: the flow is constant inside a face, so each
+  /// move goes straight to the face boundary (the limit of Stepped as delta -> 0).
+  FaceCrossing = 0,
+  /// The paper's Appendix A Trace: steps of at most delta = stepFraction x mean edge length.
+  Stepped = 1
+};
+
+/// Parameters of one shock-filter run.
+struct AdvectionParameters
+{
+  /// Flow time t (>= 0, finite), in normalised units (range-normalised intensities,
+  /// lengths in mean edge lengths). t = 0 returns the input.
+  double time = 0.0;
+  /// Umbrella-smoothing passes applied before each of the two gradient computations (>= 0).
+  int smoothingPasses = 1;
+  /// Tracing step delta for Tracing::Stepped, as a fraction of the mean edge length (0, 1].
+  double stepFraction = 0.1;
+  FlowMode flowMode = FlowMode::Fixed;
+  /// Number of flow computations K for the Composed and Naive modes (>= 1); ignored for Fixed.
+  int flowUpdates = 1;
+  Sampling sampling = Sampling::Linear;
+  Tracing tracing = Tracing::FaceCrossing;
+  /// OpenMP threads; 0 uses all available cores.
+  int numberOfThreads = 0;
+};
+
+/// What a run did, for logs, timings and tests.
+struct AdvectionReport
+{
+  double flowSeconds = 0.0;      ///< smoothing, potential and flow computation (all updates)
+  double advectionSeconds = 0.0; ///< back-tracing and sampling (all updates)
+  std::uint64_t traceSteps = 0;  ///< face crossings (FaceCrossing) or delta-steps (Stepped), all traces
+  std::uint64_t truncatedTraces = 0; ///< traces stopped by the step cap (a discrete cycle guard)
+  bool aborted = false;          ///< the progress callback asked to stop
+};
+
+/**
+ * Progress callback, called from the calling thread between chunks of work with
+ * the fraction done in [0, 1]. Returning false aborts the run promptly.
+ */
+using ProgressFunction = std::function<bool(double fraction)>;
+
+/// Result of a kernel call. An empty message means success.
+struct Status
+{
+  std::string error;
+  bool Ok() const { return this->error.empty(); }
+};
+
+/// Resolve a thread-count parameter: values <= 0 mean all available cores.
+int ResolveThreadCount(int requested);
+
+} // namespace shock
+
+#endif

@@ -1,0 +1,229 @@
+#include "vtkImageShockAdvectionFilter.h"
+
+#include "GridShockAdvection.h"
+#include "vtkCellData.h"
+#include "vtkDoubleArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMatrix3x3.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkShockFilterInternals.h"
+
+#include <cmath>
+
+vtkStandardNewMacro(vtkImageShockAdvectionFilter);
+
+namespace
+{
+/// The grid of the processed samples: points, or cell centres for cell data.
+shock::GridShape SampleGrid(vtkImageData* image, bool cellData)
+{
+  shock::GridShape shape;
+  int dims[3];
+  image->GetDimensions(dims);
+  const double* spacing = image->GetSpacing();
+  for (int a = 0; a < 3; ++a)
+  {
+    shape.dimensions[a] = cellData ? std::max(dims[a] - 1, 1) : dims[a];
+    shape.spacing[a] = std::abs(spacing[a]);
+  }
+  return shape;
+}
+
+/// Flow of the kernel (grid axes, |spacing|) in world axes: axis flips, then the direction matrix.
+void ToWorldAxes(vtkImageData* image, const double* gridVector, double* world)
+{
+  const double* spacing = image->GetSpacing();
+  double flipped[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    flipped[a] = spacing[a] < 0.0 ? -gridVector[a] : gridVector[a];
+  }
+  image->GetDirectionMatrix()->MultiplyPoint(flipped, world);
+}
+
+/// Attach ShockPotential and ShockFlow to the output (see the class documentation).
+void AttachFlowArrays(vtkImageData* output, bool cellData, const shock::GridShape& grid,
+  const shock::GridFlowFields& fields)
+{
+  vtkNew<vtkDoubleArray> potential;
+  potential->SetName(vtkShockAdvectionFilter::PotentialArrayName());
+  potential->SetNumberOfTuples(static_cast<vtkIdType>(fields.potential.size()));
+  std::copy(fields.potential.begin(), fields.potential.end(), potential->GetPointer(0));
+
+  vtkNew<vtkDoubleArray> flow;
+  flow->SetName(vtkShockAdvectionFilter::FlowArrayName());
+  flow->SetNumberOfComponents(3);
+  // Faces of the sample grid: the image cells (point data) or the points between
+  // cell centres (cell data).
+  int dims[3];
+  output->GetDimensions(dims);
+  const vtkIdType tuples = cellData ? output->GetNumberOfPoints() : output->GetNumberOfCells();
+  flow->SetNumberOfTuples(tuples);
+  flow->Fill(0.0);
+  std::array<std::int64_t, 3> faces;
+  for (int a = 0; a < 3; ++a)
+  {
+    faces[a] = std::max(grid.dimensions[a] - 1, 1);
+  }
+  double world[3];
+  if (!cellData)
+  {
+    for (vtkIdType f = 0; f < tuples; ++f)
+    {
+      ToWorldAxes(output, &fields.flow[3 * f], world);
+      flow->SetTypedTuple(f, world);
+    }
+  }
+  else
+  {
+    for (int k = 0; k < dims[2]; ++k)
+    {
+      for (int j = 0; j < dims[1]; ++j)
+      {
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          int ijk[3] = { i, j, k };
+          std::int64_t face = 0;
+          std::int64_t stride = 1;
+          bool interior = true;
+          for (int a = 0; a < 3 && interior; ++a)
+          {
+            // A point is interior along an axis the cell grid spans; flat axes map to 0.
+            const std::int64_t c = grid.dimensions[a] > 1 ? ijk[a] - 1 : 0;
+            interior = c >= 0 && c < faces[a];
+            face += c * stride;
+            stride *= faces[a];
+          }
+          if (interior)
+          {
+            ToWorldAxes(output, &fields.flow[3 * face], world);
+            flow->SetTypedTuple(output->ComputePointId(ijk), world);
+          }
+        }
+      }
+    }
+  }
+  vtkDataSetAttributes* sampleData =
+    cellData ? static_cast<vtkDataSetAttributes*>(output->GetCellData()) : output->GetPointData();
+  vtkDataSetAttributes* faceData =
+    cellData ? static_cast<vtkDataSetAttributes*>(output->GetPointData()) : output->GetCellData();
+  sampleData->AddArray(potential);
+  faceData->AddArray(flow);
+}
+}
+
+int vtkImageShockAdvectionFilter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkImageShockAdvectionFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorMacro("Input and output must be vtkImageData.");
+    return 0;
+  }
+  output->ShallowCopy(input);
+  this->LastFlowSeconds = this->LastAdvectionSeconds = 0.0;
+  this->LastTraceSteps = 0;
+  if (!this->ValidateParameters())
+  {
+    return 0;
+  }
+  if (input->GetNumberOfPoints() == 0)
+  {
+    vtkWarningMacro("The input image is empty: nothing to filter.");
+    return 1;
+  }
+
+  int association = -1;
+  vtkAbstractArray* selected = this->GetInputAbstractArrayToProcess(0, inputVector, association);
+  if (!selected)
+  {
+    vtkErrorMacro("No array to process: select a point or cell array with SetInputArrayToProcess "
+                  "(the default, the active point scalars, is not set on this image).");
+    return 0;
+  }
+  vtkDataArray* array = vtkDataArray::SafeDownCast(selected);
+  if (!array)
+  {
+    vtkErrorMacro("Array '" << (selected->GetName() ? selected->GetName() : "(unnamed)")
+                            << "' is a " << selected->GetClassName()
+                            << ", not a numeric array: it cannot be filtered.");
+    return 0;
+  }
+  if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
+    association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
+  {
+    vtkErrorMacro("Array '" << (array->GetName() ? array->GetName() : "(unnamed)")
+                            << "' must be point or cell data.");
+    return 0;
+  }
+  const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  const shock::GridShape grid = SampleGrid(input, cellData);
+  if (array->GetNumberOfTuples() != grid.NumberOfSamples())
+  {
+    vtkErrorMacro("Array '" << (array->GetName() ? array->GetName() : "(unnamed)") << "' has "
+                            << array->GetNumberOfTuples() << " tuples, the image has "
+                            << grid.NumberOfSamples() << (cellData ? " cells." : " points."));
+    return 0;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (grid.dimensions[a] > 1 && !(grid.spacing[a] > 0.0 && std::isfinite(grid.spacing[a])))
+    {
+      vtkErrorMacro("The image spacing must be finite and non-zero along every axis with more "
+                    "than one sample; axis " << a << " has spacing " << input->GetSpacing()[a] << ".");
+      return 0;
+    }
+  }
+
+  const std::vector<double> values = vtkShockFilterInternals::ToDoubles(array);
+  std::vector<double> filtered(values.size());
+  shock::AdvectionReport report;
+  shock::GridFlowFields fields;
+  const shock::Status status = shock::AdvectGridSignal(grid, array->GetNumberOfComponents(),
+    values.data(), filtered.data(), vtkShockFilterInternals::MakeParameters(this), &report,
+    this->GenerateFlowArrays ? &fields : nullptr,
+    [this](double fraction) { return this->ReportProgress(fraction); });
+  if (!status.Ok())
+  {
+    vtkErrorMacro("Shock filter failed: " << status.error);
+    return 0;
+  }
+  this->LastFlowSeconds = report.flowSeconds;
+  this->LastAdvectionSeconds = report.advectionSeconds;
+  this->LastTraceSteps = report.traceSteps;
+  if (report.truncatedTraces > 0)
+  {
+    vtkWarningMacro(<< report.truncatedTraces
+                    << " flow lines were cut at the step limit (a cycle of the discrete flow).");
+  }
+  if (report.aborted)
+  {
+    return 1; // aborted: the output holds the unfiltered input
+  }
+
+  vtkDataSetAttributes* attributes =
+    cellData ? static_cast<vtkDataSetAttributes*>(output->GetCellData()) : output->GetPointData();
+  vtkShockFilterInternals::ReplaceArray(
+    attributes, array, vtkShockFilterInternals::FromDoubles(array, filtered));
+  if (this->GenerateFlowArrays)
+  {
+    AttachFlowArrays(output, cellData, grid, fields);
+  }
+  return 1;
+}
+
+void vtkImageShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+}

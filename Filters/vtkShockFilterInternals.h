@@ -1,0 +1,41 @@
+/**
+ * @file vtkShockFilterInternals.h
+ * @brief Private glue between the vtkShock* filters and the VTK-free kernels.
+ *
+ * Not installed: the kernels' types stay out of the module's public headers.
+ */
+#ifndef vtkShockFilterInternals_h
+#define vtkShockFilterInternals_h
+
+#include "ShockTypes.h"
+#include "vtkSmartPointer.h"
+
+#include <vector>
+
+class vtkDataArray;
+class vtkDataSetAttributes;
+class vtkShockAdvectionFilter;
+
+namespace vtkShockFilterInternals
+{
+/// The filter's parameters in the kernels' form.
+shock::AdvectionParameters MakeParameters(vtkShockAdvectionFilter* filter);
+
+/// All tuples of a numeric array as interleaved doubles (any value type, any storage).
+std::vector<double> ToDoubles(vtkDataArray* array);
+
+/**
+ * A new array like `prototype` (same value type, name, components and
+ * component names) holding `values`. Integer types are rounded and clamped to
+ * the type's range; NaN becomes 0 for integer types (it cannot occur there).
+ */
+vtkSmartPointer<vtkDataArray> FromDoubles(vtkDataArray* prototype, const std::vector<double>& values);
+
+/**
+ * Replace `original` by `replacement` in `attributes`, keeping its attribute
+ * role (active scalars, ...) and, for named arrays, its position.
+ */
+void ReplaceArray(vtkDataSetAttributes* attributes, vtkDataArray* original, vtkDataArray* replacement);
+}
+
+#endif

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# The one install list of this project: Debian 12 packages needed to build the
+# VTK module, the ParaView plugin, the tests and the benchmarks, and to run the
+# GUI/MPI tests. Idempotent: installs only what is missing. Needs root (or sudo).
+set -euo pipefail
+
+PACKAGES=(
+  # toolchain and test frameworks
+  cmake g++ make libgtest-dev libbenchmark-dev
+  # ParaView 5.11 SDK (carries VTK 9.2) and what its CMake config probes
+  paraview paraview-dev python3-paraview
+  libeigen3-dev qtbase5-dev qttools5-dev libqt5svg5-dev libqt5opengl5-dev
+  qtxmlpatterns5-dev-tools libqt5x11extras5-dev qtmultimedia5-dev
+  libhdf5-mpi-dev libutfcpp-dev libnetcdf-dev libexpat1-dev
+  libdouble-conversion-dev liblz4-dev libjpeg-dev libpng-dev libtiff-dev
+  libxml2-dev zlib1g-dev libfreetype-dev libgl2ps-dev libglew-dev
+  libtheora-dev libogg-dev mpi-default-dev libjsoncpp-dev liblzma-dev
+  libgl-dev libx11-dev libavcodec-dev libavformat-dev libavutil-dev
+  libswscale-dev libgdal-dev libproj-dev
+  # headless display for rendering tests and screenshots; MPI launcher
+  xvfb xauth mpi-default-bin
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install-deps: installing ${#missing[@]} missing package(s): ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
