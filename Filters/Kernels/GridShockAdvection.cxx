@@ -453,8 +453,9 @@ private:
    * crossed by the back-trace), the trace slides along the boundary with the
    * Filippov velocity, the convex combination of the two flows that is tangent
    * to it: this is the delta -> 0 limit of the zig-zag of the stepped trace.
-   * A trace pushed onto a grid edge or corner from three or more faces stops
-   * there (a sink of the discrete flow).
+   * Where the trace is pushed onto a grid edge or corner from several faces at
+   * once, the exact rule is not unique; the rest of that trace uses the paper's
+   * stepping, which zig-zags along the edge (or stops at a sink).
    */
   std::int64_t TraceFaceCrossing(std::array<double, D>& q, double t, bool& truncated) const
   {
@@ -575,7 +576,8 @@ private:
       }
       if (w[exitAxis] * dir < 0.0 && exitAxis != pinned)
       {
-        break; // pushed back across a second boundary: a sink edge or corner
+        this->ClampToGrid(q);
+        return steps + this->TraceStepped(q, t, truncated); // pushed onto an edge or corner
       }
       v = w;
     }
