@@ -115,6 +115,16 @@ void AttachFlowArrays(vtkImageData* output, bool cellData, const shock::GridShap
 }
 }
 
+vtkImageData* vtkImageShockAdvectionFilter::GetOutput()
+{
+  return this->GetOutput(0);
+}
+
+vtkImageData* vtkImageShockAdvectionFilter::GetOutput(int port)
+{
+  return vtkImageData::SafeDownCast(this->GetOutputDataObject(port));
+}
+
 int vtkImageShockAdvectionFilter::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");

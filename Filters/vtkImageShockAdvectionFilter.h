@@ -40,12 +40,20 @@
 #include "vtkShockAdvectionFilter.h"
 #include "vtkFiltersShockModule.h" // for export macro
 
+class vtkImageData;
+
 class VTKFILTERSSHOCK_EXPORT vtkImageShockAdvectionFilter : public vtkShockAdvectionFilter
 {
 public:
   static vtkImageShockAdvectionFilter* New();
   vtkTypeMacro(vtkImageShockAdvectionFilter, vtkShockAdvectionFilter);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The filtered image (output port 0, or the given port).
+  vtkImageData* GetOutput();
+  vtkImageData* GetOutput(int port);
+  ///@}
 
 protected:
   vtkImageShockAdvectionFilter() = default;
