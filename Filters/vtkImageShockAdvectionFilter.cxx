@@ -141,7 +141,6 @@ int vtkImageShockAdvectionFilter::RequestData(
     vtkErrorMacro("Input and output must be vtkImageData.");
     return 0;
   }
-  output->ShallowCopy(input);
   this->LastFlowSeconds = this->LastAdvectionSeconds = 0.0;
   this->LastTraceSteps = 0;
   if (!this->ValidateParameters())
@@ -150,6 +149,7 @@ int vtkImageShockAdvectionFilter::RequestData(
   }
   if (input->GetNumberOfPoints() == 0)
   {
+    output->ShallowCopy(input);
     vtkWarningMacro("The input image is empty: nothing to filter.");
     return 1;
   }
@@ -196,6 +196,8 @@ int vtkImageShockAdvectionFilter::RequestData(
     }
   }
 
+  // Everything checked: the output starts as the input, arrays shared.
+  output->ShallowCopy(input);
   const std::vector<double> values = vtkShockFilterInternals::ToDoubles(array);
   std::vector<double> filtered(values.size());
   shock::AdvectionReport report;
