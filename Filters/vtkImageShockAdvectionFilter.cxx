@@ -158,8 +158,17 @@ int vtkImageShockAdvectionFilter::RequestData(
   vtkAbstractArray* selected = this->GetInputAbstractArrayToProcess(0, inputVector, association);
   if (!selected)
   {
-    vtkErrorMacro("No array to process: select a point or cell array with SetInputArrayToProcess "
-                  "(the default, the active point scalars, is not set on this image).");
+    vtkInformation* selection = this->GetInputArrayInformation(0);
+    if (selection->Has(vtkDataObject::FIELD_NAME()))
+    {
+      vtkErrorMacro("No array to process: the input has no point or cell array named '"
+        << selection->Get(vtkDataObject::FIELD_NAME()) << "'.");
+    }
+    else
+    {
+      vtkErrorMacro("No array to process: the input has no active point scalars; select an "
+                    "array with SetInputArrayToProcess.");
+    }
     return 0;
   }
   vtkDataArray* array = vtkDataArray::SafeDownCast(selected);
