@@ -125,24 +125,29 @@ struct Lattice
     }
   }
 
+  // Greedy decomposition from the largest stride; the first active axis always
+  // has stride 1 (flat axes before it have one sample), so D - 1 divisions.
   std::array<std::int64_t, D> SampleCoordinates(std::int64_t s) const
   {
-    std::array<std::int64_t, D> i{};
-    for (int d = 0; d < D; ++d)
-    {
-      i[d] = (s / this->sampleStride[d]) % this->n[d];
-    }
-    return i;
+    return Decompose(s, this->sampleStride);
   }
 
   std::array<std::int64_t, D> FaceCoordinates(std::int64_t f) const
   {
-    std::array<std::int64_t, D> c{};
-    for (int d = 0; d < D; ++d)
+    return Decompose(f, this->faceStride);
+  }
+
+  static std::array<std::int64_t, D> Decompose(
+    std::int64_t index, const std::array<std::int64_t, D>& stride)
+  {
+    std::array<std::int64_t, D> i{};
+    for (int d = D - 1; d > 0; --d)
     {
-      c[d] = (f / this->faceStride[d]) % this->m[d];
+      i[d] = index / stride[d];
+      index -= i[d] * stride[d];
     }
-    return c;
+    i[0] = index;
+    return i;
   }
 
   std::int64_t FaceBaseSample(const std::array<std::int64_t, D>& c) const
