@@ -734,7 +734,9 @@ void Table1(const Options& options)
   }
   std::cout << "\nBreakdown (best run): flow = smoothing + potential + flow computation, "
                "advection = back-tracing + sampling, both as measured by the kernel; "
-               "the rest of `Update()` is conversion to and from double and the range scan. "
+               "other = the rest of `Update()`: the filter's conversion to and from double and the "
+               "kernel's set-up outside its two timers (validity masks, range scan, copies; for "
+               "composed, the initial trace positions). "
                "Steps/trace = trace steps / (traces per pass x K), "
             << traces << " traces per pass.\n\n";
   std::cout << "| t | flow mode | K | best s | flow s | advection s | other s | trace steps | steps/trace |\n"
