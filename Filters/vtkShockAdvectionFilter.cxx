@@ -1,7 +1,9 @@
 #include "vtkShockAdvectionFilter.h"
 
+#include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkInformation.h"
 
 #include <cmath>
 
@@ -28,6 +30,56 @@ bool vtkShockAdvectionFilter::ReportProgress(double fraction)
   return !this->GetAbortExecute();
 }
 
+vtkDataArray* vtkShockAdvectionFilter::GetArrayToFilter(
+  vtkInformationVector** inputVector, int& association)
+{
+  association = -1;
+  vtkAbstractArray* selected = this->GetInputAbstractArrayToProcess(0, inputVector, association);
+  if (!selected)
+  {
+    vtkInformation* selection = this->GetInputArrayInformation(0);
+    if (selection->Has(vtkDataObject::FIELD_NAME()))
+    {
+      vtkErrorMacro("No array to process: the input has no point or cell array named '"
+        << selection->Get(vtkDataObject::FIELD_NAME()) << "'.");
+    }
+    else
+    {
+      vtkErrorMacro("No array to process: the input has no active point scalars; select an "
+                    "array with SetInputArrayToProcess.");
+    }
+    return nullptr;
+  }
+  const char* name = selected->GetName() ? selected->GetName() : "(unnamed)";
+  vtkDataArray* array = vtkDataArray::SafeDownCast(selected);
+  if (!array)
+  {
+    vtkErrorMacro("Array '" << name << "' is a " << selected->GetClassName()
+                            << ", not a numeric array: it cannot be filtered.");
+    return nullptr;
+  }
+  if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
+    association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
+  {
+    vtkErrorMacro("Array '" << name << "' must be point or cell data.");
+    return nullptr;
+  }
+  return array;
+}
+
+void vtkShockAdvectionFilter::RecordRun(double flowSeconds, double advectionSeconds,
+  vtkTypeUInt64 traceSteps, vtkTypeUInt64 truncatedTraces)
+{
+  this->LastFlowSeconds = flowSeconds;
+  this->LastAdvectionSeconds = advectionSeconds;
+  this->LastTraceSteps = traceSteps;
+  if (truncatedTraces > 0)
+  {
+    vtkWarningMacro(<< truncatedTraces
+                    << " flow lines were cut at the step limit (a cycle of the discrete flow).");
+  }
+}
+
 void vtkShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -42,6 +94,7 @@ void vtkShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "GenerateFlowArrays: " << (this->GenerateFlowArrays ? "On" : "Off") << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "LastSetupSeconds: " << this->LastSetupSeconds << "\n";
   os << indent << "LastFlowSeconds: " << this->LastFlowSeconds << "\n";
   os << indent << "LastAdvectionSeconds: " << this->LastAdvectionSeconds << "\n";
   os << indent << "LastTraceSteps: " << this->LastTraceSteps << "\n";

@@ -20,18 +20,21 @@
  * domain, so a TimeStep means the same on 8-bit and floating-point data, and on
  * any uniform scaling of the domain.
  *
- * Subclasses: vtkImageShockAdvectionFilter (images and volumes).
+ * Subclasses: vtkImageShockAdvectionFilter (images and volumes),
+ * vtkPolyDataShockAdvectionFilter (signals on triangle meshes).
  *
  * @warning The filter is multi-threaded with OpenMP (NumberOfThreads), not with
  * vtkSMPTools; results do not depend on the number of threads.
  *
- * @sa vtkImageShockAdvectionFilter
+ * @sa vtkImageShockAdvectionFilter vtkPolyDataShockAdvectionFilter
  */
 #ifndef vtkShockAdvectionFilter_h
 #define vtkShockAdvectionFilter_h
 
 #include "vtkPassInputTypeAlgorithm.h"
 #include "vtkFiltersShockModule.h" // for export macro
+
+class vtkDataArray;
 
 class VTKFILTERSSHOCK_EXPORT vtkShockAdvectionFilter : public vtkPassInputTypeAlgorithm
 {
@@ -160,10 +163,12 @@ public:
 
   ///@{
   /**
-   * Measurements of the last execution: seconds spent computing the flow
+   * Measurements of the last execution: seconds spent preparing the domain
+   * (mesh topology and geometry; 0 for images), computing the flow
    * (smoothing, potential, flow) and advecting (tracing and sampling), and the
    * number of tracing steps (face crossings or delta-steps) over all traces.
    */
+  vtkGetMacro(LastSetupSeconds, double);
   vtkGetMacro(LastFlowSeconds, double);
   vtkGetMacro(LastAdvectionSeconds, double);
   vtkGetMacro(LastTraceSteps, vtkTypeUInt64);
@@ -183,6 +188,17 @@ protected:
   /// Progress/abort bridge for the kernels: UpdateProgress, then false once AbortExecute is set.
   bool ReportProgress(double fraction);
 
+  /**
+   * The array chosen with SetInputArrayToProcess (index 0), with its association
+   * (vtkDataObject::FIELD_ASSOCIATION_POINTS or _CELLS). Reports a vtkErrorMacro
+   * and returns nullptr when it is missing, not numeric, or not point/cell data.
+   */
+  vtkDataArray* GetArrayToFilter(vtkInformationVector** inputVector, int& association);
+
+  /// Store the measurements of a run; warns when traces were cut at the step limit.
+  void RecordRun(double flowSeconds, double advectionSeconds, vtkTypeUInt64 traceSteps,
+    vtkTypeUInt64 truncatedTraces);
+
   double TimeStep = 64.0;
   int SmoothingPasses = 1;
   double StepFraction = 0.1;
@@ -193,6 +209,7 @@ protected:
   vtkTypeBool GenerateFlowArrays = false;
   int NumberOfThreads = 0;
 
+  double LastSetupSeconds = 0.0;
   double LastFlowSeconds = 0.0;
   double LastAdvectionSeconds = 0.0;
   vtkTypeUInt64 LastTraceSteps = 0;

@@ -88,6 +88,9 @@ struct Status
 /// Resolve a thread-count parameter: values <= 0 mean all available cores.
 int ResolveThreadCount(int requested);
 
+/// Check the ranges documented in AdvectionParameters; an empty Status when valid.
+Status CheckAdvectionParameters(const AdvectionParameters& parameters);
+
 } // namespace shock
 
 #endif

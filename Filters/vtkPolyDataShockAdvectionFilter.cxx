@@ -1,0 +1,203 @@
+#include "vtkPolyDataShockAdvectionFilter.h"
+
+#include "MeshShockAdvection.h"
+#include "vtkCellData.h"
+#include "vtkDoubleArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkShockFilterInternals.h"
+#include "vtkShockPolyDataInternals.h"
+
+#include <chrono>
+
+vtkStandardNewMacro(vtkPolyDataShockAdvectionFilter);
+
+namespace
+{
+/// ShockPotential per point; ShockFlow per cell, the area-weighted mean of the cell's triangles.
+void AttachFlowArrays(vtkPolyData* output, const shock::TriangleMesh& mesh,
+  const vtkShockPolyDataInternals::Triangles& triangles, const shock::MeshFlowFields& fields)
+{
+  vtkNew<vtkDoubleArray> potential;
+  potential->SetName(vtkShockAdvectionFilter::PotentialArrayName());
+  potential->SetNumberOfTuples(output->GetNumberOfPoints());
+  std::copy(fields.potential.begin(), fields.potential.end(), potential->GetPointer(0));
+  output->GetPointData()->AddArray(potential);
+
+  vtkNew<vtkDoubleArray> flow;
+  flow->SetName(vtkShockAdvectionFilter::FlowArrayName());
+  flow->SetNumberOfComponents(3);
+  flow->SetNumberOfTuples(output->GetNumberOfCells());
+  flow->Fill(0.0);
+  std::vector<double> area(static_cast<size_t>(output->GetNumberOfCells()), 0.0);
+  double* sum = flow->GetPointer(0);
+  for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+  {
+    const vtkIdType cell = triangles.sourceCell[static_cast<size_t>(f)];
+    const double a = mesh.Area(f);
+    area[static_cast<size_t>(cell)] += a;
+    for (int k = 0; k < 3; ++k)
+    {
+      sum[3 * cell + k] += a * fields.flow[static_cast<size_t>(3 * f + k)];
+    }
+  }
+  for (vtkIdType cell = 0; cell < output->GetNumberOfCells(); ++cell)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      sum[3 * cell + k] = area[static_cast<size_t>(cell)] > 0.0 ? sum[3 * cell + k] / area[static_cast<size_t>(cell)] : 0.0;
+    }
+  }
+  output->GetCellData()->AddArray(flow);
+}
+}
+
+vtkPolyData* vtkPolyDataShockAdvectionFilter::GetOutput()
+{
+  return this->GetOutput(0);
+}
+
+vtkPolyData* vtkPolyDataShockAdvectionFilter::GetOutput(int port)
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(port));
+}
+
+int vtkPolyDataShockAdvectionFilter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+int vtkPolyDataShockAdvectionFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorMacro("Input and output must be vtkPolyData.");
+    return 0;
+  }
+  this->LastSetupSeconds = 0.0;
+  this->RecordRun(0.0, 0.0, 0, 0);
+  if (!this->ValidateParameters())
+  {
+    return 0;
+  }
+  if (input->GetNumberOfPoints() == 0)
+  {
+    output->ShallowCopy(input);
+    vtkWarningMacro("The input mesh is empty: nothing to filter.");
+    return 1;
+  }
+  int association = -1;
+  vtkDataArray* array = this->GetArrayToFilter(inputVector, association);
+  if (!array)
+  {
+    return 0;
+  }
+  const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  const char* name = array->GetName() ? array->GetName() : "(unnamed)";
+  const vtkIdType expected = cellData ? input->GetNumberOfCells() : input->GetNumberOfPoints();
+  if (array->GetNumberOfTuples() != expected)
+  {
+    vtkErrorMacro("Array '" << name << "' has " << array->GetNumberOfTuples() << " tuples, the mesh has "
+                            << expected << (cellData ? " cells." : " points."));
+    return 0;
+  }
+
+  const auto setupStart = std::chrono::steady_clock::now();
+  vtkShockPolyDataInternals::Triangles triangles;
+  std::string error;
+  if (!vtkShockPolyDataInternals::ExtractTriangles(input, triangles, error))
+  {
+    vtkErrorMacro("Cannot read the mesh: " << error << ".");
+    return 0;
+  }
+  if (cellData && triangles.nonTriangleCells > 0)
+  {
+    vtkErrorMacro("Cell array '" << name << "' lives on " << triangles.nonTriangleCells
+                                 << " polygons with more than 3 points or triangle strips: cell data "
+                                    "is only filtered on triangles. Triangulate the mesh first "
+                                    "(vtkTriangleFilter, or ParaView's Triangulate filter).");
+    return 0;
+  }
+  shock::TriangleMesh mesh;
+  const shock::Status built = mesh.Build(triangles.View(), this->NumberOfThreads);
+  if (!built.Ok())
+  {
+    vtkErrorMacro("Cannot use the mesh: " << built.error << ".");
+    return 0;
+  }
+  this->LastSetupSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - setupStart).count();
+
+  // Everything checked: the output starts as the input, arrays shared.
+  output->ShallowCopy(input);
+  if (mesh.NumberOfTriangles() == 0)
+  {
+    vtkWarningMacro("The mesh has no polygons: nothing to filter.");
+    return 1;
+  }
+
+  const int components = array->GetNumberOfComponents();
+  std::vector<double> values = vtkShockFilterInternals::ToDoubles(array);
+  std::vector<double> signal;
+  if (cellData)
+  {
+    // The kernel sees one value per triangle; other cells keep theirs.
+    signal.resize(static_cast<size_t>(mesh.NumberOfTriangles() * components));
+    for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+    {
+      const double* row = &values[static_cast<size_t>(triangles.sourceCell[static_cast<size_t>(f)] * components)];
+      std::copy(row, row + components, &signal[static_cast<size_t>(f * components)]);
+    }
+  }
+  shock::MeshSignal meshSignal;
+  meshSignal.location = cellData ? shock::MeshLocation::Triangles : shock::MeshLocation::Points;
+  meshSignal.components = components;
+  meshSignal.values = cellData ? signal.data() : values.data();
+  std::vector<double> filtered(cellData ? signal.size() : values.size());
+  shock::AdvectionReport report;
+  shock::MeshFlowFields fields;
+  const shock::Status status = shock::AdvectMeshSignal(mesh, meshSignal, filtered.data(),
+    vtkShockFilterInternals::MakeParameters(this), &report, this->GenerateFlowArrays ? &fields : nullptr,
+    [this](double fraction) { return this->ReportProgress(fraction); });
+  if (!status.Ok())
+  {
+    vtkErrorMacro("Shock filter failed: " << status.error);
+    return 0;
+  }
+  this->RecordRun(report.flowSeconds, report.advectionSeconds, report.traceSteps, report.truncatedTraces);
+  if (report.aborted)
+  {
+    return 1; // aborted: the output holds the unfiltered input
+  }
+  if (cellData)
+  {
+    for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+    {
+      const double* row = &filtered[static_cast<size_t>(f * components)];
+      std::copy(row, row + components,
+        &values[static_cast<size_t>(triangles.sourceCell[static_cast<size_t>(f)] * components)]);
+    }
+    filtered.swap(values);
+  }
+  vtkDataSetAttributes* attributes =
+    cellData ? static_cast<vtkDataSetAttributes*>(output->GetCellData()) : output->GetPointData();
+  vtkShockFilterInternals::ReplaceArray(
+    attributes, array, vtkShockFilterInternals::FromDoubles(array, filtered));
+  if (this->GenerateFlowArrays)
+  {
+    AttachFlowArrays(output, mesh, triangles, fields);
+  }
+  return 1;
+}
+
+void vtkPolyDataShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+}

@@ -1,0 +1,87 @@
+/**
+ * @class   vtkPolyDataShockAdvectionFilter
+ * @brief   shock-filter advection of signals on triangle meshes
+ *
+ * Sharpens the selected point or cell array of a vtkPolyData (per-vertex
+ * colours, scalar fields, texture-like data) by shock-filter advection over the
+ * surface (Prada and Kazhdan 2015, section 4 and Appendix A; see
+ * vtkShockAdvectionFilter for the principle and the shared parameters).
+ *
+ * The gradient of the signal is the per-triangle gradient of its linear
+ * interpolant; the potential at a point is the area-weighted average of
+ * |grad I|^2 (summed over all components) over the adjacent triangles; the flow
+ * u = 1/2 grad P lies in each triangle's plane. Flow lines are traced over the
+ * surface: straight inside a triangle and, across an edge, on in the
+ * neighbouring triangle unfolded into the current plane. They stop at boundary
+ * edges, at non-manifold edges (shared by more than two triangles) and at
+ * degenerate (zero-area) triangles.
+ *
+ * Point data is advected per vertex: from an offset of 0.001 towards the centre
+ * of each adjacent triangle, traced, sampled and averaged. Cell data is advected
+ * per triangle from its centre; to define the potential and for LINEAR sampling
+ * it is first averaged to the points (area-weighted). NEAREST sampling reads the
+ * value of the nearest vertex (point data) or of the triangle reached (cell data).
+ *
+ * Meshes as users have them:
+ * - polygons with more than three points and triangle strips are triangulated
+ *   internally for point data; the output keeps the input's cells. Cell data on
+ *   such cells is refused with an error: triangulate first (vtkTriangleFilter,
+ *   or ParaView's Triangulate).
+ * - vertex and line cells, points used by no polygon, and polygons with fewer
+ *   than three points pass through with their values unchanged.
+ * - duplicate points are distinct vertices: a seam of duplicates acts as a
+ *   boundary (merge them first, e.g. with vtkCleanPolyData, to trace across it).
+ * - several connected components are filtered independently.
+ * - non-finite values (NaN, inf) keep their place and do not spread.
+ *
+ * The array comes from SetInputArrayToProcess (default: the active point
+ * scalars), any numeric type and number of components (all components share one
+ * flow). The output has the input's points and cells; the array keeps its name,
+ * type and attribute role (integer types are rounded and clamped) and every other
+ * array passes through. With GenerateFlowArrays, the output also gets the point
+ * array "ShockPotential" and the cell array "ShockFlow" (3 components, mesh
+ * axes; for a triangulated polygon the area-weighted mean of its triangles;
+ * zero on vertex and line cells).
+ *
+ * @warning Errors (RequestData returns 0): negative or non-finite TimeStep,
+ * missing or non-numeric array, field-data array, cell data on non-triangle
+ * polygons or strips, non-finite point coordinates. An empty input, or an input
+ * without polygons, passes through with a warning.
+ *
+ * @sa vtkShockAdvectionFilter vtkImageShockAdvectionFilter
+ */
+#ifndef vtkPolyDataShockAdvectionFilter_h
+#define vtkPolyDataShockAdvectionFilter_h
+
+#include "vtkFiltersShockModule.h" // for export macro
+#include "vtkShockAdvectionFilter.h"
+
+class vtkPolyData;
+
+class VTKFILTERSSHOCK_EXPORT vtkPolyDataShockAdvectionFilter : public vtkShockAdvectionFilter
+{
+public:
+  static vtkPolyDataShockAdvectionFilter* New();
+  vtkTypeMacro(vtkPolyDataShockAdvectionFilter, vtkShockAdvectionFilter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The filtered mesh (output port 0, or the given port).
+  vtkPolyData* GetOutput();
+  vtkPolyData* GetOutput(int port);
+  ///@}
+
+protected:
+  vtkPolyDataShockAdvectionFilter() = default;
+  ~vtkPolyDataShockAdvectionFilter() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+private:
+  vtkPolyDataShockAdvectionFilter(const vtkPolyDataShockAdvectionFilter&) = delete;
+  void operator=(const vtkPolyDataShockAdvectionFilter&) = delete;
+};
+
+#endif

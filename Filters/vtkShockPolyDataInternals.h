@@ -1,0 +1,39 @@
+/**
+ * @file vtkShockPolyDataInternals.h
+ * @brief Private glue between vtkPolyData and the VTK-free triangle-mesh kernels.
+ */
+#ifndef vtkShockPolyDataInternals_h
+#define vtkShockPolyDataInternals_h
+
+#include "TriangleMesh.h"
+#include "vtkType.h"
+
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+
+namespace vtkShockPolyDataInternals
+{
+/**
+ * The triangles of a vtkPolyData's polygons and strips as plain arrays.
+ * Polygons with more than three points are triangulated (vtkPolygon's ear
+ * cutting), strips are split into their triangles; vertices and lines have no
+ * triangles. Each triangle remembers the cell it comes from.
+ */
+struct Triangles
+{
+  std::vector<double> points;          ///< 3 coordinates per point (all points of the input)
+  std::vector<std::int64_t> triangles; ///< 3 point ids per triangle
+  std::vector<vtkIdType> sourceCell;   ///< cell id (vtkPolyData numbering) of each triangle
+  vtkIdType nonTriangleCells = 0;      ///< polygons with more than 3 points, and strips
+  vtkIdType degenerateCells = 0;       ///< polygons with fewer than 3 points (no triangle)
+
+  shock::TriangleMeshView View() const;
+};
+
+/// Fill `out` from `input`. Returns false with `error` set when the input cannot be read.
+bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error);
+}
+
+#endif
