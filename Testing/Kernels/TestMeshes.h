@@ -29,11 +29,14 @@ namespace shocktest
 /// A triangle mesh as two flat arrays.
 struct MeshData
 {
-  std::vector<double> points;             ///< 3 coordinates per point
-  std::vector<std::int64_t> triangles;    ///< 3 point ids per triangle, counter-clockwise seen from outside
+  std::vector<double> points;          ///< 3 coordinates per point
+  std::vector<std::int64_t> triangles; ///< 3 point ids per triangle, counter-clockwise from outside
 
   std::int64_t NumberOfPoints() const { return static_cast<std::int64_t>(this->points.size() / 3); }
-  std::int64_t NumberOfTriangles() const { return static_cast<std::int64_t>(this->triangles.size() / 3); }
+  std::int64_t NumberOfTriangles() const
+  {
+    return static_cast<std::int64_t>(this->triangles.size() / 3);
+  }
 };
 
 using Vec3 = std::array<double, 3>;
@@ -47,15 +50,30 @@ struct Ball
 
 // --- Small vector algebra -------------------------------------------------------
 
-inline Vec3 operator+(const Vec3& a, const Vec3& b) { return { a[0] + b[0], a[1] + b[1], a[2] + b[2] }; }
-inline Vec3 operator-(const Vec3& a, const Vec3& b) { return { a[0] - b[0], a[1] - b[1], a[2] - b[2] }; }
-inline Vec3 operator*(double s, const Vec3& a) { return { s * a[0], s * a[1], s * a[2] }; }
-inline double Dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 operator+(const Vec3& a, const Vec3& b)
+{
+  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+}
+inline Vec3 operator-(const Vec3& a, const Vec3& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+inline Vec3 operator*(double s, const Vec3& a)
+{
+  return { s * a[0], s * a[1], s * a[2] };
+}
+inline double Dot(const Vec3& a, const Vec3& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 inline Vec3 Cross(const Vec3& a, const Vec3& b)
 {
   return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
 }
-inline double Norm(const Vec3& a) { return std::sqrt(Dot(a, a)); }
+inline double Norm(const Vec3& a)
+{
+  return std::sqrt(Dot(a, a));
+}
 
 // --- Access and measurements ------------------------------------------------------
 
@@ -125,7 +143,7 @@ inline double SurfaceArea(const MeshData& mesh)
   return area;
 }
 
-/// The signed volume enclosed by the triangles (divergence theorem); positive for outward triangles.
+/// The signed volume enclosed by the triangles (divergence theorem), positive for outward ones.
 inline double SignedVolume(const MeshData& mesh)
 {
   double volume = 0.0;
@@ -137,7 +155,7 @@ inline double SignedVolume(const MeshData& mesh)
   return volume / 6.0;
 }
 
-/// The distinct undirected edges (smaller id first), sorted; a triangle's edge from a point to itself is not one.
+/// The distinct undirected edges (smaller id first), sorted, without point-to-itself edges.
 inline std::vector<std::pair<std::int64_t, std::int64_t>> UniqueEdges(const MeshData& mesh)
 {
   std::vector<std::pair<std::int64_t, std::int64_t>> edges;
@@ -261,7 +279,7 @@ inline MeshData Merged(MeshData mesh, const MeshData& other)
 
 // --- Generators ----------------------------------------------------------------------
 
-/// A sphere about the origin: an icosahedron whose triangles are split in four `subdivisions` times (0..7), points on the sphere.
+/// Sphere about the origin: an icosahedron split in four `subdivisions` (0..7) times, projected.
 inline MeshData Icosphere(int subdivisions, double radius = 1.0)
 {
   if (subdivisions < 0 || subdivisions > 7)
@@ -301,7 +319,8 @@ inline MeshData Icosphere(int subdivisions, double radius = 1.0)
           AddTriangle(mesh, a, b, c);
           if (Dot(TriangleCross(mesh, mesh.NumberOfTriangles() - 1), Point(mesh, a)) < 0.0)
           {
-            std::swap(mesh.triangles[mesh.triangles.size() - 1], mesh.triangles[mesh.triangles.size() - 2]);
+            std::swap(
+              mesh.triangles[mesh.triangles.size() - 1], mesh.triangles[mesh.triangles.size() - 2]);
           }
         }
       }
@@ -320,8 +339,8 @@ inline MeshData Icosphere(int subdivisions, double radius = 1.0)
   {
     std::unordered_map<std::uint64_t, std::int64_t> midpoints;
     auto midpoint = [&](std::int64_t a, std::int64_t b) {
-      const std::uint64_t key =
-        (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint64_t>(std::max(a, b));
+      const std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) |
+        static_cast<std::uint64_t>(std::max(a, b));
       const auto [it, inserted] = midpoints.try_emplace(key, 0);
       if (inserted)
       {
@@ -349,7 +368,9 @@ inline MeshData Icosphere(int subdivisions, double radius = 1.0)
   return mesh;
 }
 
-/// The nx*ny samples of an image at (i, j, 0) * spacing, id j*nx + i (nx, ny >= 2); each square split along its (i, j)-(i+1, j+1) diagonal, counter-clockwise seen from +z.
+/// Image samples (i, j, 0) * spacing, id j*nx + i, squares cut along (i,j)-(i+1,j+1), CCW from +z.
+///
+/// nx, ny >= 2.
 inline MeshData PlaneGrid(int nx, int ny, double spacing = 1.0)
 {
   if (nx < 2 || ny < 2)
@@ -369,7 +390,8 @@ inline MeshData PlaneGrid(int nx, int ny, double spacing = 1.0)
   {
     for (int i = 0; i + 1 < nx; ++i)
     {
-      const std::int64_t a = static_cast<std::int64_t>(j) * nx + i, b = a + 1, c = a + nx, d = c + 1;
+      const std::int64_t a = static_cast<std::int64_t>(j) * nx + i, b = a + 1, c = a + nx,
+                         d = c + 1;
       AddTriangle(mesh, a, b, d);
       AddTriangle(mesh, a, d, c);
     }
@@ -377,7 +399,10 @@ inline MeshData PlaneGrid(int nx, int ny, double spacing = 1.0)
   return mesh;
 }
 
-/// An open tube about the z axis from z = 0 to `height`: `along` + 1 rings (along >= 1) of `around` points (>= 3), point id ring*around + k at angle 2 pi k/around; normals outward.
+/// Open tube about the z axis from z = 0 to `height`, normals outward.
+///
+/// `along` + 1 rings (along >= 1) of `around` points (>= 3): point ring*around + k is at the
+/// angle 2 pi k / around.
 inline MeshData Cylinder(int around, int along, double radius, double height)
 {
   if (around < 3 || along < 1)
@@ -408,7 +433,10 @@ inline MeshData Cylinder(int around, int along, double radius, double height)
   return mesh;
 }
 
-/// The closed surface of the box [-sx/2, sx/2] x [-sy/2, sy/2] x [-sz/2, sz/2]: each face an n x n grid of squares (n >= 1), two triangles each, welded along edges and corners, normals outward.
+/// Closed surface of the box [-sx/2, sx/2] x [-sy/2, sy/2] x [-sz/2, sz/2], normals outward.
+///
+/// Each face is a grid of n x n squares (n = subdivisionsPerEdge >= 1) of two triangles, the
+/// faces welded along the edges and corners.
 inline MeshData BoxSurface(int subdivisionsPerEdge, double sx, double sy, double sz)
 {
   const int n = subdivisionsPerEdge;
@@ -471,7 +499,9 @@ inline MeshData BoxSurface(int subdivisionsPerEdge, double sx, double sy, double
   return mesh;
 }
 
-/// BoxSurface(n, size, size, size) with its points moved onto the cube of side `size` whose edges and corners are rounded with radius `roundingRadius` (0 <= r <= size/2; r = size/2 gives a sphere).
+/// BoxSurface(n, size, size, size) moved onto the cube whose creases are rounded with that radius.
+///
+/// 0 <= roundingRadius <= size/2; size/2 gives a sphere.
 inline MeshData RoundedBox(int subdivisionsPerEdge, double size, double roundingRadius)
 {
   if (roundingRadius < 0.0 || roundingRadius > 0.5 * size)
@@ -498,15 +528,15 @@ inline MeshData RoundedBox(int subdivisionsPerEdge, double size, double rounding
   return mesh;
 }
 
-/// The mesh without the triangles whose centroid lies strictly inside one of the balls, and without the points left unused.
+/// The mesh without the triangles whose centroid is inside a ball, and without unused points.
 inline MeshData WithHoles(MeshData mesh, const std::vector<Ball>& balls)
 {
   std::vector<std::int64_t> kept;
   for (std::int64_t t = 0; t < mesh.NumberOfTriangles(); ++t)
   {
     const Vec3 c = TriangleCentroid(mesh, t);
-    const bool removed = std::any_of(
-      balls.begin(), balls.end(), [&](const Ball& ball) { return Norm(c - ball.center) < ball.radius; });
+    const bool removed = std::any_of(balls.begin(), balls.end(),
+      [&](const Ball& ball) { return Norm(c - ball.center) < ball.radius; });
     if (!removed)
     {
       kept.insert(kept.end(), mesh.triangles.begin() + 3 * t, mesh.triangles.begin() + 3 * t + 3);
@@ -566,7 +596,9 @@ inline MeshData WithDuplicatePoints(MeshData mesh)
     above[static_cast<size_t>(t)] = TriangleCentroid(mesh, t)[0] >= cut;
     for (int k = 0; k < 3; ++k)
     {
-      (above[static_cast<size_t>(t)] ? usedAbove : usedBelow)[static_cast<size_t>(mesh.triangles[3 * t + k])] = true;
+      (above[static_cast<size_t>(t)] ? usedAbove
+                                     : usedBelow)[static_cast<size_t>(mesh.triangles[3 * t + k])] =
+        true;
     }
   }
   std::vector<std::int64_t> copyOf(n, -1);
@@ -621,7 +653,7 @@ inline MeshData WithDegenerateTriangles(MeshData mesh)
   return mesh;
 }
 
-/// The mesh plus `count` points no triangle uses, spread evenly inside the bounding box along its diagonal (appended).
+/// The mesh plus `count` unused points, appended, spread along the diagonal of its bounding box.
 inline MeshData WithIsolatedPoints(MeshData mesh, int count)
 {
   const auto [low, high] = Bounds(mesh);
@@ -632,24 +664,31 @@ inline MeshData WithIsolatedPoints(MeshData mesh, int count)
   return mesh;
 }
 
-/// Two disjoint unit spheres, Icosphere(subdivisions) about (-2, 0, 0) (the first points and triangles) and (2, 0, 0).
+/// Two disjoint unit spheres: Icosphere(subdivisions) about (-2, 0, 0) (ids first) and (2, 0, 0).
 inline MeshData TwoComponents(int subdivisions = 2)
 {
   const MeshData sphere = Icosphere(subdivisions);
-  return Merged(Transformed(sphere, 1.0, { -2.0, 0.0, 0.0 }), Transformed(sphere, 1.0, { 2.0, 0.0, 0.0 }));
+  return Merged(
+    Transformed(sphere, 1.0, { -2.0, 0.0, 0.0 }), Transformed(sphere, 1.0, { 2.0, 0.0, 0.0 }));
 }
 
-/// The mesh with every point moved by a length uniform in [0, amplitude] along a direction uniform on the sphere (same seed, same result).
+/// The mesh with every point moved by up to `amplitude` in a random direction (seeded).
+///
+/// The length is uniform in [0, amplitude], the direction uniform on the sphere.
 inline MeshData Noisy(MeshData mesh, double amplitude, unsigned seed)
 {
   std::mt19937 generator(seed);
-  auto uniform = [&generator] { return (static_cast<double>(generator()) + 0.5) / 4294967296.0; }; // in (0, 1)
+  auto uniform = [&generator] {
+    return (static_cast<double>(generator()) + 0.5) / 4294967296.0;
+  }; // in (0, 1)
   const double pi = std::acos(-1.0);
   for (std::int64_t p = 0; p < mesh.NumberOfPoints(); ++p)
   {
-    const double z = 2.0 * uniform() - 1.0, angle = 2.0 * pi * uniform(), length = amplitude * uniform();
+    const double z = 2.0 * uniform() - 1.0, angle = 2.0 * pi * uniform(),
+                 length = amplitude * uniform();
     const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const Vec3 moved = Point(mesh, p) + length * Vec3{ r * std::cos(angle), r * std::sin(angle), z };
+    const Vec3 moved =
+      Point(mesh, p) + length * Vec3{ r * std::cos(angle), r * std::sin(angle), z };
     std::copy(moved.begin(), moved.end(), mesh.points.begin() + 3 * p);
   }
   return mesh;
