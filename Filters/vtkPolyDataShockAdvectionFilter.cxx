@@ -2,7 +2,6 @@
 
 #include "MeshShockAdvection.h"
 #include "vtkCellData.h"
-#include "vtkDoubleArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
@@ -14,46 +13,6 @@
 #include <chrono>
 
 vtkStandardNewMacro(vtkPolyDataShockAdvectionFilter);
-
-namespace
-{
-/// ShockPotential per point; ShockFlow per cell, the area-weighted mean of the cell's triangles.
-void AttachFlowArrays(vtkPolyData* output, const shock::TriangleMesh& mesh,
-  const vtkShockPolyDataInternals::Triangles& triangles, const shock::MeshFlowFields& fields)
-{
-  vtkNew<vtkDoubleArray> potential;
-  potential->SetName(vtkShockAdvectionFilter::PotentialArrayName());
-  potential->SetNumberOfTuples(output->GetNumberOfPoints());
-  std::copy(fields.potential.begin(), fields.potential.end(), potential->GetPointer(0));
-  output->GetPointData()->AddArray(potential);
-
-  vtkNew<vtkDoubleArray> flow;
-  flow->SetName(vtkShockAdvectionFilter::FlowArrayName());
-  flow->SetNumberOfComponents(3);
-  flow->SetNumberOfTuples(output->GetNumberOfCells());
-  flow->Fill(0.0);
-  std::vector<double> area(static_cast<size_t>(output->GetNumberOfCells()), 0.0);
-  double* sum = flow->GetPointer(0);
-  for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
-  {
-    const vtkIdType cell = triangles.sourceCell[static_cast<size_t>(f)];
-    const double a = mesh.Area(f);
-    area[static_cast<size_t>(cell)] += a;
-    for (int k = 0; k < 3; ++k)
-    {
-      sum[3 * cell + k] += a * fields.flow[static_cast<size_t>(3 * f + k)];
-    }
-  }
-  for (vtkIdType cell = 0; cell < output->GetNumberOfCells(); ++cell)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      sum[3 * cell + k] = area[static_cast<size_t>(cell)] > 0.0 ? sum[3 * cell + k] / area[static_cast<size_t>(cell)] : 0.0;
-    }
-  }
-  output->GetCellData()->AddArray(flow);
-}
-}
 
 vtkPolyData* vtkPolyDataShockAdvectionFilter::GetOutput()
 {
@@ -192,7 +151,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     attributes, array, vtkShockFilterInternals::FromDoubles(array, filtered));
   if (this->GenerateFlowArrays)
   {
-    AttachFlowArrays(output, mesh, triangles, fields);
+    vtkShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, fields);
   }
   return 1;
 }

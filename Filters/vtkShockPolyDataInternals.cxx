@@ -1,6 +1,10 @@
 #include "vtkShockPolyDataInternals.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDoubleArray.h"
+#include "vtkPointData.h"
+#include "vtkShockAdvectionFilter.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkIdList.h"
 #include "vtkNew.h"
@@ -8,6 +12,34 @@
 #include "vtkPolyData.h"
 #include "vtkPolygon.h"
 #include "vtkShockFilterInternals.h"
+
+namespace
+{
+/// True when the quad's two fan triangles (0,1,2) and (0,2,3) have the same orientation.
+bool ConvexQuad(vtkPoints* points, const vtkIdType* ids)
+{
+  double x[4][3];
+  for (int k = 0; k < 4; ++k)
+  {
+    points->GetPoint(ids[k], x[k]);
+  }
+  auto normal = [&x](int a, int b, int c, double n[3]) {
+    const double u[3] = { x[b][0] - x[a][0], x[b][1] - x[a][1], x[b][2] - x[a][2] };
+    const double v[3] = { x[c][0] - x[a][0], x[c][1] - x[a][1], x[c][2] - x[a][2] };
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+  };
+  double n1[3], n2[3], m1[3], m2[3];
+  normal(0, 1, 2, n1);
+  normal(0, 2, 3, n2);
+  normal(1, 2, 3, m1); // the other diagonal must agree too, or the quad is not convex
+  normal(1, 3, 0, m2);
+  const double d1 = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
+  const double d2 = m1[0] * m2[0] + m1[1] * m2[1] + m1[2] * m2[2];
+  return d1 > 0.0 && d2 > 0.0;
+}
+}
 
 namespace vtkShockPolyDataInternals
 {
@@ -68,6 +100,14 @@ bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error)
       continue;
     }
     ++out.nonTriangleCells;
+    if (size == 4 && ConvexQuad(points, ids))
+    {
+      // One fixed diagonal for every convex quad: structured quad meshes get a
+      // uniform triangulation (ear cutting would mix the diagonals).
+      add(ids[0], ids[1], ids[2], cellId);
+      add(ids[0], ids[2], ids[3], cellId);
+      continue;
+    }
     // Ear cutting handles non-convex polygons; it returns local corner indices.
     polygon->Initialize(static_cast<int>(size), ids, points);
     fan->Reset();
@@ -117,6 +157,49 @@ bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error)
     }
   }
   return true;
+}
+
+vtkSmartPointer<vtkDoubleArray> TrianglesToCells(const char* name, vtkIdType numberOfCells,
+  const shock::TriangleMesh& mesh, const Triangles& triangles, const std::vector<double>& vectors)
+{
+  auto cells = vtkSmartPointer<vtkDoubleArray>::New();
+  cells->SetName(name);
+  cells->SetNumberOfComponents(3);
+  cells->SetNumberOfTuples(numberOfCells);
+  cells->Fill(0.0);
+  std::vector<double> area(static_cast<size_t>(numberOfCells), 0.0);
+  double* sum = cells->GetPointer(0);
+  for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+  {
+    const vtkIdType cell = triangles.sourceCell[static_cast<size_t>(f)];
+    const double a = mesh.Area(f);
+    area[static_cast<size_t>(cell)] += a;
+    for (int k = 0; k < 3; ++k)
+    {
+      sum[3 * cell + k] += a * vectors[static_cast<size_t>(3 * f + k)];
+    }
+  }
+  for (vtkIdType cell = 0; cell < numberOfCells; ++cell)
+  {
+    const double a = area[static_cast<size_t>(cell)];
+    for (int k = 0; k < 3; ++k)
+    {
+      sum[3 * cell + k] = a > 0.0 ? sum[3 * cell + k] / a : 0.0;
+    }
+  }
+  return cells;
+}
+
+void AttachFlowArrays(vtkPolyData* output, const shock::TriangleMesh& mesh,
+  const Triangles& triangles, const shock::MeshFlowFields& fields)
+{
+  vtkNew<vtkDoubleArray> potential;
+  potential->SetName(vtkShockAdvectionFilter::PotentialArrayName());
+  potential->SetNumberOfTuples(output->GetNumberOfPoints());
+  std::copy(fields.potential.begin(), fields.potential.end(), potential->GetPointer(0));
+  output->GetPointData()->AddArray(potential);
+  output->GetCellData()->AddArray(TrianglesToCells(
+    vtkShockAdvectionFilter::FlowArrayName(), output->GetNumberOfCells(), mesh, triangles, fields.flow));
 }
 
 }

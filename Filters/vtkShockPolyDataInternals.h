@@ -5,12 +5,15 @@
 #ifndef vtkShockPolyDataInternals_h
 #define vtkShockPolyDataInternals_h
 
+#include "MeshShockAdvection.h"
 #include "TriangleMesh.h"
+#include "vtkSmartPointer.h"
 #include "vtkType.h"
 
 #include <string>
 #include <vector>
 
+class vtkDoubleArray;
 class vtkPolyData;
 
 namespace vtkShockPolyDataInternals
@@ -34,6 +37,17 @@ struct Triangles
 
 /// Fill `out` from `input`. Returns false with `error` set when the input cannot be read.
 bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error);
+
+/**
+ * A per-cell array of 3-vectors from per-triangle ones: the area-weighted mean
+ * of each cell's triangles (zero for cells without triangles).
+ */
+vtkSmartPointer<vtkDoubleArray> TrianglesToCells(const char* name, vtkIdType numberOfCells,
+  const shock::TriangleMesh& mesh, const Triangles& triangles, const std::vector<double>& vectors);
+
+/// Add "ShockPotential" (points) and "ShockFlow" (cells) to `output`.
+void AttachFlowArrays(vtkPolyData* output, const shock::TriangleMesh& mesh,
+  const Triangles& triangles, const shock::MeshFlowFields& fields);
 }
 
 #endif

@@ -562,16 +562,23 @@ bool SampleAt(const MeshRun& run, const SurfacePoint& q, const double* cells, co
   {
     return false;
   }
-  for (int k = 0; k < 3; ++k)
+  for (int c = 0; c < C; ++c)
   {
-    if (run.validPoint[static_cast<size_t>(t[k])])
+    // A convex combination: clamp away rounding so outputs never leave the corners' range.
+    double value = 0.0;
+    double low = std::numeric_limits<double>::infinity();
+    double high = -low;
+    for (int k = 0; k < 3; ++k)
     {
-      const double w = q.barycentric[k] / total;
-      for (int c = 0; c < C; ++c)
+      if (run.validPoint[static_cast<size_t>(t[k])])
       {
-        acc[c] += w * points[t[k] * C + c];
+        const double v = points[t[k] * C + c];
+        value += (q.barycentric[k] / total) * v;
+        low = std::min(low, v);
+        high = std::max(high, v);
       }
     }
+    acc[c] += std::clamp(value, low, high);
   }
   return true;
 }
@@ -844,7 +851,7 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
   std::vector<double> current(input, input + count); // the signal the flow is computed from
   std::vector<double> next(p.flowMode == FlowMode::Naive ? count : 0);
   std::vector<SurfacePoint> positions;
-  if (p.flowMode == FlowMode::Composed && p.time > 0.0)
+  if (p.flowMode == FlowMode::Composed && (p.time > 0.0 || signal.sampleAtTimeZero))
   {
     positions = InitialPositions(run);
   }
@@ -902,7 +909,7 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
       report.aborted = true;
       break;
     }
-    if (!(p.time > 0.0))
+    if (!(p.time > 0.0) && !signal.sampleAtTimeZero)
     {
       continue; // t = 0: the input, exactly
     }
@@ -944,7 +951,7 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
   {
     std::copy(input, input + count, output);
   }
-  else if (p.flowMode != FlowMode::Fixed && p.time > 0.0)
+  else if (p.flowMode != FlowMode::Fixed && (p.time > 0.0 || signal.sampleAtTimeZero))
   {
     std::copy(current.begin(), current.end(), output);
   }

@@ -65,6 +65,13 @@ struct MeshSignal
    * (unit normals) so that t does not depend on how curved the mesh is.
    */
   double valueScale = 0.0;
+  /**
+   * Sample at the trace starts even when t = 0. Off (the default), t = 0 returns
+   * the input exactly. On, a cell signal with Sampling::Linear is read from its
+   * per-point averages at the face centres, which smooths it: geometry
+   * sharpening does this, as the paper does (its Figure 7).
+   */
+  bool sampleAtTimeZero = false;
 };
 
 /**

@@ -2,6 +2,8 @@
 // array types, pass-through, flow arrays, errors, progress and abort.
 #include "vtkImageShockAdvectionFilter.h"
 
+#include "TestFilterHelpers.h"
+
 #include "vtkCallbackCommand.h"
 #include "vtkCellData.h"
 #include "vtkCommand.h"
@@ -38,26 +40,9 @@
 namespace
 {
 
-/// Records the error and warning messages an object emits.
-class MessageLog
-{
-public:
-  explicit MessageLog(vtkObject* object)
-  {
-    this->Callback->SetClientData(this);
-    this->Callback->SetCallback([](vtkObject*, unsigned long event, void* client, void* data) {
-      auto* self = static_cast<MessageLog*>(client);
-      (event == vtkCommand::ErrorEvent ? self->Errors : self->Warnings) +=
-        std::string(static_cast<const char*>(data)) + "\n";
-    });
-    object->AddObserver(vtkCommand::ErrorEvent, this->Callback);
-    object->AddObserver(vtkCommand::WarningEvent, this->Callback);
-  }
-  std::string Errors, Warnings;
-
-private:
-  vtkNew<vtkCallbackCommand> Callback;
-};
+using shock_test::MessageLog;
+using shock_test::UpdateSucceeds;
+using shock_test::Values;
 
 /// A blurred multi-feature image: a bright disc, a dark square and a ramp.
 double Feature(double x, double y)
@@ -102,17 +87,6 @@ vtkSmartPointer<vtkImageData> MakeImage(vtkDataArray* array, int nx = 56, int ny
   }
   image->GetPointData()->SetScalars(array);
   return image;
-}
-
-std::vector<double> Values(vtkDataArray* array)
-{
-  std::vector<double> v(static_cast<size_t>(array->GetNumberOfValues()));
-  for (vtkIdType i = 0; i < array->GetNumberOfValues(); ++i)
-  {
-    v[static_cast<size_t>(i)] = array->GetComponent(i / array->GetNumberOfComponents(),
-      static_cast<int>(i % array->GetNumberOfComponents()));
-  }
-  return v;
 }
 
 /// Mean squared forward difference along x: a sharpness measure.
@@ -461,12 +435,6 @@ TEST(ImageShockAdvectionFilter, NaNStaysWhereItWas)
       ASSERT_LE(out[i], range[1] + 1e-6);
     }
   }
-}
-
-/// Runs the filter and returns whether the pipeline update succeeded.
-bool UpdateSucceeds(vtkImageShockAdvectionFilter* filter)
-{
-  return filter->GetExecutive()->Update() != 0;
 }
 
 TEST(ImageShockAdvectionFilter, BadInputsFailWithAClearError)
