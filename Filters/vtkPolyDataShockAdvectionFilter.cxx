@@ -10,7 +10,6 @@
 #include "vtkShockFilterInternals.h"
 #include "vtkShockPolyDataInternals.h"
 
-#include <chrono>
 
 vtkStandardNewMacro(vtkPolyDataShockAdvectionFilter);
 
@@ -40,9 +39,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     vtkErrorMacro("Input and output must be vtkPolyData.");
     return 0;
   }
-  this->LastSetupSeconds = 0.0;
-  this->RecordRun(0.0, 0.0, 0, 0);
-  if (!this->ValidateParameters())
+  if (!this->BeginExecution())
   {
     return 0;
   }
@@ -68,14 +65,15 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     return 0;
   }
 
-  const auto setupStart = std::chrono::steady_clock::now();
-  vtkShockPolyDataInternals::Triangles triangles;
+  vtkShockPolyDataInternals::PreparedMesh prepared;
   std::string error;
-  if (!vtkShockPolyDataInternals::ExtractTriangles(input, triangles, error))
+  if (!vtkShockPolyDataInternals::PrepareMesh(input, false, this->NumberOfThreads, prepared, error))
   {
-    vtkErrorMacro("Cannot read the mesh: " << error << ".");
+    vtkErrorMacro(<< error);
     return 0;
   }
+  const vtkShockPolyDataInternals::Triangles& triangles = prepared.triangles;
+  const shock::TriangleMesh& mesh = prepared.mesh;
   if (cellData && triangles.nonTriangleCells > 0)
   {
     vtkErrorMacro("Cell array '" << name << "' lives on " << triangles.nonTriangleCells
@@ -84,15 +82,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
                                     "(vtkTriangleFilter, or ParaView's Triangulate filter).");
     return 0;
   }
-  shock::TriangleMesh mesh;
-  const shock::Status built = mesh.Build(triangles.View(), this->NumberOfThreads);
-  if (!built.Ok())
-  {
-    vtkErrorMacro("Cannot use the mesh: " << built.error << ".");
-    return 0;
-  }
-  this->LastSetupSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - setupStart).count();
+  this->LastSetupSeconds = prepared.seconds;
 
   // Everything checked: the output starts as the input, arrays shared.
   output->ShallowCopy(input);

@@ -24,6 +24,18 @@ bool vtkShockAdvectionFilter::ValidateParameters()
   return true;
 }
 
+void vtkShockAdvectionFilter::ResetMeasurements()
+{
+  this->LastSetupSeconds = this->LastFlowSeconds = this->LastAdvectionSeconds = 0.0;
+  this->LastTraceSteps = 0;
+}
+
+bool vtkShockAdvectionFilter::BeginExecution()
+{
+  this->ResetMeasurements();
+  return this->ValidateParameters();
+}
+
 bool vtkShockAdvectionFilter::ReportProgress(double fraction)
 {
   this->UpdateProgress(fraction);

@@ -185,6 +185,12 @@ protected:
   /// Checks the parameters that clamping cannot enforce; vtkErrorMacro and false if invalid.
   bool ValidateParameters();
 
+  /// Zero the Last* measurements (subclasses add theirs) so a failed run reports nothing stale.
+  virtual void ResetMeasurements();
+
+  /// Start of RequestData: ResetMeasurements, then ValidateParameters.
+  bool BeginExecution();
+
   /// Progress/abort bridge for the kernels: UpdateProgress, then false once AbortExecute is set.
   bool ReportProgress(double fraction);
 

@@ -13,8 +13,41 @@
 #include "vtkPolygon.h"
 #include "vtkShockFilterInternals.h"
 
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
 namespace
 {
+/**
+ * For each point, the first point with exactly the same coordinates (itself when
+ * unique). Coincident copies then share one vertex of the mesh. Coordinates must be finite.
+ */
+std::vector<std::int64_t> CoincidentRepresentatives(const std::vector<double>& points)
+{
+  const std::int64_t n = static_cast<std::int64_t>(points.size() / 3);
+  std::vector<std::int64_t> order(static_cast<size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  auto key = [&points](std::int64_t p) {
+    return std::array<double, 3>{ points[3 * p], points[3 * p + 1], points[3 * p + 2] };
+  };
+  // Sorting by (coordinates, id) puts every group of copies together, lowest id first.
+  std::sort(order.begin(), order.end(), [&key](std::int64_t a, std::int64_t b) {
+    const auto ka = key(a), kb = key(b);
+    return ka != kb ? ka < kb : a < b;
+  });
+  std::vector<std::int64_t> representative(static_cast<size_t>(n));
+  for (size_t k = 0; k < order.size(); ++k)
+  {
+    const bool sameAsPrevious = k > 0 && key(order[k]) == key(order[k - 1]);
+    representative[static_cast<size_t>(order[k])] =
+      sameAsPrevious ? representative[static_cast<size_t>(order[k - 1])] : order[k];
+  }
+  return representative;
+}
+
 /// True when the quad's two fan triangles (0,1,2) and (0,2,3) have the same orientation.
 bool ConvexQuad(vtkPoints* points, const vtkIdType* ids)
 {
@@ -156,6 +189,40 @@ bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error)
       }
     }
   }
+  return true;
+}
+
+bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, PreparedMesh& out,
+  std::string& error)
+{
+  const auto start = std::chrono::steady_clock::now();
+  out.representative.clear();
+  if (!ExtractTriangles(input, out.triangles, error))
+  {
+    error = "Cannot read the mesh: " + error + ".";
+    return false;
+  }
+  const std::vector<double>& points = out.triangles.points;
+  if (!std::all_of(points.begin(), points.end(), [](double v) { return std::isfinite(v); }))
+  {
+    error = "Cannot use the mesh: a point coordinate is not finite (NaN or infinity).";
+    return false;
+  }
+  if (mergeCoincidentPoints)
+  {
+    out.representative = CoincidentRepresentatives(points);
+    for (std::int64_t& id : out.triangles.triangles)
+    {
+      id = out.representative[static_cast<size_t>(id)];
+    }
+  }
+  const shock::Status built = out.mesh.Build(out.triangles.View(), threads);
+  if (!built.Ok())
+  {
+    error = "Cannot use the mesh: " + built.error + ".";
+    return false;
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return true;
 }
 

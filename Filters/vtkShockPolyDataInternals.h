@@ -38,6 +38,24 @@ struct Triangles
 /// Fill `out` from `input`. Returns false with `error` set when the input cannot be read.
 bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error);
 
+/// The triangles of a vtkPolyData and the TriangleMesh built from them.
+struct PreparedMesh
+{
+  Triangles triangles;
+  shock::TriangleMesh mesh;
+  /// With merging: for each point, the first point with the same coordinates; else empty.
+  std::vector<std::int64_t> representative;
+  double seconds = 0.0; ///< time spent preparing
+};
+
+/**
+ * Extract the triangles, optionally merge exactly coincident points (the mesh
+ * then uses one copy of each; the others have no triangles), and build the mesh.
+ * Returns false with a complete one-sentence `error` when the input is unusable.
+ */
+bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, PreparedMesh& out,
+  std::string& error);
+
 /**
  * A per-cell array of 3-vectors from per-triangle ones: the area-weighted mean
  * of each cell's triangles (zero for cells without triangles).

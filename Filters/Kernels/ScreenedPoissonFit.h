@@ -1,0 +1,127 @@
+/**
+ * @file ScreenedPoissonFit.h
+ * @brief Fit mesh positions to target per-triangle normals (screened Poisson equation).
+ *
+ * The last step of geometry sharpening in Prada and Kazhdan (2015), section 4.1,
+ * after Yu et al. (2004). With c0 the original coordinate functions (x, y and z,
+ * each piecewise linear over the mesh) and N the target unit normal of each
+ * triangle:
+ *
+ *  1. v = grad c0 on each triangle: the gradients v_x, v_y, v_z of the three
+ *     coordinates (vectors in the triangle's plane), i.e. the 3x3 Jacobian of
+ *     the position;
+ *  2. w = v - N <N, v>, i.e. w_k = v_k - N_k (N_x v_x + N_y v_y + N_z v_z): the
+ *     component along N is removed from the position's values, so that each
+ *     edge e is asked to become its projection e - <e, N> N onto the target
+ *     plane (whose normal is N). Removing <v_k, N> N from each v_k separately
+ *     would only shrink the triangles within their own planes (a flat mesh could
+ *     never bend), so the paper's <v, N> is read as this contraction;
+ *  3. c1 = argmin_c  eps ||c - c0||^2_M + ||grad c - w||^2, i.e.
+ *         (eps M + S) c1 = eps M c0 + D w,
+ *     with M the consistent finite-element mass matrix (A/12 [2 1 1; 1 2 1; 1 1 2]
+ *     per triangle), S the cotangent stiffness matrix
+ *     (S_ij = sum_f A_f grad(phi_i) . grad(phi_j)) and (D w)_i = sum_f A_f grad(phi_i) . w_f.
+ *
+ * Scale and position: before assembling, the mesh is translated so that its
+ * area-weighted centroid is at the origin and scaled uniformly so that its total
+ * (non-degenerate) surface area is 1; the system is solved there and the result
+ * mapped back. The screening weight eps therefore means the same on any mesh, and
+ * the fit of a translated or uniformly scaled mesh is the translated or scaled fit.
+ *
+ * Boundaries: boundary vertices are unknowns like the others. The energy is
+ * integrated over the mesh only, which gives natural (Neumann) boundary conditions:
+ * nothing is pinned, the screening term alone anchors the surface.
+ *
+ * Conventions on meshes as users have them:
+ *  - degenerate triangles (see TriangleMesh) contribute nothing;
+ *  - points used by no non-degenerate triangle keep their position exactly;
+ *  - a target normal that is not finite or has length <= 1e-8 is replaced by
+ *    the triangle's own normal (its gradients are kept as they are) and counted;
+ *    other targets are normalised to unit length.
+ */
+#ifndef ScreenedPoissonFit_h
+#define ScreenedPoissonFit_h
+
+#include "ShockTypes.h"
+#include "TriangleMesh.h"
+
+#include <cstdint>
+
+namespace shock
+{
+
+/**
+ * How the screened Poisson system is solved. The conjugate gradients iterate the
+ * three coordinates together, so that each pass over the matrix serves all three.
+ */
+enum class FitSolver : int
+{
+  /// The paper's solver: a fixed number of Jacobi-preconditioned conjugate-gradient
+  /// iterations started from the original positions (FitParameters::iterations).
+  ConjugateGradient = 0,
+  /// Jacobi-preconditioned conjugate gradients started from the original positions,
+  /// until the relative residual is below FitParameters::tolerance
+  /// (at most FitParameters::maxIterations iterations).
+  ConjugateGradientTolerance = 1,
+  /// Sparse Cholesky (LDL^T) factorisation: the exact solution up to rounding.
+  Exact = 2
+};
+
+/// Parameters of FitPositionsToNormals.
+struct FitParameters
+{
+  /// Screening weight eps (> 0, finite), for the mesh normalised to unit area
+  /// (eps / total area in the mesh's own units). Larger values keep the positions
+  /// closer to the original ones; the paper uses 1.
+  double screeningWeight = 1.0;
+  FitSolver solver = FitSolver::ConjugateGradient;
+  /// Iterations of FitSolver::ConjugateGradient (>= 0; the paper uses 25).
+  int iterations = 25;
+  /// Relative residual ||b - A x|| / ||b|| to reach with FitSolver::ConjugateGradientTolerance
+  /// (>= 0); for every solver, FitReport::converged says whether the result meets it.
+  double tolerance = 1e-6;
+  /// Iteration cap of FitSolver::ConjugateGradientTolerance (>= 0).
+  int maxIterations = 1000;
+  /// OpenMP threads for assembly and the conjugate gradients; 0 uses all cores.
+  /// Meshes with fewer than 16384 points per thread use fewer threads. The result
+  /// does not depend on the number of threads (the parallel sums are ordered).
+  int numberOfThreads = 0;
+};
+
+/// What a fit did. The residual is that of the normalised system (unit area).
+struct FitReport
+{
+  /// Conjugate-gradient iterations done (the three coordinates are iterated together;
+  /// one that reaches the tolerance stops changing); 0 for Exact.
+  int iterations = 0;
+  /// Final relative residual ||b - A x|| / ||b||, the largest over the three coordinates
+  /// (a coordinate with b = 0 counts with its absolute residual ||A x||).
+  double residual = 0.0;
+  /// Whether residual <= FitParameters::tolerance.
+  bool converged = false;
+  double setupSeconds = 0.0; ///< normalisation and assembly of the matrix and right-hand sides
+  double solveSeconds = 0.0; ///< solve (factorisation for Exact) and the residual check
+  /// Non-degenerate triangles whose target normal was invalid (replaced by their own normal).
+  std::int64_t invalidTargets = 0;
+};
+
+/**
+ * Fit the positions of a mesh to target normals (see the file comment).
+ *
+ * @param mesh          built TriangleMesh holding the original positions c0.
+ * @param targetNormals 3 components per triangle (unit length expected; see the
+ *                      file comment for invalid ones); entries of degenerate
+ *                      triangles are not read.
+ * @param positions     output, 3 coordinates per point, in the mesh's units; must
+ *                      not alias targetNormals. Never contains NaN or infinity.
+ * @param parameters    see FitParameters.
+ * @param report        optional: iterations, residual, timings, counters.
+ * @return an error message for invalid arguments or a failed factorisation; on
+ *         an error other than a null pointer, positions holds the original positions.
+ */
+Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNormals,
+  double* positions, const FitParameters& parameters, FitReport* report = nullptr);
+
+} // namespace shock
+
+#endif

@@ -1,0 +1,194 @@
+/**
+ * @class   vtkPolyDataShockSharpenFilter
+ * @brief   sharpen the geometry of a triangle mesh: shock-filtered normals, screened Poisson fit
+ *
+ * Geometry sharpening of Prada and Kazhdan (2015), section 4.1. The face
+ * normals are treated as a 3-channel signal and sharpened by shock-filter
+ * advection (see vtkShockAdvectionFilter for the shared parameters): per-point
+ * normals (area-weighted) define the potential P = sum_j |grad N_j|^2, the sum of
+ * the squared principal curvatures, so normals flow towards the extrema of total
+ * curvature and become discontinuous there. The points are then moved so that
+ * the surface's normals match the sharpened ones, by solving the screened
+ * Poisson equation (eps M + S) c1 = eps M c0 + div w, with w the gradients of
+ * the coordinates with their component along the target normal removed, M the
+ * finite-element mass matrix and S the cotangent stiffness matrix. Creases and
+ * corners come out sharp; flat and smooth parts stay as they are.
+ *
+ * Parameters specific to this filter: NormalSmoothingPasses (pre-mollification
+ * of noisy normals), ScreeningWeight (eps), Solver, SolverIterations,
+ * SolverTolerance, MergeCoincidentPoints, GenerateSharpenedNormals. Of the base
+ * class, Sampling LINEAR (default) interpolates the per-point normals
+ * barycentrically, which also smooths the normals (even at TimeStep 0, as the
+ * paper's Figure 7 shows); NEAREST copies the normal of the triangle reached, so
+ * that TimeStep 0 with the EXACT solver returns the input. The normals are unit
+ * vectors, so their intensity scale is fixed (2) instead of the data range. The
+ * input array selection of the base class is not used.
+ *
+ * Meshes as users have them:
+ * - closed and open meshes: boundary points are unknowns of the fit like any
+ *   other (natural boundary conditions); only the screening anchors them;
+ * - polygons with more than three points and strips are triangulated internally;
+ *   the output keeps the input's cells (with the new point positions);
+ * - degenerate (zero-area) triangles carry no normal and take no part; points
+ *   used by no triangle keep their position; vertex and line cells pass through;
+ * - exactly coincident points (e.g. the seams of STL files) are merged for the
+ *   computation when MergeCoincidentPoints is on (default), so the surface is
+ *   treated as connected; every copy receives the same new position;
+ * - several components are sharpened together (independently in effect).
+ *
+ * Output: the input's points (new coordinates, same type), cells and arrays
+ * (all passed through). Field data gets "ShockSolverIterations",
+ * "ShockSolverResidual", "ShockFlippedTriangles" and "ShockMaxDisplacement"
+ * (largest displacement / bounding-box diagonal), which are also logged at
+ * verbosity INFO. Optional cell arrays: "ShockNormals" (the sharpened normals);
+ * with GenerateFlowArrays, "ShockPotential" (points) and "ShockFlow" (cells).
+ *
+ * @warning Errors (RequestData returns 0): negative or non-finite TimeStep,
+ * non-finite point coordinates, a failed exact factorisation. An empty input, or
+ * one without polygons, passes through with a warning.
+ *
+ * @sa vtkShockAdvectionFilter vtkPolyDataShockAdvectionFilter
+ */
+#ifndef vtkPolyDataShockSharpenFilter_h
+#define vtkPolyDataShockSharpenFilter_h
+
+#include "vtkFiltersShockModule.h" // for export macro
+#include "vtkShockAdvectionFilter.h"
+
+class vtkPolyData;
+
+class VTKFILTERSSHOCK_EXPORT vtkPolyDataShockSharpenFilter : public vtkShockAdvectionFilter
+{
+public:
+  static vtkPolyDataShockSharpenFilter* New();
+  vtkTypeMacro(vtkPolyDataShockSharpenFilter, vtkShockAdvectionFilter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// How the screened Poisson system is solved.
+  enum Solvers
+  {
+    CONJUGATE_GRADIENT = 0,           ///< SolverIterations of Jacobi-preconditioned CG (the paper: 25)
+    CONJUGATE_GRADIENT_TOLERANCE = 1, ///< CG until the relative residual is below SolverTolerance
+    EXACT = 2                         ///< sparse Cholesky (LDL^T) factorisation
+  };
+
+  ///@{
+  /**
+   * Laplacian smoothing passes of the face normals before the advection, with
+   * the positions fixed (the paper's Figure 11, for noisy scans). Each pass
+   * replaces a normal by the renormalised area-weighted mean of itself and its
+   * edge neighbours. Range [0, 1000], default 0.
+   */
+  vtkSetClampMacro(NormalSmoothingPasses, int, 0, 1000);
+  vtkGetMacro(NormalSmoothingPasses, int);
+  ///@}
+
+  ///@{
+  /**
+   * Screening weight eps of the fit, for the mesh normalised to unit area (so it
+   * does not depend on the mesh's size or position). Larger values keep the
+   * points closer to the input. Range [1e-6, 1e6], default 1 (the paper's value).
+   */
+  vtkSetClampMacro(ScreeningWeight, double, 1e-6, 1e6);
+  vtkGetMacro(ScreeningWeight, double);
+  ///@}
+
+  ///@{
+  /// Solver of the fit: CONJUGATE_GRADIENT (default), CONJUGATE_GRADIENT_TOLERANCE or EXACT.
+  vtkSetClampMacro(Solver, int, CONJUGATE_GRADIENT, EXACT);
+  vtkGetMacro(Solver, int);
+  void SetSolverToConjugateGradient() { this->SetSolver(CONJUGATE_GRADIENT); }
+  void SetSolverToConjugateGradientTolerance() { this->SetSolver(CONJUGATE_GRADIENT_TOLERANCE); }
+  void SetSolverToExact() { this->SetSolver(EXACT); }
+  ///@}
+
+  ///@{
+  /**
+   * Conjugate-gradient iterations of the CONJUGATE_GRADIENT solver, started from
+   * the input positions; also the iteration cap of CONJUGATE_GRADIENT_TOLERANCE.
+   * Range [0, 100000], default 25 (the paper's value).
+   */
+  vtkSetClampMacro(SolverIterations, int, 0, 100000);
+  vtkGetMacro(SolverIterations, int);
+  ///@}
+
+  ///@{
+  /**
+   * Relative residual |b - A x| / |b| at which CONJUGATE_GRADIENT_TOLERANCE stops.
+   * Range [0, 1], default 1e-6.
+   */
+  vtkSetClampMacro(SolverTolerance, double, 0.0, 1.0);
+  vtkGetMacro(SolverTolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Merge exactly coincident points for the computation (the output keeps all
+   * points, each copy moved alike). Default on.
+   */
+  vtkSetMacro(MergeCoincidentPoints, vtkTypeBool);
+  vtkGetMacro(MergeCoincidentPoints, vtkTypeBool);
+  vtkBooleanMacro(MergeCoincidentPoints, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /// Add the sharpened unit normals as the cell array "ShockNormals". Default off.
+  vtkSetMacro(GenerateSharpenedNormals, vtkTypeBool);
+  vtkGetMacro(GenerateSharpenedNormals, vtkTypeBool);
+  vtkBooleanMacro(GenerateSharpenedNormals, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Measurements of the last execution: seconds of the fit's system set-up and
+   * solve, solver iterations and final relative residual, triangles whose
+   * orientation flipped, and the largest displacement relative to the
+   * bounding-box diagonal. (LastSetupSeconds holds the mesh preparation.)
+   */
+  vtkGetMacro(LastFitSetupSeconds, double);
+  vtkGetMacro(LastFitSolveSeconds, double);
+  vtkGetMacro(LastSolverIterations, int);
+  vtkGetMacro(LastSolverResidual, double);
+  vtkGetMacro(LastFlippedTriangles, vtkIdType);
+  vtkGetMacro(LastMaxDisplacement, double);
+  ///@}
+
+  /// Name of the optional sharpened-normals cell array.
+  static const char* NormalsArrayName() { return "ShockNormals"; }
+
+  ///@{
+  /// The sharpened mesh (output port 0, or the given port).
+  vtkPolyData* GetOutput();
+  vtkPolyData* GetOutput(int port);
+  ///@}
+
+protected:
+  vtkPolyDataShockSharpenFilter() = default;
+  ~vtkPolyDataShockSharpenFilter() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  void ResetMeasurements() override;
+
+  int NormalSmoothingPasses = 0;
+  double ScreeningWeight = 1.0;
+  int Solver = CONJUGATE_GRADIENT;
+  int SolverIterations = 25;
+  double SolverTolerance = 1e-6;
+  vtkTypeBool MergeCoincidentPoints = true;
+  vtkTypeBool GenerateSharpenedNormals = false;
+
+  double LastFitSetupSeconds = 0.0;
+  double LastFitSolveSeconds = 0.0;
+  int LastSolverIterations = 0;
+  double LastSolverResidual = 0.0;
+  vtkIdType LastFlippedTriangles = 0;
+  double LastMaxDisplacement = 0.0;
+
+private:
+  vtkPolyDataShockSharpenFilter(const vtkPolyDataShockSharpenFilter&) = delete;
+  void operator=(const vtkPolyDataShockSharpenFilter&) = delete;
+};
+
+#endif

@@ -1,0 +1,323 @@
+// Tests of geometry sharpening (Filters/Kernels/MeshSharpening): advected normals + screened Poisson fit.
+#include "MeshSharpening.h"
+#include "TestMeshes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace
+{
+using shocktest::MeshData;
+
+shock::TriangleMesh Build(const MeshData& data, int threads = 0)
+{
+  shock::TriangleMesh mesh;
+  const shock::Status status = mesh.Build({ static_cast<std::int64_t>(data.points.size() / 3),
+                                            data.points.data(),
+                                            static_cast<std::int64_t>(data.triangles.size() / 3),
+                                            data.triangles.data() },
+    threads);
+  EXPECT_TRUE(status.Ok()) << status.error;
+  return mesh;
+}
+
+shock::SharpeningParameters Parameters(double time)
+{
+  shock::SharpeningParameters p;
+  p.advection.time = time;
+  return p;
+}
+
+std::vector<double> Sharpen(const shock::TriangleMesh& mesh, const shock::SharpeningParameters& p,
+  shock::SharpeningReport* report = nullptr, std::vector<double>* normals = nullptr)
+{
+  std::vector<double> positions(static_cast<size_t>(3 * mesh.NumberOfPoints()));
+  std::vector<double> target(static_cast<size_t>(3 * mesh.NumberOfTriangles()));
+  const shock::Status status = shock::SharpenMeshGeometry(mesh, p, positions.data(), target.data(), report);
+  EXPECT_TRUE(status.Ok()) << status.error;
+  if (normals)
+  {
+    *normals = target;
+  }
+  return positions;
+}
+
+MeshData WithPositions(MeshData data, const std::vector<double>& positions)
+{
+  data.points = positions;
+  return data;
+}
+
+/// Unit normal of triangle t of `data`.
+std::array<double, 3> Normal(const MeshData& data, size_t t)
+{
+  const double* a = &data.points[3 * data.triangles[3 * t]];
+  const double* b = &data.points[3 * data.triangles[3 * t + 1]];
+  const double* c = &data.points[3 * data.triangles[3 * t + 2]];
+  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  std::array<double, 3> n{ u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
+  const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  return { n[0] / l, n[1] / l, n[2] / l };
+}
+
+/// The true cube normal for triangle t of a box centred at the origin: the dominant axis of its centroid.
+std::array<double, 3> CubeNormal(const MeshData& original, size_t t)
+{
+  double c[3] = { 0, 0, 0 };
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      c[d] += original.points[3 * original.triangles[3 * t + k] + d] / 3.0;
+    }
+  }
+  const int axis = static_cast<int>(std::max_element(c, c + 3, [](double a, double b) { return std::abs(a) < std::abs(b); }) - c);
+  std::array<double, 3> n{ 0, 0, 0 };
+  n[axis] = c[axis] > 0 ? 1.0 : -1.0;
+  return n;
+}
+
+double Angle(const std::array<double, 3>& a, const std::array<double, 3>& b)
+{
+  return std::acos(std::clamp(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], -1.0, 1.0));
+}
+
+/// Mean angle between the triangles' normals (with `positions`) and the true cube normals.
+double MeanCubeNormalError(const MeshData& box, const std::vector<double>& positions)
+{
+  const MeshData moved = WithPositions(box, positions);
+  double sum = 0.0;
+  const size_t n = box.triangles.size() / 3;
+  for (size_t t = 0; t < n; ++t)
+  {
+    sum += Angle(Normal(moved, t), CubeNormal(box, t));
+  }
+  return sum / n;
+}
+
+/**
+ * How far the points are from forming a cube centred at the origin, whatever its
+ * size: the mean deviation of their max-norm |x|_inf from its mean, relative to
+ * that mean (0 for points on a cube's surface). The fit sharpens rounded creases
+ * to a corner at about the crease's chord, so the sharpened cube is a little
+ * smaller than the one the rounding started from; this measure ignores size.
+ */
+double CubeDeviation(const std::vector<double>& positions)
+{
+  const size_t n = positions.size() / 3;
+  std::vector<double> norm(n);
+  double mean = 0.0;
+  for (size_t p = 0; p < n; ++p)
+  {
+    norm[p] = std::max({ std::abs(positions[3 * p]), std::abs(positions[3 * p + 1]), std::abs(positions[3 * p + 2]) });
+    mean += norm[p] / n;
+  }
+  double deviation = 0.0;
+  for (double v : norm)
+  {
+    deviation += std::abs(v - mean) / n;
+  }
+  return deviation / mean;
+}
+
+bool AllFinite(const std::vector<double>& values)
+{
+  return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+}
+
+TEST(MeshSharpening, RoundedCubeSharpensTowardsTheCube)
+{
+  const MeshData box = shocktest::RoundedBox(24, 2.0, 0.35);
+  const shock::TriangleMesh mesh = Build(box);
+  const double before = MeanCubeNormalError(box, box.points);
+  const double deviationBefore = CubeDeviation(box.points);
+  shock::SharpeningParameters p = Parameters(2048.0);
+  p.fit.solver = shock::FitSolver::Exact;
+  shock::SharpeningReport report;
+  std::vector<double> normals;
+  const std::vector<double> after = Sharpen(mesh, p, &report, &normals);
+  // The advected normals themselves approach the cube's.
+  double normalError = 0.0;
+  for (size_t t = 0; t < box.triangles.size() / 3; ++t)
+  {
+    normalError += Angle({ normals[3 * t], normals[3 * t + 1], normals[3 * t + 2] }, CubeNormal(box, t));
+  }
+  normalError /= box.triangles.size() / 3;
+  EXPECT_LT(normalError, 0.5 * before);
+  EXPECT_LT(MeanCubeNormalError(box, after), 0.7 * before);
+  EXPECT_LT(CubeDeviation(after), 0.5 * deviationBefore);
+  EXPECT_EQ(report.flippedTriangles, 0);
+  EXPECT_GT(report.maxDisplacement, 0.0);
+  EXPECT_LT(report.maxDisplacement, 0.1);
+}
+
+TEST(MeshSharpening, SphereStaysASphere)
+{
+  const MeshData sphere = shocktest::Icosphere(4);
+  const shock::TriangleMesh mesh = Build(sphere);
+  for (shock::Sampling sampling : { shock::Sampling::Linear, shock::Sampling::Nearest })
+  {
+    shock::SharpeningParameters p = Parameters(2048.0);
+    p.advection.sampling = sampling;
+    shock::SharpeningReport report;
+    const std::vector<double> after = Sharpen(mesh, p, &report);
+    double lo = 1e300, hi = 0.0;
+    for (size_t i = 0; i < after.size() / 3; ++i)
+    {
+      const double r = std::sqrt(after[3 * i] * after[3 * i] + after[3 * i + 1] * after[3 * i + 1] +
+        after[3 * i + 2] * after[3 * i + 2]);
+      lo = std::min(lo, r);
+      hi = std::max(hi, r);
+    }
+    EXPECT_GT(lo, 0.98);
+    EXPECT_LT(hi, 1.01);
+    const MeshData moved = WithPositions(sphere, after);
+    double worst = 0.0;
+    for (size_t t = 0; t < sphere.triangles.size() / 3; ++t)
+    {
+      worst = std::max(worst, Angle(Normal(moved, t), Normal(sphere, t)));
+    }
+    EXPECT_LT(worst, 0.05); // radians
+    EXPECT_EQ(report.flippedTriangles, 0);
+  }
+}
+
+TEST(MeshSharpening, TimeZeroNearestExactReturnsTheInput)
+{
+  const MeshData box = shocktest::RoundedBox(10, 2.0, 0.4);
+  const shock::TriangleMesh mesh = Build(box);
+  shock::SharpeningParameters p = Parameters(0.0);
+  p.advection.sampling = shock::Sampling::Nearest;
+  p.fit.solver = shock::FitSolver::Exact;
+  const std::vector<double> after = Sharpen(mesh, p);
+  for (size_t i = 0; i < after.size(); ++i)
+  {
+    EXPECT_NEAR(after[i], box.points[i], 1e-9);
+  }
+  // Linear sampling smooths the normals even at t = 0 (the paper's Figure 7).
+  p.advection.sampling = shock::Sampling::Linear;
+  const std::vector<double> smoothed = Sharpen(mesh, p);
+  double moved = 0.0;
+  for (size_t i = 0; i < smoothed.size(); ++i)
+  {
+    moved = std::max(moved, std::abs(smoothed[i] - box.points[i]));
+  }
+  EXPECT_GT(moved, 1e-4);
+}
+
+TEST(MeshSharpening, StableForHugeTimes)
+{
+  const MeshData box = shocktest::RoundedBox(12, 2.0, 0.4);
+  const shock::TriangleMesh mesh = Build(box);
+  shock::SharpeningReport report;
+  const std::vector<double> after = Sharpen(mesh, Parameters(1e9), &report);
+  EXPECT_TRUE(AllFinite(after));
+  EXPECT_LT(report.maxDisplacement, 0.2);
+}
+
+TEST(MeshSharpening, InvariantToScaleAndTranslation)
+{
+  const MeshData box = shocktest::RoundedBox(12, 2.0, 0.4);
+  shock::SharpeningParameters p = Parameters(512.0);
+  p.fit.solver = shock::FitSolver::Exact;
+  const std::vector<double> reference = Sharpen(Build(box), p);
+  const double scale = 13.0;
+  const std::array<double, 3> shift{ 5.0, -3.0, 100.0 };
+  const std::vector<double> moved = Sharpen(Build(shocktest::Transformed(box, scale, shift)), p);
+  for (size_t i = 0; i < moved.size(); ++i)
+  {
+    EXPECT_NEAR((moved[i] - shift[i % 3]) / scale, reference[i], 1e-7);
+  }
+}
+
+TEST(MeshSharpening, OneAndTwoThreadsAgree)
+{
+  const MeshData box = shocktest::RoundedBox(12, 2.0, 0.4);
+  shock::SharpeningParameters p = Parameters(512.0);
+  p.advection.numberOfThreads = 1;
+  const std::vector<double> one = Sharpen(Build(box, 1), p);
+  p.advection.numberOfThreads = 2;
+  const std::vector<double> two = Sharpen(Build(box, 2), p);
+  for (size_t i = 0; i < one.size(); ++i)
+  {
+    EXPECT_NEAR(one[i], two[i], 1e-12);
+  }
+}
+
+TEST(MeshSharpening, NormalSmoothingCalmsNoise)
+{
+  const MeshData noisy = shocktest::Noisy(shocktest::Icosphere(4), 0.01, 3);
+  const shock::TriangleMesh mesh = Build(noisy);
+  shock::SharpeningParameters p = Parameters(0.0);
+  p.advection.sampling = shock::Sampling::Nearest;
+  std::vector<double> raw, smoothed;
+  Sharpen(mesh, p, nullptr, &raw);
+  p.normalSmoothingPasses = 5;
+  Sharpen(mesh, p, nullptr, &smoothed);
+  // Smoothed normals are closer to the sphere's radial directions.
+  auto radialError = [&](const std::vector<double>& n) {
+    double sum = 0.0;
+    for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+    {
+      const double* c = mesh.Centroid(f);
+      const double l = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+      sum += Angle({ n[3 * f], n[3 * f + 1], n[3 * f + 2] }, { c[0] / l, c[1] / l, c[2] / l });
+    }
+    return sum / mesh.NumberOfTriangles();
+  };
+  EXPECT_LT(radialError(smoothed), 0.5 * radialError(raw));
+}
+
+TEST(MeshSharpening, MeshDefectsGiveFiniteResults)
+{
+  const std::vector<std::pair<const char*, MeshData>> meshes = {
+    { "open patch", shocktest::WithHoles(shocktest::RoundedBox(10, 2.0, 0.4), { { { 0.0, 0.0, 1.0 }, 0.5 } }) },
+    { "non-manifold", shocktest::NonManifoldFan() },
+    { "duplicate points", shocktest::WithDuplicatePoints(shocktest::Icosphere(3)) },
+    { "degenerate", shocktest::WithDegenerateTriangles(shocktest::Icosphere(3)) },
+    { "isolated points", shocktest::WithIsolatedPoints(shocktest::Icosphere(3), 4) },
+    { "two components", shocktest::TwoComponents() },
+    { "cylinder", shocktest::Cylinder(32, 12, 1.0, 2.0) },
+  };
+  for (const auto& [name, data] : meshes)
+  {
+    const shock::TriangleMesh mesh = Build(data);
+    for (shock::FitSolver solver : { shock::FitSolver::ConjugateGradient, shock::FitSolver::Exact })
+    {
+      shock::SharpeningParameters p = Parameters(1e6);
+      p.fit.solver = solver;
+      shock::SharpeningReport report;
+      const std::vector<double> after = Sharpen(mesh, p, &report);
+      ASSERT_TRUE(AllFinite(after)) << name;
+      for (std::int64_t q = 0; q < mesh.NumberOfPoints(); ++q)
+      {
+        if (mesh.PointTriangles().Begin(q) == mesh.PointTriangles().End(q))
+        {
+          for (int d = 0; d < 3; ++d)
+          {
+            EXPECT_EQ(after[3 * q + d], data.points[3 * q + d]) << name;
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(MeshSharpening, RejectsInvalidParameters)
+{
+  const shock::TriangleMesh mesh = Build(shocktest::Icosphere(1));
+  std::vector<double> positions(static_cast<size_t>(3 * mesh.NumberOfPoints()));
+  shock::SharpeningParameters p = Parameters(-1.0);
+  EXPECT_FALSE(shock::SharpenMeshGeometry(mesh, p, positions.data()).Ok());
+  p = Parameters(1.0);
+  p.normalSmoothingPasses = -1;
+  EXPECT_FALSE(shock::SharpenMeshGeometry(mesh, p, positions.data()).Ok());
+  p = Parameters(1.0);
+  p.fit.screeningWeight = 0.0;
+  EXPECT_FALSE(shock::SharpenMeshGeometry(mesh, p, positions.data()).Ok());
+}
+
+} // namespace
