@@ -2,15 +2,21 @@
 
 #include "GridShockAdvection.h"
 #include "vtkCellData.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkDoubleArray.h"
+#include "vtkExtentTranslator.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationIntegerRequestKey.h"
 #include "vtkInformationVector.h"
 #include "vtkMatrix3x3.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkShockFilterInternals.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
 #include <cmath>
 
 vtkStandardNewMacro(vtkImageShockAdvectionFilter);
@@ -242,6 +248,140 @@ int vtkImageShockAdvectionFilter::RequestData(
     AttachFlowArrays(output, cellData, grid, fields);
   }
   return 1;
+}
+
+// --- Parallel execution: ghost samples in, cropped output out ------------------
+//
+// VTK 9 pipelines keep UPDATE_EXTENT at the whole extent when pieces are
+// requested: the source (CAN_PRODUCE_SUB_EXTENT) splits it with an extent
+// translator and adds UPDATE_NUMBER_OF_GHOST_LEVELS layers. So a piece gets
+// its ghost samples from the ghost levels; an explicit sub-extent request
+// (one piece) is grown here instead. Either way the output is cropped back to
+// what was asked for.
+
+namespace
+{
+int UpdatePieces(vtkInformation* info)
+{
+  return info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
+}
+
+int UpdateGhostLevels(vtkInformation* info)
+{
+  return info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS())
+    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS())
+    : 0;
+}
+
+/// The extent of one piece of `extent` with `ghost` layers, split as the source splits it.
+void PieceExtent(vtkInformation* info, const int extent[6], int ghost, int piece[6])
+{
+  const int mode = info->Has(vtkExtentTranslator::UPDATE_SPLIT_MODE())
+    ? info->Get(vtkExtentTranslator::UPDATE_SPLIT_MODE())
+    : vtkExtentTranslator::BLOCK_MODE;
+  vtkNew<vtkExtentTranslator> translator;
+  int whole[6];
+  std::copy(extent, extent + 6, whole);
+  translator->PieceToExtentThreadSafe(info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
+    UpdatePieces(info), ghost, whole, piece, mode, 0);
+}
+}
+
+int vtkImageShockAdvectionFilter::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (!inInfo || !outInfo)
+  {
+    return 1;
+  }
+  if (this->ExecutingBlock || vtkCompositeDataSet::SafeDownCast(vtkDataObject::GetData(inInfo)))
+  {
+    return 1; // composite input: each block as it comes (no ghost layers, no crop)
+  }
+  if (UpdatePieces(outInfo) > 1)
+  {
+    // The source adds the layers to the piece it cuts (and marks them as ghosts).
+    inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), UpdateGhostLevels(outInfo) + this->GhostLevels);
+  }
+  else if (outInfo->Has(SDDP::UPDATE_EXTENT()) && inInfo->Has(SDDP::WHOLE_EXTENT()))
+  {
+    int extent[6];
+    int whole[6];
+    outInfo->Get(SDDP::UPDATE_EXTENT(), extent);
+    inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+    for (int a = 0; a < 3; ++a)
+    {
+      // Grow along the axes the image spans, unless the requested extent is empty.
+      if (whole[2 * a + 1] > whole[2 * a] && extent[2 * a] <= extent[2 * a + 1])
+      {
+        extent[2 * a] = std::max(whole[2 * a], extent[2 * a] - this->GhostLevels);
+        extent[2 * a + 1] = std::min(whole[2 * a + 1], extent[2 * a + 1] + this->GhostLevels);
+      }
+    }
+    if (!std::equal(extent, extent + 6, outInfo->Get(SDDP::UPDATE_EXTENT())))
+    {
+      inInfo->Set(SDDP::UPDATE_EXTENT(), extent, 6); // only a sub-extent grows
+    }
+  }
+  return 1;
+}
+
+vtkTypeBool vtkImageShockAdvectionFilter::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  if (result && request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+  {
+    this->CropToUpdateExtent(outputVector);
+  }
+  return result;
+}
+
+void vtkImageShockAdvectionFilter::CropToUpdateExtent(vtkInformationVector* outputVector)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = outInfo ? vtkImageData::GetData(outInfo) : nullptr;
+  if (!output || !outInfo->Has(SDDP::UPDATE_EXTENT()) || output->GetNumberOfPoints() == 0)
+  {
+    return;
+  }
+  int requested[6];
+  outInfo->Get(SDDP::UPDATE_EXTENT(), requested);
+  for (int i = 0; i < 6; i += 2)
+  {
+    if (requested[i] > requested[i + 1])
+    {
+      return; // an empty request: leave the output as it is
+    }
+  }
+  int target[6];
+  std::copy(requested, requested + 6, target);
+  if (UpdatePieces(outInfo) > 1)
+  {
+    // Keep the piece with the ghost levels asked of this filter and drop the layers
+    // it added (or more, when the source kept more from an earlier request). But a
+    // source that cannot cut pieces (e.g. a legacy .vtk reader) hands the whole
+    // extent to one process and nothing to the others: keep that whole.
+    const int* extent = output->GetExtent();
+    int asked[6];
+    PieceExtent(outInfo, requested, UpdateGhostLevels(outInfo) + this->GhostLevels, asked);
+    if (std::equal(extent, extent + 6, requested) && !std::equal(asked, asked + 6, requested))
+    {
+      return;
+    }
+    PieceExtent(outInfo, requested, UpdateGhostLevels(outInfo), target);
+  }
+  const int* extent = output->GetExtent();
+  if (!std::equal(extent, extent + 6, target))
+  {
+    output->Crop(target); // intersects with the filtered extent
+  }
 }
 
 void vtkImageShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)

@@ -28,6 +28,18 @@
  * for cell data a point array on the interior points (the centres of the faces
  * between cell centres; zero on the boundary).
  *
+ * In parallel (one piece per process, as in pvbatch or pvserver with MPI)
+ * the filter asks for GhostLevels more ghost levels, so that the source cuts
+ * its piece that many samples larger on every axis with more than one sample
+ * (RequestUpdateExtent), filters the whole input extent it receives and crops
+ * the output back to the piece requested from it, so that the pieces tile the
+ * image; every piece is normalised by the data range
+ * over all pieces (ParallelValueScale). The result equals the serial one
+ * except where a flow line leaves the ghost region: see GhostLevels and
+ * docs/parallel.md. Cell data: the cells grow by the same number of layers.
+ * An input that is not cut into pieces (a reader that gives the whole image to
+ * one process) is kept whole.
+ *
  * @warning Errors (RequestData returns 0): negative or non-finite TimeStep,
  * missing or non-numeric array, field-data array, zero spacing. An empty image
  * passes through with a warning.
@@ -60,6 +72,18 @@ protected:
   ~vtkImageShockAdvectionFilter() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  /// Ask for the output's UPDATE_EXTENT grown by GhostLevels (and as many ghost levels).
+  int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  /// The superclass's dispatch, then CropToUpdateExtent after a successful REQUEST_DATA.
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  /// Crop the output (filtered on the grown input extent) to the output's UPDATE_EXTENT.
+  void CropToUpdateExtent(vtkInformationVector* outputVector);
+
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 

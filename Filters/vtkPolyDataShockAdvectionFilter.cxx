@@ -2,6 +2,7 @@
 
 #include "MeshShockAdvection.h"
 #include "vtkCellData.h"
+#include "vtkDataArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
@@ -9,7 +10,11 @@
 #include "vtkPolyData.h"
 #include "vtkShockFilterInternals.h"
 #include "vtkShockPolyDataInternals.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 
 vtkStandardNewMacro(vtkPolyDataShockAdvectionFilter);
 
@@ -46,7 +51,10 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   if (input->GetNumberOfPoints() == 0)
   {
     output->ShallowCopy(input);
-    vtkWarningMacro("The input mesh is empty: nothing to filter.");
+    if (this->ParallelPiecesWithData == NOT_A_PIECE) // an empty piece of a parallel run is normal
+    {
+      vtkWarningMacro("The input mesh is empty: nothing to filter.");
+    }
     return 1;
   }
   int association = -1;
@@ -109,6 +117,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   meshSignal.location = cellData ? shock::MeshLocation::Triangles : shock::MeshLocation::Points;
   meshSignal.components = components;
   meshSignal.values = cellData ? signal.data() : values.data();
+  meshSignal.valueScale = this->ParallelValueScale; // 0 (own range) unless a parallel piece
   std::vector<double> filtered(cellData ? signal.size() : values.size());
   shock::AdvectionReport report;
   shock::MeshFlowFields fields;
@@ -144,6 +153,67 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     vtkShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, fields);
   }
   return 1;
+}
+
+int vtkPolyDataShockAdvectionFilter::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (!inInfo || !outInfo || this->ExecutingBlock)
+  {
+    return 1; // a block of a composite input: the request was made for the whole input
+  }
+  const int pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES())
+    ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES())
+    : 1;
+  if (pieces > 1)
+  {
+    const int requested = outInfo->Has(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
+      ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
+      : 0;
+    inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), requested + this->GhostLevels);
+  }
+  return 1;
+}
+
+bool vtkPolyDataShockAdvectionFilter::LocalValueRange(
+  vtkInformationVector** inputVector, double range[2])
+{
+  int association = -1;
+  vtkDataArray* array =
+    vtkDataArray::SafeDownCast(this->GetInputAbstractArrayToProcess(0, inputVector, association));
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  if (!array || !input || association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
+  {
+    return this->Superclass::LocalValueRange(inputVector, range);
+  }
+  range[0] = std::numeric_limits<double>::infinity();
+  range[1] = -range[0];
+  const int components = array->GetNumberOfComponents();
+  std::vector<double> tuple(static_cast<size_t>(components));
+  const vtkIdType cells = std::min(array->GetNumberOfTuples(), input->GetNumberOfCells());
+  for (vtkIdType c = 0; c < cells; ++c)
+  {
+    const int type = input->GetCellType(c);
+    const bool surface = type == VTK_TRIANGLE || type == VTK_QUAD || type == VTK_POLYGON ||
+      type == VTK_TRIANGLE_STRIP;
+    if (!surface || input->GetCellSize(c) < 3)
+    {
+      continue; // no triangle: the kernel does not see this cell
+    }
+    array->GetTuple(c, tuple.data());
+    if (std::all_of(tuple.begin(), tuple.end(), [](double v) { return std::isfinite(v); }))
+    {
+      for (double v : tuple)
+      {
+        range[0] = std::min(range[0], v);
+        range[1] = std::max(range[1], v);
+      }
+    }
+  }
+  return range[0] <= range[1];
 }
 
 void vtkPolyDataShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)

@@ -43,6 +43,20 @@
  * axes; for a triangulated polygon the area-weighted mean of its triangles;
  * zero on vertex and line cells).
  *
+ * In parallel (one piece per process, as in pvbatch or pvserver with MPI)
+ * the filter asks for GhostLevels more layers of ghost cells
+ * (UPDATE_NUMBER_OF_GHOST_LEVELS) and filters its piece together with the
+ * ghost cells it receives; the output keeps all of them with their ghost
+ * arrays (vtkGhostType), as the input has them. Sources that cannot make
+ * ghost cells (the Sphere source, readers) need a ghost cell generator
+ * upstream: in ParaView, Ghost Cells Generator, which builds as many layers
+ * as requested. Without ghost cells the piece boundaries act as mesh
+ * boundaries (flow lines stop there). Every piece is normalised by the data
+ * range over all pieces (ParallelValueScale), but lengths by the mean edge
+ * length of the piece (with its ghost cells), which differs slightly from the
+ * whole mesh's: parallel results are close to, not equal to, the serial ones
+ * (measured in docs/parallel.md).
+ *
  * @warning Errors (RequestData returns 0): negative or non-finite TimeStep,
  * missing or non-numeric array, field-data array, cell data on non-triangle
  * polygons or strips, non-finite point coordinates. An empty input, or an input
@@ -76,6 +90,14 @@ protected:
   ~vtkPolyDataShockAdvectionFilter() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  /// For a piece of a parallel run, ask for GhostLevels more ghost levels than the output's.
+  int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  /// Point data: all points; cell data: the polygons and strips only (as the kernel).
+  bool LocalValueRange(vtkInformationVector** inputVector, double range[2]) override;
+
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <sstream>
 
 vtkStandardNewMacro(vtkPolyDataShockSharpenFilter);
 
@@ -63,10 +64,34 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   {
     return 0;
   }
+  // One piece of a distributed mesh: the global fit cannot be done per piece.
+  if (this->ParallelPiecesWithData > 1 ||
+    (this->ParallelPiecesWithData == UNKNOWN_PIECES && input->GetNumberOfPoints() > 0))
+  {
+    std::ostringstream held;
+    if (this->ParallelPiecesWithData > 1)
+    {
+      held << "the mesh is split over " << this->ParallelPiecesWithData << " processes";
+    }
+    else
+    {
+      held << "this is one of several pieces of the mesh";
+    }
+    vtkErrorMacro("Surface Shock Sharpen cannot run on one piece of a distributed mesh ("
+      << held.str()
+      << "): the screened Poisson fit is global, so pieces fitted separately would not match "
+         "along their boundaries. Give the whole mesh to one process: in ParaView, gather it "
+         "with Aggregate Dataset (Number Of Target Processes 1) before this filter, or read it "
+         "with a serial reader; or run in the builtin session, pvpython or a serial pvbatch.");
+    return 0;
+  }
   if (input->GetNumberOfPoints() == 0)
   {
     output->ShallowCopy(input);
-    vtkWarningMacro("The input mesh is empty: nothing to sharpen.");
+    if (this->ParallelPiecesWithData == NOT_A_PIECE) // an empty piece of a parallel run is normal
+    {
+      vtkWarningMacro("The input mesh is empty: nothing to sharpen.");
+    }
     return 1;
   }
 

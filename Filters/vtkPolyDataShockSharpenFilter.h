@@ -43,8 +43,26 @@
  * verbosity INFO. Optional cell arrays: "ShockNormals" (the sharpened normals);
  * with GenerateFlowArrays, "ShockPotential" (points) and "ShockFlow" (cells).
  *
+ * Parallel use: refused. The screened Poisson fit is global: every point's
+ * new position depends on the whole surface through the system, and the
+ * scale of the fit (unit area) on the whole mesh, so fitting a piece of a
+ * distributed mesh by itself, even with ghost cells, would move its points
+ * differently from the serial fit and the pieces would tear apart along their
+ * boundaries. When the request is for one of several pieces
+ * (UPDATE_NUMBER_OF_PIECES > 1 on the output) and more than one process holds
+ * part of the mesh (counted with an MPI reduction over the global controller;
+ * without a matching controller, any non-empty piece is refused), the filter
+ * reports an error and returns 0 on every process. A mesh held whole by one
+ * process is sharpened as in serial: in ParaView with MPI, a mesh read by a
+ * serial reader (only process 0 reads it), or pieces gathered onto one
+ * process with Aggregate Dataset (Number Of Target Processes 1; the default
+ * MergeCoincidentPoints joins the pieces' shared points again); otherwise run
+ * it in the builtin session, pvpython or a serial pvbatch. GhostLevels is
+ * ignored.
+ *
  * @warning Errors (RequestData returns 0): negative or non-finite TimeStep,
- * non-finite point coordinates, a failed exact factorisation. An empty input, or
+ * non-finite point coordinates, a failed exact factorisation, one piece of a
+ * mesh distributed over several processes (see above). An empty input, or
  * one without polygons, passes through with a warning.
  *
  * @sa vtkShockAdvectionFilter vtkPolyDataShockAdvectionFilter
@@ -170,6 +188,8 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   void ResetMeasurements() override;
+  /// The fit normalises by unit normals, not by a data range: no range reduction.
+  bool UsesParallelValueScale() override { return false; }
 
   int NormalSmoothingPasses = 0;
   double ScreeningWeight = 1.0;

@@ -3,9 +3,22 @@
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkDataSet.h"
 #include "vtkInformation.h"
+#include "vtkInformationKey.h"
+#include "vtkInformationKeyLookup.h"
+#include "vtkInformationVector.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
+#if VTK_MODULE_ENABLE_VTK_ParallelCore
+#include "vtkCommunicator.h"
+#include "vtkMultiProcessController.h"
+#endif
+
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 vtkShockAdvectionFilter::vtkShockAdvectionFilter()
 {
@@ -79,6 +92,112 @@ vtkDataArray* vtkShockAdvectionFilter::GetArrayToFilter(
   return array;
 }
 
+vtkTypeBool vtkShockAdvectionFilter::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()))
+  {
+    // vtkCompositeDataPipeline runs a simple algorithm block by block and marks
+    // each block's REQUEST_DATA_OBJECT with its (protected) SUPPRESS_RESET_PI key.
+    static vtkInformationKey* const blockKey =
+      vtkInformationKeyLookup::Find("SUPPRESS_RESET_PI", "vtkCompositeDataPipeline");
+    this->ExecutingBlock = blockKey && outInfo && outInfo->Has(blockKey);
+  }
+  const bool data = request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()) != 0;
+  if (data)
+  {
+    this->PrepareParallelExecution(inputVector, outputVector);
+  }
+  const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  if (data)
+  {
+    this->ExecutingBlock = false;
+  }
+  return result;
+}
+
+bool vtkShockAdvectionFilter::LocalValueRange(vtkInformationVector** inputVector, double range[2])
+{
+  range[0] = std::numeric_limits<double>::infinity();
+  range[1] = -range[0];
+  int association = -1;
+  vtkDataArray* array =
+    vtkDataArray::SafeDownCast(this->GetInputAbstractArrayToProcess(0, inputVector, association));
+  if (!array)
+  {
+    return false;
+  }
+  const int components = array->GetNumberOfComponents();
+  std::vector<double> tuple(static_cast<size_t>(components));
+  for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+  {
+    array->GetTuple(t, tuple.data());
+    bool finite = true;
+    for (int c = 0; c < components && finite; ++c)
+    {
+      finite = std::isfinite(tuple[static_cast<size_t>(c)]);
+    }
+    for (int c = 0; c < components && finite; ++c)
+    {
+      range[0] = std::min(range[0], tuple[static_cast<size_t>(c)]);
+      range[1] = std::max(range[1], tuple[static_cast<size_t>(c)]);
+    }
+  }
+  return range[0] <= range[1];
+}
+
+void vtkShockAdvectionFilter::PrepareParallelExecution(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  this->ParallelValueScale = 0.0;
+  this->ParallelPiecesWithData = NOT_A_PIECE;
+  if (this->ExecutingBlock)
+  {
+    // A block of a composite input: the number of blocks differs between
+    // processes, so no collective here; each block keeps its own range.
+    return;
+  }
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int pieces = outInfo && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
+  if (pieces <= 1)
+  {
+    return;
+  }
+  this->ParallelPiecesWithData = UNKNOWN_PIECES;
+#if VTK_MODULE_ENABLE_VTK_ParallelCore
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (!controller || controller->GetNumberOfProcesses() != pieces)
+  {
+    return;
+  }
+  // Collective from here on: no early return.
+  vtkDataSet* input = inputVector[0]->GetNumberOfInformationObjects() > 0
+    ? vtkDataSet::GetData(inputVector[0], 0)
+    : nullptr;
+  double range[2];
+  const bool hasRange = this->UsesParallelValueScale() && input &&
+    input->GetNumberOfPoints() > 0 && this->LocalValueRange(inputVector, range);
+  double local[2] = { hasRange ? -range[0] : -std::numeric_limits<double>::max(),
+    hasRange ? range[1] : -std::numeric_limits<double>::max() };
+  double global[2] = { 0.0, 0.0 };
+  controller->AllReduce(local, global, 2, vtkCommunicator::MAX_OP);
+  const int withData = input && input->GetNumberOfPoints() > 0 ? 1 : 0;
+  int count = 0;
+  controller->AllReduce(&withData, &count, 1, vtkCommunicator::SUM_OP);
+  this->ParallelPiecesWithData = count;
+  const double scale = global[1] + global[0]; // high - low
+  if (this->UsesParallelValueScale() && std::isfinite(scale) && scale > 0.0)
+  {
+    this->ParallelValueScale = scale;
+  }
+#else
+  (void)inputVector;
+#endif
+}
+
 void vtkShockAdvectionFilter::RecordRun(double flowSeconds, double advectionSeconds,
   vtkTypeUInt64 traceSteps, vtkTypeUInt64 truncatedTraces)
 {
@@ -106,6 +225,8 @@ void vtkShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "GenerateFlowArrays: " << (this->GenerateFlowArrays ? "On" : "Off") << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "GhostLevels: " << this->GhostLevels << "\n";
+  os << indent << "ParallelValueScale: " << this->ParallelValueScale << "\n";
   os << indent << "LastSetupSeconds: " << this->LastSetupSeconds << "\n";
   os << indent << "LastFlowSeconds: " << this->LastFlowSeconds << "\n";
   os << indent << "LastAdvectionSeconds: " << this->LastAdvectionSeconds << "\n";

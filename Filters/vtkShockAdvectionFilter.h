@@ -163,6 +163,55 @@ public:
 
   ///@{
   /**
+   * Ghost layers requested around each piece in parallel (pvbatch/pvserver
+   * with MPI, or any request for one of several pieces), in samples of the
+   * grid (images: point samples, which are also cell layers) or in cell
+   * layers (meshes). Range [0, 256], default 16.
+   *
+   * What it changes: a piece is filtered together with GhostLevels layers of
+   * its neighbours' data, so that flow lines starting in the piece can be
+   * traced across the piece boundary. A sample gets exactly the serial result
+   * when its flow line and the smoothing and gradient stencils around it
+   * (about 2 x SmoothingPasses + 2 samples) stay within the ghost layers; one
+   * whose flow line would run further is traced as if the data ended there.
+   * Flow lines stop at ridges of the potential, so they are short: with the
+   * default SmoothingPasses, 8 layers gave the serial result in every
+   * measurement (TimeStep up to 4096) and 16 leaves room for up to 4
+   * smoothing passes; docs/parallel.md has the measured fractions. 0 filters
+   * each piece alone. Rule of thumb: GhostLevels >= 2 x SmoothingPasses + 4.
+   *
+   * What it costs: each piece reads and filters the grown region, (n + 2 G)^d
+   * instead of n^d samples for a piece of n^d samples (images), or G rings of
+   * cells more (meshes), plus the exchange of those layers.
+   *
+   * Images: for a piece request the source cuts its piece GhostLevels layers
+   * larger (VTK 9 keeps UPDATE_EXTENT at the whole extent and lets the source
+   * split it, marking the extra samples in vtkGhostType); a one-piece request
+   * for a sub-extent is grown by GhostLevels on every axis with more than one
+   * sample (clamped to the whole extent). The output is cropped back to what
+   * was requested, so pieces tile the image exactly. Cell arrays are grown by
+   * the same number of layers.
+   * Surfaces: UPDATE_NUMBER_OF_GHOST_LEVELS is raised by GhostLevels; the
+   * ghost cells provided upstream (e.g. by ParaView's Ghost Cells Generator)
+   * are filtered with the piece and kept in the output with their ghost
+   * arrays. Serial runs (one piece) are not affected.
+   * vtkPolyDataShockSharpenFilter ignores it: it refuses pieces.
+   */
+  vtkSetClampMacro(GhostLevels, int, 0, 256);
+  vtkGetMacro(GhostLevels, int);
+  ///@}
+
+  /**
+   * Intensity scale used by the last execution instead of the data range of
+   * the processed array: 0 for a serial run (the array's own data range), and
+   * for one piece of a parallel run the data range of the array over all
+   * pieces (an MPI reduction over the global controller), so that every piece
+   * is normalised like the whole data set. Read only.
+   */
+  vtkGetMacro(ParallelValueScale, double);
+
+  ///@{
+  /**
    * Measurements of the last execution: seconds spent preparing the domain
    * (mesh topology and geometry; 0 for images), computing the flow
    * (smoothing, potential, flow) and advecting (tracing and sampling), and the
@@ -201,6 +250,42 @@ protected:
    */
   vtkDataArray* GetArrayToFilter(vtkInformationVector** inputVector, int& association);
 
+  /**
+   * Runs the parallel preparation (see PrepareParallelExecution) before every
+   * REQUEST_DATA, then the superclass's dispatch.
+   */
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  /**
+   * Before each execution: when the output request is for one of several
+   * pieces (UPDATE_NUMBER_OF_PIECES > 1) and the global
+   * vtkMultiProcessController has as many processes, reduce over all
+   * processes the number of pieces holding points and (when
+   * UsesParallelValueScale()) the data range of the array to process, into
+   * ParallelPiecesWithData and ParallelValueScale. Collective: every process
+   * runs it once per execution, before anything can fail, so that an error
+   * on one process cannot leave the others waiting. Not for the blocks of a
+   * composite input (ExecutingBlock), whose number differs between processes:
+   * each block is normalised by its own range, as in serial.
+   */
+  void PrepareParallelExecution(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+
+  /// Whether the parallel preparation reduces the data range (advection filters: yes).
+  virtual bool UsesParallelValueScale() { return true; }
+
+  /**
+   * The finite range [low, high] of the array to process on the local input,
+   * over the samples the kernel normalises with (tuples whose components are
+   * all finite). Returns false when there is none.
+   */
+  virtual bool LocalValueRange(vtkInformationVector** inputVector, double range[2]);
+
+  /// Not a piece of a parallel request (one piece, or composite block by block).
+  static constexpr int NOT_A_PIECE = -1;
+  /// A piece request that no controller matches (e.g. serial streaming): unknown.
+  static constexpr int UNKNOWN_PIECES = -2;
+
   /// Store the measurements of a run; warns when traces were cut at the step limit.
   void RecordRun(double flowSeconds, double advectionSeconds, vtkTypeUInt64 traceSteps,
     vtkTypeUInt64 truncatedTraces);
@@ -214,6 +299,14 @@ protected:
   int TracingMode = FACE_CROSSING;
   vtkTypeBool GenerateFlowArrays = false;
   int NumberOfThreads = 0;
+  int GhostLevels = 16;
+
+  /// Set by PrepareParallelExecution for the current execution (see its documentation).
+  double ParallelValueScale = 0.0;
+  /// Pieces holding points over all processes, or NOT_A_PIECE / UNKNOWN_PIECES.
+  int ParallelPiecesWithData = NOT_A_PIECE;
+  /// True while vtkCompositeDataPipeline runs the filter on one block of a composite input.
+  bool ExecutingBlock = false;
 
   double LastSetupSeconds = 0.0;
   double LastFlowSeconds = 0.0;

@@ -72,6 +72,7 @@ shock::AdvectionParameters MakeParameters(vtkShockAdvectionFilter* filter)
   p.sampling = static_cast<shock::Sampling>(filter->GetSampling());
   p.tracing = static_cast<shock::Tracing>(filter->GetTracingMode());
   p.numberOfThreads = filter->GetNumberOfThreads();
+  p.valueScale = filter->GetParallelValueScale();
   return p;
 }
 

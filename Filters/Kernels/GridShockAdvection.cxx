@@ -862,7 +862,7 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
     }
   }
   std::copy(input, input + count, output);
-  const double range = high - low;
+  const double range = p.valueScale > 0.0 ? p.valueScale : high - low;
   if (fields)
   {
     fields->potential.assign(static_cast<size_t>(L.numSamples), 0.0);

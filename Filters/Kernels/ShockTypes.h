@@ -60,6 +60,11 @@ struct AdvectionParameters
   Tracing tracing = Tracing::FaceCrossing;
   /// OpenMP threads; 0 uses all available cores.
   int numberOfThreads = 0;
+  /// Intensity scale of the grid kernel (AdvectGridSignal): values are divided by it
+  /// instead of by their data range when > 0 (the VTK filters pass the range over all
+  /// pieces of a parallel run). 0, the default, uses the data range. Mesh signals carry
+  /// their own MeshSignal::valueScale.
+  double valueScale = 0.0;
 };
 
 /// What a run did, for logs, timings and tests.

@@ -129,10 +129,12 @@ EXPECTED_NAMES = {
     "ImageShockAdvection": {
         "Input", "InputArray", "TimeStep", "SmoothingPasses", "FlowMode", "NumberOfFlowUpdates",
         "TracingMode", "StepFraction", "Sampling", "GenerateFlowArrays", "NumberOfThreads",
-        "LastSetupSeconds", "LastFlowSeconds", "LastAdvectionSeconds", "LastTraceSteps"},
+        "LastSetupSeconds", "LastFlowSeconds", "LastAdvectionSeconds", "LastTraceSteps",
+        "GhostLevels"},
 }
 EXPECTED_NAMES["SurfaceShockAdvection"] = EXPECTED_NAMES["ImageShockAdvection"]
-EXPECTED_NAMES["SurfaceShockSharpen"] = (EXPECTED_NAMES["ImageShockAdvection"] - {"InputArray"}) | {
+# GhostLevels: the sharpen filter refuses pieces, so its proxy does not show it.
+EXPECTED_NAMES["SurfaceShockSharpen"] = (EXPECTED_NAMES["ImageShockAdvection"] - {"InputArray", "GhostLevels"}) | {
     "NormalSmoothingPasses", "ScreeningWeight", "Solver", "SolverIterations", "SolverTolerance",
     "MergeCoincidentPoints", "GenerateSharpenedNormals", "LastFitSetupSeconds",
     "LastFitSolveSeconds", "LastSolverIterations", "LastSolverResidual", "LastFlippedTriangles",
@@ -141,8 +143,10 @@ EXPECTED_NAMES["SurfaceShockSharpen"] = (EXPECTED_NAMES["ImageShockAdvection"] -
 # The panel order, computed as pqProxyWidget::createPropertyWidgets does it:
 # XML order, properties of groups with the same label placed together.
 EXPECTED_PANEL = {
-    "ImageShockAdvection": ["Input", "Flow", "Tracing", "Output", "Performance", "Measurements"],
-    "SurfaceShockAdvection": ["Input", "Flow", "Tracing", "Output", "Performance", "Measurements"],
+    "ImageShockAdvection": ["Input", "Flow", "Tracing", "Output", "Performance", "Parallel",
+                            "Measurements"],
+    "SurfaceShockAdvection": ["Input", "Flow", "Tracing", "Output", "Performance", "Parallel",
+                              "Measurements"],
     "SurfaceShockSharpen": ["Input", "Flow", "Tracing", "Fitting", "Output", "Performance",
                             "Measurements"],
 }
@@ -620,6 +624,8 @@ clamps = [
     (image_probe, "FlowMode", 7, 2),
     (image_probe, "Sampling", -1, 0),
     (image_probe, "TracingMode", 9, 1),
+    (image_probe, "GhostLevels", -1, 0),
+    (image_probe, "GhostLevels", 1000, 256),
     (sharpen_probe, "ScreeningWeight", 1e9, 1e6),
     (sharpen_probe, "ScreeningWeight", 0.0, 1e-6),
     (sharpen_probe, "SolverTolerance", 2.0, 1.0),
