@@ -213,14 +213,18 @@ int vtkImageShockAdvectionFilter::RequestData(
 
   // Everything checked: the output starts as the input, arrays shared.
   output->ShallowCopy(input);
-  const std::vector<double> values = vtkShockFilterInternals::ToDoubles(array);
-  std::vector<double> filtered(values.size());
+  const shock::AdvectionParameters parameters = vtkShockFilterInternals::MakeParameters(this);
+  // Uninitialised buffers, filled in parallel (no serial zero fill of the whole signal).
+  const vtkIdType count = array->GetNumberOfValues();
+  shock::LargeArray<double> values = shock::AllocateLargeArray<double>(count);
+  vtkShockFilterInternals::ToDoubles(array, values.get(), parameters.numberOfThreads);
+  const shock::LargeArray<double> filtered = shock::AllocateLargeArray<double>(count);
   shock::AdvectionReport report;
   shock::GridFlowFields fields;
   const shock::Status status = shock::AdvectGridSignal(grid, array->GetNumberOfComponents(),
-    values.data(), filtered.data(), vtkShockFilterInternals::MakeParameters(this), &report,
-    this->GenerateFlowArrays ? &fields : nullptr,
+    values.get(), filtered.get(), parameters, &report, this->GenerateFlowArrays ? &fields : nullptr,
     [this](double fraction) { return this->ReportProgress(fraction); });
+  values.reset();
   if (!status.Ok())
   {
     vtkErrorMacro("Shock filter failed: " << status.error);
@@ -241,8 +245,8 @@ int vtkImageShockAdvectionFilter::RequestData(
 
   vtkDataSetAttributes* attributes =
     cellData ? static_cast<vtkDataSetAttributes*>(output->GetCellData()) : output->GetPointData();
-  vtkShockFilterInternals::ReplaceArray(
-    attributes, array, vtkShockFilterInternals::FromDoubles(array, filtered));
+  vtkShockFilterInternals::ReplaceArray(attributes, array,
+    vtkShockFilterInternals::FromDoubles(array, filtered.get(), parameters.numberOfThreads));
   if (this->GenerateFlowArrays)
   {
     AttachFlowArrays(output, cellData, grid, fields);

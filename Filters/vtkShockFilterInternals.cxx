@@ -6,7 +6,9 @@
 #include "vtkDataSetAttributes.h"
 #include "vtkShockAdvectionFilter.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <type_traits>
 
@@ -15,10 +17,12 @@ namespace
 struct CopyToDoubles
 {
   template <typename ArrayT>
-  void operator()(ArrayT* array, std::vector<double>& out) const
+  void operator()(ArrayT* array, double* out, int threads) const
   {
     const auto values = vtk::DataArrayValueRange(array);
-    out.assign(values.begin(), values.end());
+    shock::ParallelFor(values.size(), threads, [&](std::int64_t begin, std::int64_t end) {
+      std::copy(values.begin() + begin, values.begin() + end, out + begin);
+    });
   }
 };
 
@@ -46,15 +50,16 @@ T RoundAndClamp(double v)
 struct CopyFromDoubles
 {
   template <typename ArrayT>
-  void operator()(ArrayT* array, const std::vector<double>& in) const
+  void operator()(ArrayT* array, const double* in, int threads) const
   {
     using ValueT = vtk::GetAPIType<ArrayT>;
     auto values = vtk::DataArrayValueRange(array);
-    auto source = in.begin();
-    for (auto&& v : values)
-    {
-      v = RoundAndClamp<ValueT>(*source++);
-    }
+    shock::ParallelFor(values.size(), threads, [&](std::int64_t begin, std::int64_t end) {
+      for (std::int64_t i = begin; i < end; ++i)
+      {
+        values[i] = RoundAndClamp<ValueT>(in[i]);
+      }
+    });
   }
 };
 }
@@ -78,16 +83,29 @@ shock::AdvectionParameters MakeParameters(vtkShockAdvectionFilter* filter)
 
 std::vector<double> ToDoubles(vtkDataArray* array)
 {
-  std::vector<double> values;
-  CopyToDoubles worker;
-  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, values))
-  {
-    worker(array, values); // vtkDataArray fallback for unusual storage
-  }
+  std::vector<double> values(static_cast<size_t>(array->GetNumberOfValues()));
+  ToDoubles(array, values.data(), 1);
   return values;
 }
 
+void ToDoubles(vtkDataArray* array, double* out, int threads)
+{
+  CopyToDoubles worker;
+  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, out, threads))
+  {
+    // vtkDataArray fallback for unusual storage, whose generic accessors need not
+    // be safe to call concurrently.
+    worker(array, out, 1);
+  }
+}
+
 vtkSmartPointer<vtkDataArray> FromDoubles(vtkDataArray* prototype, const std::vector<double>& values)
+{
+  return FromDoubles(prototype, values.data(), 1);
+}
+
+vtkSmartPointer<vtkDataArray> FromDoubles(
+  vtkDataArray* prototype, const double* values, int threads)
 {
   vtkSmartPointer<vtkDataArray> out = vtk::TakeSmartPointer(prototype->NewInstance());
   out->SetName(prototype->GetName());
@@ -101,9 +119,9 @@ vtkSmartPointer<vtkDataArray> FromDoubles(vtkDataArray* prototype, const std::ve
   }
   out->SetNumberOfTuples(prototype->GetNumberOfTuples());
   CopyFromDoubles worker;
-  if (!vtkArrayDispatch::Dispatch::Execute(out.Get(), worker, values))
+  if (!vtkArrayDispatch::Dispatch::Execute(out.Get(), worker, values, threads))
   {
-    worker(out.Get(), values);
+    worker(out.Get(), values, 1); // see ToDoubles
   }
   return out;
 }

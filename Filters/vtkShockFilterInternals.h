@@ -25,11 +25,26 @@ shock::AdvectionParameters MakeParameters(vtkShockAdvectionFilter* filter);
 std::vector<double> ToDoubles(vtkDataArray* array);
 
 /**
+ * ToDoubles into `out`, which has room for array->GetNumberOfValues() doubles,
+ * converted on `threads` OpenMP threads (<= 0: all cores); serial for arrays
+ * with unusual storage.
+ */
+void ToDoubles(vtkDataArray* array, double* out, int threads);
+
+/**
  * A new array like `prototype` (same value type, name, components and
  * component names) holding `values`. Integer types are rounded and clamped to
  * the type's range; NaN becomes 0 for integer types (it cannot occur there).
  */
 vtkSmartPointer<vtkDataArray> FromDoubles(vtkDataArray* prototype, const std::vector<double>& values);
+
+/**
+ * FromDoubles reading prototype->GetNumberOfValues() doubles from `values`,
+ * converted on `threads` OpenMP threads (<= 0: all cores); serial for arrays
+ * with unusual storage.
+ */
+vtkSmartPointer<vtkDataArray> FromDoubles(
+  vtkDataArray* prototype, const double* values, int threads);
 
 /**
  * Replace `original` by `replacement` in `attributes`, keeping its attribute

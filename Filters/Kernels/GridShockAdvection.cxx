@@ -2,10 +2,18 @@
 
 #include <omp.h>
 
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <limits>
+#include <memory>
+#include <new>
 
 namespace shock
 {
@@ -13,6 +21,84 @@ namespace shock
 int ResolveThreadCount(int requested)
 {
   return requested > 0 ? requested : std::max(1, omp_get_num_procs());
+}
+
+void ParallelFor(std::int64_t count, int threads,
+  const std::function<void(std::int64_t begin, std::int64_t end)>& body)
+{
+#pragma omp parallel num_threads(ResolveThreadCount(threads))
+  {
+    const std::int64_t thread = omp_get_thread_num();
+    const std::int64_t team = omp_get_num_threads();
+    const std::int64_t begin = count * thread / team;
+    const std::int64_t end = count * (thread + 1) / team;
+    if (begin < end)
+    {
+      body(begin, end);
+    }
+  }
+}
+
+#ifdef __linux__
+namespace
+{
+constexpr std::size_t HugePage = std::size_t(2) << 20;
+
+std::size_t HugePageMultiple(std::size_t bytes)
+{
+  return (bytes + HugePage - 1) / HugePage * HugePage;
+}
+}
+#endif
+
+void* AllocateLarge(std::size_t bytes)
+{
+#ifdef __linux__
+  if (bytes >= HugePage)
+  {
+    // Map a huge page more than needed, then unmap the unaligned head and the tail.
+    const std::size_t size = HugePageMultiple(bytes);
+    void* mapped =
+      mmap(nullptr, size + HugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (mapped == MAP_FAILED)
+    {
+      throw std::bad_alloc();
+    }
+    char* const first = static_cast<char*>(mapped);
+    const std::size_t misalignment = reinterpret_cast<std::uintptr_t>(first) % HugePage;
+    char* const block = first + (misalignment > 0 ? HugePage - misalignment : 0);
+    char* const last = first + size + HugePage;
+    if (block > first)
+    {
+      munmap(first, static_cast<std::size_t>(block - first));
+    }
+    if (last > block + size)
+    {
+      munmap(block + size, static_cast<std::size_t>(last - (block + size)));
+    }
+    // Advice only: without transparent huge pages the block simply has small pages.
+    madvise(block, size, MADV_HUGEPAGE);
+    return block;
+  }
+#endif
+  void* block = std::malloc(std::max<std::size_t>(bytes, 1));
+  if (!block)
+  {
+    throw std::bad_alloc();
+  }
+  return block;
+}
+
+void FreeLarge(void* block, std::size_t bytes) noexcept
+{
+#ifdef __linux__
+  if (bytes >= HugePage)
+  {
+    munmap(block, HugePageMultiple(bytes));
+    return;
+  }
+#endif
+  std::free(block);
 }
 
 std::int64_t GridShape::NumberOfSamples() const
@@ -72,6 +158,9 @@ double SecondsSince(Clock::time_point start)
 // in units of the sample-to-centre distance (the paper's epsilon).
 constexpr double VertexOffset = 0.001;
 
+// Elements per work unit of the row-wise loops (see RowBlocks).
+constexpr std::int64_t BlockLength = 256;
+
 /// The active axes of a grid, with strides and normalised spacings.
 template <int D>
 struct Lattice
@@ -125,119 +214,366 @@ struct Lattice
     }
   }
 
-  // Greedy decomposition from the largest stride; the first active axis always
-  // has stride 1 (flat axes before it have one sample), so D - 1 divisions.
-  std::array<std::int64_t, D> SampleCoordinates(std::int64_t s) const
-  {
-    return Decompose(s, this->sampleStride);
-  }
-
-  std::array<std::int64_t, D> FaceCoordinates(std::int64_t f) const
-  {
-    return Decompose(f, this->faceStride);
-  }
-
-  static std::array<std::int64_t, D> Decompose(
-    std::int64_t index, const std::array<std::int64_t, D>& stride)
-  {
-    std::array<std::int64_t, D> i{};
-    for (int d = D - 1; d > 0; --d)
-    {
-      i[d] = index / stride[d];
-      index -= i[d] * stride[d];
-    }
-    i[0] = index;
-    return i;
-  }
-
-  std::int64_t FaceBaseSample(const std::array<std::int64_t, D>& c) const
+  /// Index of the sample with coordinates i; also the lower corner of the face with coordinates i.
+  std::int64_t SampleIndex(const std::array<std::int64_t, D>& i) const
   {
     std::int64_t s = 0;
     for (int d = 0; d < D; ++d)
     {
-      s += c[d] * this->sampleStride[d];
+      s += i[d] * this->sampleStride[d];
     }
     return s;
   }
+
+  std::int64_t FaceIndex(const std::array<std::int64_t, D>& c) const
+  {
+    std::int64_t f = 0;
+    for (int d = 0; d < D; ++d)
+    {
+      f += c[d] * this->faceStride[d];
+    }
+    return f;
+  }
 };
+
+/**
+ * Work units of the row-wise loops over the samples (extent n) or the faces
+ * (extent m) of a lattice: runs of at most BlockLength consecutive elements of one
+ * row along the first active axis, which has stride 1. A loop over a block steps
+ * along x without decomposing indices into coordinates, and long rows (1D grids
+ * in particular) still spread over the threads.
+ */
+template <int D>
+class RowBlocks
+{
+public:
+  explicit RowBlocks(const std::array<std::int64_t, D>& extent)
+    : Extent(extent)
+    , PerRow((extent[0] + BlockLength - 1) / BlockLength)
+  {
+    this->Total = this->PerRow;
+    for (int d = 1; d < D; ++d)
+    {
+      this->Total *= extent[d];
+    }
+  }
+
+  std::int64_t Count() const { return this->Total; }
+
+  /// Block k: sets the coordinates of its first element and returns its length.
+  std::int64_t Get(std::int64_t k, std::array<std::int64_t, D>& first) const
+  {
+    std::int64_t row = k / this->PerRow;
+    first[0] = (k - row * this->PerRow) * BlockLength;
+    for (int d = 1; d < D; ++d)
+    {
+      first[d] = row % this->Extent[d];
+      row /= this->Extent[d];
+    }
+    return std::min(BlockLength, this->Extent[0] - first[0]);
+  }
+
+private:
+  std::array<std::int64_t, D> Extent;
+  std::int64_t PerRow;
+  std::int64_t Total = 0;
+};
+
+/**
+ * The faces adjacent to the samples of one row. A sample's face through corner
+ * bit pattern b has coordinates i - bits(b); the bits along the axes other than
+ * the first are the same for the whole row, so their rows of faces are found once.
+ */
+template <int D>
+class AdjacentFaces
+{
+public:
+  AdjacentFaces(const Lattice<D>& lattice, const std::array<std::int64_t, D>& i)
+    : L(lattice)
+  {
+    for (int r = 0; r < Lattice<D>::Corners / 2; ++r)
+    {
+      std::int64_t f = 0;
+      bool inside = true;
+      for (int d = 1; d < D; ++d)
+      {
+        const std::int64_t c = i[d] - ((r >> (d - 1)) & 1);
+        inside = inside && c >= 0 && c < L.m[d];
+        f += c * L.faceStride[d];
+      }
+      this->RowStart[r] = inside ? f : -1;
+    }
+  }
+
+  /// The face adjacent to sample x of the row through corner pattern b; -1 outside the grid.
+  std::int64_t Face(std::int64_t x, int b) const
+  {
+    const std::int64_t start = this->RowStart[b >> 1];
+    const std::int64_t fx = x - (b & 1);
+    return (start < 0 || fx < 0 || fx >= L.m[0]) ? -1 : start + fx;
+  }
+
+private:
+  const Lattice<D>& L;
+  std::array<std::int64_t, Lattice<D>::Corners / 2> RowStart{}; // face at x = 0, or -1
+};
+
+/// Data range over the samples whose components are all finite.
+struct SignalRange
+{
+  double low = std::numeric_limits<double>::infinity();
+  double high = -std::numeric_limits<double>::infinity();
+  bool allFinite = true;
+};
+
+/// The range and finiteness of a signal in one parallel pass (min and max are
+/// exact, so any thread count gives the same range).
+SignalRange ScanSignal(std::int64_t numSamples, int components, const double* values, int threads)
+{
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  bool allFinite = true;
+#pragma omp parallel for schedule(static) num_threads(threads) \
+  reduction(min : low) reduction(max : high) reduction(&& : allFinite)
+  for (std::int64_t s = 0; s < numSamples; ++s)
+  {
+    const double* v = values + s * components;
+    bool finite = true;
+    for (int c = 0; c < components; ++c)
+    {
+      finite = finite && std::isfinite(v[c]);
+    }
+    if (!finite)
+    {
+      allFinite = false;
+      continue;
+    }
+    for (int c = 0; c < components; ++c)
+    {
+      low = std::min(low, v[c]);
+      high = std::max(high, v[c]);
+    }
+  }
+  return { low, high, allFinite };
+}
 
 /// Per-sample validity: all components finite.
 std::vector<unsigned char> FiniteSamples(
-  std::int64_t numSamples, int components, const double* values, bool& allValid)
+  std::int64_t numSamples, int components, const double* values, int threads)
 {
-  std::vector<unsigned char> valid(static_cast<size_t>(numSamples), 1);
-  allValid = true;
+  std::vector<unsigned char> valid(static_cast<size_t>(numSamples));
+#pragma omp parallel for schedule(static) num_threads(threads)
   for (std::int64_t s = 0; s < numSamples; ++s)
   {
-    for (int c = 0; c < components; ++c)
+    const double* v = values + s * components;
+    valid[s] = std::all_of(v, v + components, [](double x) { return std::isfinite(x); });
+  }
+  return valid;
+}
+
+/// Faces whose corners are all valid samples; only they carry gradients and flow.
+template <int D>
+std::vector<unsigned char> ValidFaces(
+  const Lattice<D>& L, const unsigned char* validSample, int threads)
+{
+  std::vector<unsigned char> valid(static_cast<size_t>(L.numFaces));
+  const RowBlocks<D> blocks(L.m);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
+  {
+    std::array<std::int64_t, D> c;
+    const std::int64_t length = blocks.Get(k, c);
+    const std::int64_t f0 = L.FaceIndex(c);
+    const std::int64_t base0 = L.SampleIndex(c);
+    for (std::int64_t j = 0; j < length; ++j)
     {
-      if (!std::isfinite(values[s * components + c]))
+      bool all = true;
+      for (int b = 0; b < Lattice<D>::Corners; ++b)
       {
-        valid[s] = 0;
-        allValid = false;
-        break;
+        all = all && validSample[base0 + j + L.corner[b]];
       }
+      valid[f0 + j] = all;
     }
   }
   return valid;
 }
 
 /**
- * Appendix A umbrella smoothing with Gaussian weights exp(-|(v-w)/l|^2) over the
- * grid one-ring (the 2D neighbours along the active axes). Invalid samples neither
- * change nor contribute.
+ * SmoothPass on a block of `length` samples of one row when every sample is
+ * valid: the same operations in the same order as the general case, arranged as
+ * whole-block loops over the values, which vectorise. The weight total is the
+ * same along the row except at its ends (`rowStart`, `rowEnd`: the block holds
+ * them). `offset` are sample offsets of the neighbours along the other axes.
+ */
+template <size_t N>
+void SmoothBlockAllValid(int C, const double* in, double scale, double* out,
+  std::int64_t length, bool rowStart, bool rowEnd, double alphaX, int neighbours,
+  const std::array<std::int64_t, N>& offset, const std::array<double, N>& weight)
+{
+  const std::int64_t count = length * C;
+  std::copy(in, in + count, out);
+  for (std::int64_t v = rowStart ? C : 0; v < count; ++v)
+  {
+    out[v] += alphaX * in[v - C];
+  }
+  for (std::int64_t v = 0; v < (rowEnd ? count - C : count); ++v)
+  {
+    out[v] += alphaX * in[v + C];
+  }
+  for (int r = 0; r < neighbours; ++r)
+  {
+    const double* row = in + offset[r] * C;
+    for (std::int64_t v = 0; v < count; ++v)
+    {
+      out[v] += weight[r] * row[v];
+    }
+  }
+  const auto factor = [&](bool left, bool right) {
+    double total = 1.0;
+    total += left ? alphaX : 0.0;
+    total += right ? alphaX : 0.0;
+    for (int r = 0; r < neighbours; ++r)
+    {
+      total += weight[r];
+    }
+    return scale / total;
+  };
+  // The row's end samples miss one neighbour along x (a row has >= 2 samples).
+  const std::int64_t innerBegin = rowStart ? C : 0;
+  const std::int64_t innerEnd = rowEnd ? count - C : count;
+  const double inner = factor(true, true);
+  for (std::int64_t v = innerBegin; v < innerEnd; ++v)
+  {
+    out[v] *= inner;
+  }
+  if (rowStart)
+  {
+    const double first = factor(false, true);
+    for (int c = 0; c < C; ++c)
+    {
+      out[c] *= first;
+    }
+  }
+  if (rowEnd)
+  {
+    const double last = factor(true, false);
+    for (std::int64_t v = count - C; v < count; ++v)
+    {
+      out[v] *= last;
+    }
+  }
+}
+
+/**
+ * One pass of the Appendix A umbrella smoothing with Gaussian weights
+ * exp(-|(v-w)/l|^2) over the grid one-ring (the 2D neighbours along the active
+ * axes), scaled: out = scale x smooth(in). Invalid samples (`valid` non-null and
+ * 0) neither change nor contribute.
  */
 template <int D>
-void UmbrellaSmooth(const Lattice<D>& L, int C, std::vector<double>& values,
-  const std::vector<unsigned char>& valid, int passes, int threads)
+void SmoothPass(const Lattice<D>& L, int C, const double* in, double scale, double* out,
+  const unsigned char* valid, int threads)
 {
-  if (passes <= 0)
-  {
-    return;
-  }
   std::array<double, D> alpha{};
   for (int d = 0; d < D; ++d)
   {
     alpha[d] = std::exp(-L.h2[d]);
   }
-  std::vector<double> smoothed(values.size());
-  for (int pass = 0; pass < passes; ++pass)
-  {
+  const RowBlocks<D> blocks(L.n);
 #pragma omp parallel for schedule(static) num_threads(threads)
-    for (std::int64_t s = 0; s < L.numSamples; ++s)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
+  {
+    std::array<std::int64_t, D> i;
+    const std::int64_t length = blocks.Get(k, i);
+    const std::int64_t s0 = L.SampleIndex(i);
+    // The neighbours along the other axes are the same for the whole block.
+    std::array<std::int64_t, 2 * D> offset{};
+    std::array<double, 2 * D> weight{};
+    int neighbours = 0;
+    for (int d = 1; d < D; ++d)
     {
-      double* out = &smoothed[s * C];
-      const double* self = &values[s * C];
-      std::copy(self, self + C, out);
-      if (!valid[s])
+      for (int dir = -1; dir <= 1; dir += 2)
       {
-        continue;
-      }
-      const auto i = L.SampleCoordinates(s);
-      double weight = 1.0;
-      for (int d = 0; d < D; ++d)
-      {
-        for (int dir = -1; dir <= 1; dir += 2)
+        if (i[d] + dir >= 0 && i[d] + dir < L.n[d])
         {
-          const std::int64_t j = i[d] + dir;
-          const std::int64_t w = s + dir * L.sampleStride[d];
-          if (j < 0 || j >= L.n[d] || !valid[w])
-          {
-            continue;
-          }
-          weight += alpha[d];
-          for (int c = 0; c < C; ++c)
-          {
-            out[c] += alpha[d] * values[w * C + c];
-          }
+          offset[neighbours] = dir * L.sampleStride[d];
+          weight[neighbours] = alpha[d];
+          ++neighbours;
         }
       }
+    }
+    if (!valid)
+    {
+      SmoothBlockAllValid(C, in + s0 * C, scale, out + s0 * C, length, i[0] == 0,
+        i[0] + length == L.n[0], alpha[0], neighbours, offset, weight);
+      continue;
+    }
+    for (std::int64_t j = 0; j < length; ++j)
+    {
+      const std::int64_t x = i[0] + j;
+      const std::int64_t s = s0 + j;
+      double* o = out + s * C;
+      std::copy(in + s * C, in + (s + 1) * C, o);
+      double total = 1.0;
+      const auto add = [&](std::int64_t w, double a) {
+        if (valid[w])
+        {
+          total += a;
+          for (int c = 0; c < C; ++c)
+          {
+            o[c] += a * in[w * C + c];
+          }
+        }
+      };
+      if (valid[s])
+      {
+        if (x > 0)
+        {
+          add(s - 1, alpha[0]);
+        }
+        if (x + 1 < L.n[0])
+        {
+          add(s + 1, alpha[0]);
+        }
+        for (int r = 0; r < neighbours; ++r)
+        {
+          add(s + offset[r], weight[r]);
+        }
+      }
+      const double factor = scale / total;
       for (int c = 0; c < C; ++c)
       {
-        out[c] /= weight;
+        o[c] *= factor;
       }
     }
-    values.swap(smoothed);
+  }
+}
+
+/**
+ * `passes` smoothing passes (SmoothPass) of scale x in, into out; passes = 0 gives
+ * the scaled copy. `scratch`, of the size of out, is used when passes >= 2.
+ */
+template <int D>
+void UmbrellaSmooth(const Lattice<D>& L, int C, const double* in, double scale, double* out,
+  double* scratch, const unsigned char* valid, int passes, int threads)
+{
+  if (passes == 0)
+  {
+    const std::int64_t count = L.numSamples * C;
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::int64_t v = 0; v < count; ++v)
+    {
+      out[v] = scale * in[v];
+    }
+    return;
+  }
+  const double* source = in;
+  for (int pass = 0; pass < passes; ++pass)
+  {
+    // Alternate between the buffers so that the last pass writes `out`.
+    double* target = (passes - 1 - pass) % 2 == 0 ? out : scratch;
+    SmoothPass<D>(L, C, source, pass == 0 ? scale : 1.0, target, valid, threads);
+    source = target;
   }
 }
 
@@ -263,106 +599,158 @@ std::array<double, D> FaceGradient(
   return g;
 }
 
-/// Faces whose corners are all valid samples; only they carry gradients and flow.
-template <int D>
-std::vector<unsigned char> ValidFaces(
-  const Lattice<D>& L, const std::vector<unsigned char>& validSample, int threads)
-{
-  std::vector<unsigned char> valid(static_cast<size_t>(L.numFaces), 1);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t f = 0; f < L.numFaces; ++f)
-  {
-    const std::int64_t base = L.FaceBaseSample(L.FaceCoordinates(f));
-    for (int b = 0; b < Lattice<D>::Corners; ++b)
-    {
-      if (!validSample[base + L.corner[b]])
-      {
-        valid[f] = 0;
-        break;
-      }
-    }
-  }
-  return valid;
-}
-
 /**
- * Potential P: |grad I|^2 per face summed over channels (section 3.3 coupling),
- * averaged over each sample's valid adjacent faces (all faces have equal area).
+ * The flow of a signal (sections 3.2-3.3): smoothing, face gradients, potential,
+ * smoothing of the potential, back-trace velocity. Holds the buffers, which the
+ * flow updates of a run reuse.
  */
 template <int D>
-std::vector<double> SamplePotential(const Lattice<D>& L, int C, const std::vector<double>& signal,
-  const std::vector<unsigned char>& validFace, int threads)
+class FlowComputation
 {
-  std::vector<double> energy(static_cast<size_t>(L.numFaces), 0.0);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t f = 0; f < L.numFaces; ++f)
+public:
+  /// `validSample` and `validFace` are null when every sample is finite.
+  FlowComputation(const Lattice<D>& lattice, int components, int smoothingPasses,
+    const unsigned char* validSample, const unsigned char* validFace, int threads)
+    : L(lattice)
+    , C(components)
+    , Passes(smoothingPasses)
+    , ValidSample(validSample)
+    , ValidFace(validFace)
+    , Threads(threads)
+    , Smoothed(AllocateLargeArray<double>(lattice.numSamples * components))
+    , PotentialField(AllocateLargeArray<double>(lattice.numSamples))
+    , VelocityField(AllocateLargeArray<float>(lattice.numFaces * D))
   {
-    if (!validFace[f])
+    if (smoothingPasses >= 2)
     {
-      continue;
+      this->Scratch = AllocateLargeArray<double>(lattice.numSamples * components);
     }
-    const std::int64_t base = L.FaceBaseSample(L.FaceCoordinates(f));
-    double e = 0.0;
-    for (int c = 0; c < C; ++c)
-    {
-      const auto g = FaceGradient<D>(L, signal.data(), C, c, base);
-      for (int d = 0; d < D; ++d)
-      {
-        e += g[d] * g[d];
-      }
-    }
-    energy[f] = e;
   }
 
-  std::vector<double> potential(static_cast<size_t>(L.numSamples), 0.0);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t s = 0; s < L.numSamples; ++s)
+  /// Compute the flow of `signal`, intensities divided by `range`.
+  void Compute(const double* signal, double range)
   {
-    const auto i = L.SampleCoordinates(s);
-    double sum = 0.0;
-    int count = 0;
-    for (int b = 0; b < Lattice<D>::Corners; ++b)
-    {
-      std::int64_t f = 0;
-      bool inside = true;
-      for (int d = 0; d < D && inside; ++d)
-      {
-        const std::int64_t c = i[d] - ((b >> d) & 1);
-        inside = c >= 0 && c < L.m[d];
-        f += c * L.faceStride[d];
-      }
-      if (inside && validFace[f])
-      {
-        sum += energy[f];
-        ++count;
-      }
-    }
-    potential[s] = count > 0 ? sum / count : 0.0;
+    UmbrellaSmooth<D>(L, C, signal, 1.0 / range, this->Smoothed.get(), this->Scratch.get(),
+      this->ValidSample, this->Passes, this->Threads);
+    // Each buffer serves twice, to save memory and first-touch page faults: the
+    // energy per face (there are fewer faces than samples) goes to the potential's
+    // buffer, and the raw potential to the smoothed signal's, each once its
+    // previous content has been used.
+    double* energy = this->PotentialField.get();
+    this->ComputeEnergy(energy);
+    double* rawPotential = this->Smoothed.get();
+    this->ComputePotential(energy, rawPotential);
+    UmbrellaSmooth<D>(L, 1, rawPotential, 1.0, this->PotentialField.get(), this->Scratch.get(),
+      this->ValidSample, this->Passes, this->Threads);
+    this->ComputeVelocity();
   }
-  return potential;
-}
 
-/// Back-trace velocity per face in index units: -u / h with u = 1/2 grad P.
-template <int D>
-std::vector<float> BackTraceVelocity(const Lattice<D>& L, const std::vector<double>& potential,
-  const std::vector<unsigned char>& validFace, int threads)
-{
-  std::vector<float> velocity(static_cast<size_t>(L.numFaces * D), 0.0f);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t f = 0; f < L.numFaces; ++f)
+  /// Potential P per sample, normalised units.
+  const double* Potential() const { return this->PotentialField.get(); }
+  /// Back-trace velocity per face in index units, -u / h with u = 1/2 grad P; D per face.
+  const float* Velocity() const { return this->VelocityField.get(); }
+
+private:
+  bool FaceIsValid(std::int64_t f) const { return !this->ValidFace || this->ValidFace[f]; }
+
+  /// |grad I|^2 per face summed over channels (section 3.3 coupling); 0 on invalid faces.
+  void ComputeEnergy(double* energy) const
   {
-    if (!validFace[f])
+    const RowBlocks<D> blocks(L.m);
+#pragma omp parallel for schedule(static) num_threads(this->Threads)
+    for (std::int64_t k = 0; k < blocks.Count(); ++k)
     {
-      continue;
-    }
-    const auto g = FaceGradient<D>(L, potential.data(), 1, 0, L.FaceBaseSample(L.FaceCoordinates(f)));
-    for (int d = 0; d < D; ++d)
-    {
-      velocity[f * D + d] = static_cast<float>(-0.5 * g[d] / L.h[d]);
+      std::array<std::int64_t, D> c;
+      const std::int64_t length = blocks.Get(k, c);
+      const std::int64_t f0 = L.FaceIndex(c);
+      const std::int64_t base0 = L.SampleIndex(c);
+      for (std::int64_t j = 0; j < length; ++j)
+      {
+        double e = 0.0;
+        if (this->FaceIsValid(f0 + j))
+        {
+          for (int channel = 0; channel < C; ++channel)
+          {
+            const auto g = FaceGradient<D>(L, this->Smoothed.get(), C, channel, base0 + j);
+            for (int d = 0; d < D; ++d)
+            {
+              e += g[d] * g[d];
+            }
+          }
+        }
+        energy[f0 + j] = e;
+      }
     }
   }
-  return velocity;
-}
+
+  /// Potential before smoothing: the face energy averaged over each sample's valid
+  /// adjacent faces (all faces have equal area).
+  void ComputePotential(const double* energy, double* potential) const
+  {
+    const RowBlocks<D> blocks(L.n);
+#pragma omp parallel for schedule(static) num_threads(this->Threads)
+    for (std::int64_t k = 0; k < blocks.Count(); ++k)
+    {
+      std::array<std::int64_t, D> i;
+      const std::int64_t length = blocks.Get(k, i);
+      const std::int64_t s0 = L.SampleIndex(i);
+      const AdjacentFaces<D> faces(L, i);
+      for (std::int64_t j = 0; j < length; ++j)
+      {
+        double sum = 0.0;
+        int count = 0;
+        for (int b = 0; b < Lattice<D>::Corners; ++b)
+        {
+          const std::int64_t f = faces.Face(i[0] + j, b);
+          if (f >= 0 && this->FaceIsValid(f))
+          {
+            sum += energy[f];
+            ++count;
+          }
+        }
+        potential[s0 + j] = count > 0 ? sum / count : 0.0;
+      }
+    }
+  }
+
+  void ComputeVelocity()
+  {
+    const RowBlocks<D> blocks(L.m);
+#pragma omp parallel for schedule(static) num_threads(this->Threads)
+    for (std::int64_t k = 0; k < blocks.Count(); ++k)
+    {
+      std::array<std::int64_t, D> c;
+      const std::int64_t length = blocks.Get(k, c);
+      const std::int64_t f0 = L.FaceIndex(c);
+      const std::int64_t base0 = L.SampleIndex(c);
+      for (std::int64_t j = 0; j < length; ++j)
+      {
+        float* v = this->VelocityField.get() + (f0 + j) * D;
+        if (!this->FaceIsValid(f0 + j))
+        {
+          std::fill(v, v + D, 0.0f);
+          continue;
+        }
+        const auto g = FaceGradient<D>(L, this->PotentialField.get(), 1, 0, base0 + j);
+        for (int d = 0; d < D; ++d)
+        {
+          v[d] = static_cast<float>(-0.5 * g[d] / L.h[d]);
+        }
+      }
+    }
+  }
+
+  const Lattice<D>& L;
+  const int C;
+  const int Passes;
+  const unsigned char* ValidSample;
+  const unsigned char* ValidFace;
+  const int Threads;
+  LargeArray<double> Smoothed;       // range-normalised smoothed signal, then the raw potential
+  LargeArray<double> Scratch;        // second smoothing buffer (2+ passes)
+  LargeArray<double> PotentialField; // face energy, then the smoothed potential
+  LargeArray<float> VelocityField;
+};
 
 /**
  * Appendix A Trace on the grid, in index coordinates. The flow is constant per
@@ -394,14 +782,18 @@ public:
       : static_cast<std::int64_t>(std::ceil(4.0 * diameter / this->Delta)) + 1;
   }
 
-  /// Trace q (index coordinates) for time t; returns the number of steps taken.
-  std::int64_t Trace(std::array<double, D>& q, double t, bool& truncated) const
+  /**
+   * Trace q (index coordinates), which lies in face f with coordinates c (as
+   * FaceOf finds them), for time t; returns the number of steps taken.
+   */
+  std::int64_t Trace(std::array<double, D>& q, const std::array<std::int64_t, D>& c,
+    std::int64_t f, double t, bool& truncated) const
   {
-    return this->Mode == Tracing::FaceCrossing ? this->TraceFaceCrossing(q, t, truncated)
-                                               : this->TraceStepped(q, t, truncated);
+    return this->Mode == Tracing::FaceCrossing ? this->TraceFaceCrossing(q, c, f, t, truncated)
+                                               : this->TraceStepped(q, c, f, t, truncated);
   }
 
-private:
+  /// The face holding q (clamped to the grid): its index, and its coordinates in c.
   std::int64_t FaceOf(const std::array<double, D>& q, std::array<std::int64_t, D>& c) const
   {
     std::int64_t f = 0;
@@ -413,6 +805,7 @@ private:
     return f;
   }
 
+private:
   /// Dot product of index-space velocities in the physical metric.
   template <typename A, typename B>
   double Dot(const A& a, const B& b) const
@@ -462,10 +855,9 @@ private:
    * once, the exact rule is not unique; the rest of that trace uses the paper's
    * stepping, which zig-zags along the edge (or stops at a sink).
    */
-  std::int64_t TraceFaceCrossing(std::array<double, D>& q, double t, bool& truncated) const
+  std::int64_t TraceFaceCrossing(std::array<double, D>& q, std::array<std::int64_t, D> c,
+    std::int64_t f, double t, bool& truncated) const
   {
-    std::array<std::int64_t, D> c;
-    std::int64_t f = this->FaceOf(q, c);
     std::array<double, D> v;
     this->Load(f, v);
     if (!(this->Dot(v, v) > 0.0))
@@ -476,20 +868,18 @@ private:
     std::int64_t steps = 0;
     while (t > 0.0)
     {
+      // First boundary reached; written with selects rather than branches, as
+      // the exit axis is unpredictable (a division by 0 is computed, then ignored).
       double exitTime = std::numeric_limits<double>::infinity();
       int exitAxis = -1;
       for (int d = 0; d < D; ++d)
       {
-        if (d == pinned || v[d] == 0.0)
-        {
-          continue;
-        }
-        const double te = (v[d] > 0.0 ? c[d] + 1 - q[d] : c[d] - q[d]) / v[d];
-        if (te < exitTime)
-        {
-          exitTime = te;
-          exitAxis = d;
-        }
+        const double distance = v[d] > 0.0 ? c[d] + 1 - q[d] : c[d] - q[d];
+        const double quotient = distance / v[d];
+        const double te =
+          (d == pinned || v[d] == 0.0) ? std::numeric_limits<double>::infinity() : quotient;
+        exitAxis = te < exitTime ? d : exitAxis;
+        exitTime = te < exitTime ? te : exitTime;
       }
       if (exitAxis < 0)
       {
@@ -581,8 +971,10 @@ private:
       }
       if (w[exitAxis] * dir < 0.0 && exitAxis != pinned)
       {
+        // Pushed onto an edge or corner.
         this->ClampToGrid(q);
-        return steps + this->TraceStepped(q, t, truncated); // pushed onto an edge or corner
+        const std::int64_t face = this->FaceOf(q, c);
+        return steps + this->TraceStepped(q, c, face, t, truncated);
       }
       v = w;
     }
@@ -590,10 +982,10 @@ private:
     return steps;
   }
 
-  std::int64_t TraceStepped(std::array<double, D>& q, double t, bool& truncated) const
+  std::int64_t TraceStepped(std::array<double, D>& q, std::array<std::int64_t, D> c,
+    std::int64_t f, double t, bool& truncated) const
   {
-    std::array<std::int64_t, D> c;
-    const float* v = this->V + this->FaceOf(q, c) * D;
+    const float* v = this->V + f * D;
     const float* v0 = v;
     std::int64_t steps = 0;
     while (t > 0.0 && this->Dot(v, v0) > 0.0)
@@ -639,15 +1031,55 @@ private:
   std::int64_t MaxSteps = 0;
 };
 
+/// A weighted sum of samples: the value read at a traced point, or the average of several.
+template <int D>
+struct Stencil
+{
+  // Up to one multilinear read (the corners of a cell) per trace, one trace per corner.
+  static constexpr int Capacity = Lattice<D>::Corners * Lattice<D>::Corners;
+  std::array<std::int64_t, Capacity> sample;
+  std::array<double, Capacity> weight;
+  int size = 0;
+
+  void Add(std::int64_t s, double w)
+  {
+    this->sample[this->size] = s;
+    this->weight[this->size] = w;
+    ++this->size;
+  }
+
+  /// The weighted sum of component c of `values` (C components per sample).
+  double Apply(const double* values, int C, int c) const
+  {
+    // Four partial sums: four short chains of dependent additions instead of one long one.
+    double partial[4] = { 0.0, 0.0, 0.0, 0.0 };
+    int r = 0;
+    for (; r + 4 <= this->size; r += 4)
+    {
+      for (int k = 0; k < 4; ++k)
+      {
+        partial[k] += this->weight[r + k] * values[this->sample[r + k] * C + c];
+      }
+    }
+    for (; r < this->size; ++r)
+    {
+      partial[0] += this->weight[r] * values[this->sample[r] * C + c];
+    }
+    return (partial[0] + partial[1]) + (partial[2] + partial[3]);
+  }
+};
+
 /**
- * Reads a grid signal at index position q, adding weight x value into acc.
+ * Adds to `stencil` the samples and weights that read a grid signal at index
+ * position q.
  * Linear: multilinear interpolation over the valid corners of the cell holding q.
  * Nearest: the nearest sample (the linear rule if that sample is invalid).
- * Returns false when no valid sample is available.
+ * `valid` is null when every sample is valid.
+ * Returns false, adding nothing, when no valid sample is available.
  */
 template <int D>
-bool SampleGrid(const Lattice<D>& L, const double* values, int C,
-  const unsigned char* valid, Sampling sampling, const std::array<double, D>& q, double* acc)
+bool SampleGrid(const Lattice<D>& L, const unsigned char* valid, Sampling sampling,
+  const std::array<double, D>& q, Stencil<D>& stencil)
 {
   if (sampling == Sampling::Nearest)
   {
@@ -658,10 +1090,7 @@ bool SampleGrid(const Lattice<D>& L, const double* values, int C,
     }
     if (!valid || valid[s])
     {
-      for (int c = 0; c < C; ++c)
-      {
-        acc[c] += values[s * C + c];
-      }
+      stencil.Add(s, 1.0);
       return true;
     }
   }
@@ -682,12 +1111,17 @@ bool SampleGrid(const Lattice<D>& L, const double* values, int C,
     {
       w *= ((b >> d) & 1) ? frac[d] : 1.0 - frac[d];
     }
-    if (valid && !valid[base + L.corner[b]])
+    weights[b] = (!valid || valid[base + L.corner[b]]) ? w : 0.0;
+    total += weights[b];
+  }
+  if (!valid)
+  {
+    // All corners valid: the weights already sum to 1 (and a zero weight is harmless).
+    for (int b = 0; b < Lattice<D>::Corners; ++b)
     {
-      w = 0.0;
+      stencil.Add(base + L.corner[b], weights[b]);
     }
-    weights[b] = w;
-    total += w;
+    return true;
   }
   if (!(total > 0.0))
   {
@@ -695,14 +1129,9 @@ bool SampleGrid(const Lattice<D>& L, const double* values, int C,
   }
   for (int b = 0; b < Lattice<D>::Corners; ++b)
   {
-    if (weights[b] != 0.0)
+    if (weights[b] != 0.0) // skip invalid corners: 0 x NaN would be NaN
     {
-      const double* v = values + (base + L.corner[b]) * C;
-      const double w = weights[b] / total;
-      for (int c = 0; c < C; ++c)
-      {
-        acc[c] += w * v[c];
-      }
+      stencil.Add(base + L.corner[b], weights[b] / total);
     }
   }
   return true;
@@ -716,8 +1145,7 @@ struct AdvectionContext
   int C;
   int threads;
   Sampling sampling;
-  const std::vector<unsigned char>& valid;
-  bool allValid;
+  const unsigned char* valid; // null when every sample is finite
   const ProgressFunction& progress;
   AdvectionReport& report;
 };
@@ -725,86 +1153,99 @@ struct AdvectionContext
 /**
  * Appendix A AdvectVertices: every valid sample is traced from an offset into
  * each adjacent face, the source signal is sampled at the traced points and the
- * results are averaged. With `positions` (Composed flow), traces resume from and
- * update the stored positions instead of starting at the offsets.
+ * results are averaged. With `positions` (Composed flow; D floats per sample and
+ * corner pattern), traces resume from and update the stored positions instead
+ * of starting at the offsets.
  * Returns false when aborted through the progress callback.
  */
 template <int D>
 bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, double time,
-  const double* source, double* out, std::vector<float>* positions, double progressStart,
-  double progressSpan)
+  const double* source, double* out, float* positions, double progressStart, double progressSpan)
 {
   const Lattice<D>& L = ctx.L;
   const int C = ctx.C;
-  const unsigned char* valid = ctx.allValid ? nullptr : ctx.valid.data();
+  const unsigned char* valid = ctx.valid;
   constexpr int Corners = Lattice<D>::Corners;
-  const std::int64_t chunkCount = std::max<std::int64_t>(1, std::min<std::int64_t>(64, L.numSamples / 8192));
-  const std::int64_t chunkSize = (L.numSamples + chunkCount - 1) / chunkCount;
+  const RowBlocks<D> blocks(L.n);
+  // Progress is reported, and an abort honoured, between chunks of blocks.
+  const std::int64_t chunkCount =
+    std::max<std::int64_t>(1, std::min<std::int64_t>(64, L.numSamples / 8192));
+  const std::int64_t chunkSize = (blocks.Count() + chunkCount - 1) / chunkCount;
   std::uint64_t steps = 0;
   std::uint64_t truncated = 0;
 
   for (std::int64_t chunk = 0; chunk < chunkCount; ++chunk)
   {
     const std::int64_t begin = chunk * chunkSize;
-    const std::int64_t end = std::min(L.numSamples, begin + chunkSize);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(ctx.threads) reduction(+ : steps, truncated)
-    for (std::int64_t s = begin; s < end; ++s)
+    const std::int64_t end = std::min(blocks.Count(), begin + chunkSize);
+#pragma omp parallel for schedule(dynamic) num_threads(ctx.threads) reduction(+ : steps, truncated)
+    for (std::int64_t k = begin; k < end; ++k)
     {
-      double* acc = out + s * C;
-      if (valid && !valid[s])
+      std::array<std::int64_t, D> i;
+      const std::int64_t length = blocks.Get(k, i);
+      const std::int64_t x0 = i[0];
+      const std::int64_t s0 = L.SampleIndex(i);
+      const AdjacentFaces<D> faces(L, i);
+      for (std::int64_t j = 0; j < length; ++j)
       {
-        std::copy(source + s * C, source + (s + 1) * C, acc);
-        continue;
-      }
-      std::fill(acc, acc + C, 0.0);
-      const auto i = L.SampleCoordinates(s);
-      int samples = 0;
-      for (int b = 0; b < Corners; ++b)
-      {
-        bool inside = true;
-        for (int d = 0; d < D && inside; ++d)
+        const std::int64_t s = s0 + j;
+        i[0] = x0 + j;
+        double* result = out + s * C;
+        if (valid && !valid[s])
         {
-          const std::int64_t c = i[d] - ((b >> d) & 1);
-          inside = c >= 0 && c < L.m[d];
-        }
-        if (!inside)
-        {
+          std::copy(source + s * C, source + (s + 1) * C, result);
           continue;
         }
-        std::array<double, D> q;
-        float* stored = positions ? positions->data() + (s * Corners + b) * D : nullptr;
-        for (int d = 0; d < D; ++d)
+        // The traces' reads are gathered first, then combined per component in
+        // registers (no read-modify-write of the output per corner).
+        Stencil<D> stencil;
+        int traces = 0;
+        for (int b = 0; b < Corners; ++b)
         {
-          q[d] = stored ? static_cast<double>(stored[d])
-                        : static_cast<double>(i[d]) + VertexOffset * (0.5 - ((b >> d) & 1));
-        }
-        bool cut = false;
-        steps += static_cast<std::uint64_t>(tracer.Trace(q, time, cut));
-        truncated += cut ? 1 : 0;
-        if (stored)
-        {
-          for (int d = 0; d < D; ++d)
+          std::int64_t f = faces.Face(i[0], b);
+          if (f < 0)
           {
-            stored[d] = static_cast<float>(q[d]);
+            continue;
           }
-        }
-        if (!SampleGrid<D>(L, source, C, valid, ctx.sampling, q, acc))
-        {
-          // Only non-finite samples around q: keep the sample's own value.
-          for (int c = 0; c < C; ++c)
+          std::array<double, D> q;
+          std::array<std::int64_t, D> c;
+          float* stored = positions ? positions + (s * Corners + b) * D : nullptr;
+          if (stored)
           {
-            acc[c] += source[s * C + c];
+            std::copy(stored, stored + D, q.begin());
+            f = tracer.FaceOf(q, c);
           }
+          else
+          {
+            // The start lies in face f, whose coordinates are the sample's minus the corner bits.
+            for (int d = 0; d < D; ++d)
+            {
+              const int bit = (b >> d) & 1;
+              c[d] = i[d] - bit;
+              q[d] = static_cast<double>(i[d]) + VertexOffset * (0.5 - bit);
+            }
+          }
+          bool cut = false;
+          steps += static_cast<std::uint64_t>(tracer.Trace(q, c, f, time, cut));
+          truncated += cut ? 1 : 0;
+          if (stored)
+          {
+            std::copy(q.begin(), q.end(), stored);
+          }
+          if (!SampleGrid<D>(L, valid, ctx.sampling, q, stencil))
+          {
+            stencil.Add(s, 1.0); // only non-finite samples around q: keep the sample's own value
+          }
+          ++traces;
         }
-        ++samples;
-      }
-      for (int c = 0; c < C; ++c)
-      {
-        acc[c] /= samples;
+        for (int c = 0; c < C; ++c)
+        {
+          result[c] = stencil.Apply(source, C, c) / traces;
+        }
       }
     }
     if (ctx.progress &&
-      !ctx.progress(progressStart + progressSpan * static_cast<double>(end) / L.numSamples))
+      !ctx.progress(progressStart + progressSpan * static_cast<double>(end) / blocks.Count()))
     {
       ctx.report.traceSteps += steps;
       ctx.report.truncatedTraces += truncated;
@@ -816,21 +1257,31 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
   return true;
 }
 
-/// Initial Composed-flow positions: the offsets of AdvectVertices.
+/// Initial Composed-flow positions: the offsets of AdvectVertices, D floats per
+/// sample and corner pattern.
 template <int D>
-std::vector<float> InitialTracePositions(const Lattice<D>& L)
+LargeArray<float> InitialTracePositions(const Lattice<D>& L, int threads)
 {
   constexpr int Corners = Lattice<D>::Corners;
-  std::vector<float> positions(static_cast<size_t>(L.numSamples * Corners * D));
-  for (std::int64_t s = 0; s < L.numSamples; ++s)
+  LargeArray<float> positions = AllocateLargeArray<float>(L.numSamples * Corners * D);
+  const RowBlocks<D> blocks(L.n);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
   {
-    const auto i = L.SampleCoordinates(s);
-    for (int b = 0; b < Corners; ++b)
+    std::array<std::int64_t, D> i;
+    const std::int64_t length = blocks.Get(k, i);
+    const std::int64_t s0 = L.SampleIndex(i);
+    const std::int64_t x0 = i[0];
+    for (std::int64_t j = 0; j < length; ++j)
     {
-      for (int d = 0; d < D; ++d)
+      i[0] = x0 + j;
+      for (int b = 0; b < Corners; ++b)
       {
-        positions[(s * Corners + b) * D + d] =
-          static_cast<float>(static_cast<double>(i[d]) + VertexOffset * (0.5 - ((b >> d) & 1)));
+        for (int d = 0; d < D; ++d)
+        {
+          positions[((s0 + j) * Corners + b) * D + d] =
+            static_cast<float>(static_cast<double>(i[d]) + VertexOffset * (0.5 - ((b >> d) & 1)));
+        }
       }
     }
   }
@@ -846,23 +1297,8 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
   const int threads = ResolveThreadCount(p.numberOfThreads);
   const std::int64_t count = L.numSamples * C;
 
-  bool allValid = true;
-  const std::vector<unsigned char> valid = FiniteSamples(L.numSamples, C, input, allValid);
-  double low = std::numeric_limits<double>::infinity();
-  double high = -low;
-  for (std::int64_t s = 0; s < L.numSamples; ++s)
-  {
-    if (valid[s])
-    {
-      for (int c = 0; c < C; ++c)
-      {
-        low = std::min(low, input[s * C + c]);
-        high = std::max(high, input[s * C + c]);
-      }
-    }
-  }
-  std::copy(input, input + count, output);
-  const double range = p.valueScale > 0.0 ? p.valueScale : high - low;
+  const SignalRange scan = ScanSignal(L.numSamples, C, input, threads);
+  const double range = p.valueScale > 0.0 ? p.valueScale : scan.high - scan.low;
   if (fields)
   {
     fields->potential.assign(static_cast<size_t>(L.numSamples), 0.0);
@@ -870,44 +1306,51 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
   }
   if (!(range > 0.0) || !std::isfinite(range))
   {
+    std::copy(input, input + count, output);
     return {}; // constant (or entirely non-finite) signal: no flow
   }
 
-  const std::vector<unsigned char> validFace = ValidFaces<D>(L, valid, threads);
+  // Validity masks only when some sample is not finite; null pointers mean all valid.
+  std::vector<unsigned char> validSamples, validFaces;
+  if (!scan.allFinite)
+  {
+    validSamples = FiniteSamples(L.numSamples, C, input, threads);
+    validFaces = ValidFaces<D>(L, validSamples.data(), threads);
+  }
+  const unsigned char* validSample = scan.allFinite ? nullptr : validSamples.data();
+  const unsigned char* validFace = scan.allFinite ? nullptr : validFaces.data();
+
+  // t = 0 gives the input, exactly (the flow fields may still be wanted).
+  const bool advect = p.time > 0.0;
   const int updates = p.flowMode == FlowMode::Fixed ? 1 : std::max(1, p.flowUpdates);
   const double stepTime = p.time / updates;
-  std::vector<double> current;
-  if (p.flowMode != FlowMode::Fixed)
+  // Naive flow: the resampled signal alternates between this buffer and output,
+  // arranged so that the last update writes output.
+  LargeArray<double> naiveBuffer;
+  if (advect && p.flowMode == FlowMode::Naive && updates > 1)
   {
-    current.assign(input, input + count);
+    naiveBuffer = AllocateLargeArray<double>(count);
   }
-  std::vector<double> next(p.flowMode == FlowMode::Naive ? count : 0);
-  std::vector<float> positions;
-  if (p.flowMode == FlowMode::Composed && p.time > 0.0)
+  LargeArray<float> positions;
+  if (advect && p.flowMode == FlowMode::Composed)
   {
-    positions = InitialTracePositions<D>(L);
+    positions = InitialTracePositions<D>(L, threads);
   }
-  const AdvectionContext<D> ctx{ L, C, threads, p.sampling, valid, allValid, progress, report };
+  FlowComputation<D> flow(L, C, p.smoothingPasses, validSample, validFace, threads);
+  const AdvectionContext<D> ctx{ L, C, threads, p.sampling, validSample, progress, report };
 
+  const double* signal = input; // the signal whose flow is computed
   for (int k = 0; k < updates; ++k)
   {
     // Flow of the current signal, on range-normalised intensities.
     const auto flowStart = Clock::now();
-    const double* signal = current.empty() ? input : current.data();
-    std::vector<double> smoothed(signal, signal + count);
-    for (double& v : smoothed)
-    {
-      v /= range;
-    }
-    UmbrellaSmooth<D>(L, C, smoothed, valid, p.smoothingPasses, threads);
-    std::vector<double> potential = SamplePotential<D>(L, C, smoothed, validFace, threads);
-    UmbrellaSmooth<D>(L, 1, potential, valid, p.smoothingPasses, threads);
-    const std::vector<float> velocity = BackTraceVelocity<D>(L, potential, validFace, threads);
+    flow.Compute(signal, range);
     report.flowSeconds += SecondsSince(flowStart);
 
     if (fields && k == updates - 1)
     {
-      fields->potential = potential;
+      fields->potential.assign(flow.Potential(), flow.Potential() + L.numSamples);
+      const float* velocity = flow.Velocity();
       for (std::int64_t f = 0; f < L.numFaces; ++f)
       {
         for (int d = 0; d < D; ++d)
@@ -922,42 +1365,32 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
       report.aborted = true;
       break;
     }
-    if (!(p.time > 0.0))
+    if (!advect)
     {
-      continue; // t = 0: the input, exactly (the flow fields may still be wanted)
+      continue;
     }
 
     const auto advectStart = Clock::now();
-    const GridTracer<D> tracer(L, velocity.data(), p);
-    bool completed = true;
-    switch (p.flowMode)
-    {
-      case FlowMode::Fixed:
-        completed = AdvectVertices<D>(ctx, tracer, stepTime, input, output, nullptr, progressStart, 0.9 / updates);
-        break;
-      case FlowMode::Naive:
-        completed = AdvectVertices<D>(ctx, tracer, stepTime, current.data(), next.data(), nullptr, progressStart, 0.9 / updates);
-        current.swap(next);
-        break;
-      case FlowMode::Composed:
-        completed = AdvectVertices<D>(ctx, tracer, stepTime, input, current.data(), &positions, progressStart, 0.9 / updates);
-        break;
-    }
+    const GridTracer<D> tracer(L, flow.Velocity(), p);
+    // Fixed and Composed flows sample the input (Composed from the composed
+    // positions, its result feeding the next flow); Naive resamples the last result.
+    const bool naive = p.flowMode == FlowMode::Naive;
+    const double* source = naive ? signal : input;
+    double* target = naive && (updates - 1 - k) % 2 == 1 ? naiveBuffer.get() : output;
+    const bool completed = AdvectVertices<D>(
+      ctx, tracer, stepTime, source, target, positions.get(), progressStart, 0.9 / updates);
     report.advectionSeconds += SecondsSince(advectStart);
     if (!completed)
     {
       report.aborted = true;
       break;
     }
+    signal = target;
   }
 
-  if (report.aborted)
+  if (report.aborted || !advect)
   {
     std::copy(input, input + count, output);
-  }
-  else if (p.flowMode != FlowMode::Fixed && p.time > 0.0)
-  {
-    std::copy(current.begin(), current.end(), output);
   }
   return {};
 }
@@ -987,21 +1420,10 @@ Status AdvectGridSignal(const GridShape& shape, int components, const double* in
   {
     return { "input and output must be distinct, non-null buffers" };
   }
-  if (!(parameters.time >= 0.0) || !std::isfinite(parameters.time))
+  const Status valid = CheckAdvectionParameters(parameters);
+  if (!valid.Ok())
   {
-    return { "the flow time must be finite and >= 0" };
-  }
-  if (parameters.smoothingPasses < 0)
-  {
-    return { "the number of smoothing passes must be >= 0" };
-  }
-  if (!(parameters.stepFraction > 0.0) || parameters.stepFraction > 1.0)
-  {
-    return { "the step fraction must be in (0, 1]" };
-  }
-  if (parameters.flowUpdates < 1)
-  {
-    return { "the number of flow updates must be >= 1" };
+    return valid;
   }
 
   AdvectionReport localReport;

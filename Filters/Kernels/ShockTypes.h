@@ -11,9 +11,12 @@
 #ifndef ShockTypes_h
 #define ShockTypes_h
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
+#include <type_traits>
 
 namespace shock
 {
@@ -95,6 +98,45 @@ int ResolveThreadCount(int requested);
 
 /// Check the ranges documented in AdvectionParameters; an empty Status when valid.
 Status CheckAdvectionParameters(const AdvectionParameters& parameters);
+
+/**
+ * Run body(begin, end) on contiguous ranges that split [0, count), one per thread
+ * of an OpenMP team of ResolveThreadCount(threads) threads. For element-wise work
+ * in code that is not built with OpenMP (the VTK glue); the body must be safe to
+ * run concurrently on disjoint ranges.
+ */
+void ParallelFor(std::int64_t count, int threads,
+  const std::function<void(std::int64_t begin, std::int64_t end)>& body);
+
+/**
+ * Uninitialised storage for the large arrays of the kernels and filters (signals,
+ * potentials, flows), released with FreeLarge and the same size. On Linux, blocks
+ * of 2 MiB and more are mapped on their own, aligned to and advised for
+ * transparent huge pages: the first touch of a buffer then takes one page fault
+ * per 2 MiB instead of one per 4 KiB, which on a multi-megapixel image otherwise
+ * costs a good part of the run time. Throws std::bad_alloc on failure.
+ */
+void* AllocateLarge(std::size_t bytes);
+void FreeLarge(void* block, std::size_t bytes) noexcept;
+
+/// Deleter of LargeArray: FreeLarge needs the size.
+struct LargeArrayDeleter
+{
+  std::size_t bytes = 0;
+  void operator()(void* block) const noexcept { FreeLarge(block, this->bytes); }
+};
+
+/// An uninitialised array from AllocateLarge.
+template <typename T>
+using LargeArray = std::unique_ptr<T[], LargeArrayDeleter>;
+
+template <typename T>
+LargeArray<T> AllocateLargeArray(std::int64_t count)
+{
+  static_assert(std::is_trivial<T>::value, "large arrays hold plain values, left uninitialised");
+  const std::size_t bytes = static_cast<std::size_t>(count) * sizeof(T);
+  return LargeArray<T>(static_cast<T*>(AllocateLarge(bytes)), LargeArrayDeleter{ bytes });
+}
 
 } // namespace shock
 
