@@ -10,6 +10,7 @@
 #include "vtkPolyData.h"
 #include "vtkShockFilterInternals.h"
 #include "vtkShockPolyDataInternals.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
@@ -118,6 +119,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   meshSignal.components = components;
   meshSignal.values = cellData ? signal.data() : values.data();
   meshSignal.valueScale = this->ParallelValueScale; // 0 (own range) unless a parallel piece
+  meshSignal.lengthScale = this->ParallelLengthScale; // likewise for the mean edge length
   std::vector<double> filtered(cellData ? signal.size() : values.size());
   shock::AdvectionReport report;
   shock::MeshFlowFields fields;
@@ -176,6 +178,30 @@ int vtkPolyDataShockAdvectionFilter::RequestUpdateExtent(
     inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), requested + this->GhostLevels);
   }
   return 1;
+}
+
+bool vtkPolyDataShockAdvectionFilter::LocalEdgeLengthSum(
+  vtkInformationVector** inputVector, double& sum, double& count)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkShockPolyDataInternals::Triangles triangles;
+  std::string error;
+  if (!input || !vtkShockPolyDataInternals::ExtractTriangles(input, triangles, error))
+  {
+    return false; // RequestData reports the error
+  }
+  vtkUnsignedCharArray* ghosts = input->GetCellGhostArray();
+  sum = count = 0.0;
+  for (size_t f = 0; f < triangles.sourceCell.size(); ++f)
+  {
+    if (ghosts && (ghosts->GetValue(triangles.sourceCell[f]) & vtkDataSetAttributes::DUPLICATECELL))
+    {
+      continue;
+    }
+    sum += shock::TrianglePerimeter(triangles.points.data(), &triangles.triangles[3 * f]);
+    count += 3.0;
+  }
+  return true;
 }
 
 bool vtkPolyDataShockAdvectionFilter::LocalValueRange(

@@ -98,6 +98,9 @@ protected:
   /// Point data: all points; cell data: the polygons and strips only (as the kernel).
   bool LocalValueRange(vtkInformationVector** inputVector, double range[2]) override;
 
+  /// The perimeters of the triangles of the cells this piece owns (not ghost cells).
+  bool LocalEdgeLengthSum(vtkInformationVector** inputVector, double& sum, double& count) override;
+
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 

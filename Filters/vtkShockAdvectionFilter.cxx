@@ -147,10 +147,16 @@ bool vtkShockAdvectionFilter::LocalValueRange(vtkInformationVector** inputVector
   return range[0] <= range[1];
 }
 
+bool vtkShockAdvectionFilter::LocalEdgeLengthSum(vtkInformationVector**, double&, double&)
+{
+  return false;
+}
+
 void vtkShockAdvectionFilter::PrepareParallelExecution(
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->ParallelValueScale = 0.0;
+  this->ParallelLengthScale = 0.0;
   this->ParallelPiecesWithData = NOT_A_PIECE;
   if (this->ExecutingBlock)
   {
@@ -193,6 +199,15 @@ void vtkShockAdvectionFilter::PrepareParallelExecution(
   {
     this->ParallelValueScale = scale;
   }
+  double lengths[2] = { 0.0, 0.0 }; // sum, count
+  const bool hasLengths = input && input->GetNumberOfPoints() > 0 &&
+    this->LocalEdgeLengthSum(inputVector, lengths[0], lengths[1]);
+  double globalLengths[2] = { 0.0, 0.0 };
+  controller->AllReduce(lengths, globalLengths, 2, vtkCommunicator::SUM_OP);
+  if (hasLengths && globalLengths[1] > 0.0 && globalLengths[0] > 0.0)
+  {
+    this->ParallelLengthScale = globalLengths[0] / globalLengths[1];
+  }
 #else
   (void)inputVector;
 #endif
@@ -227,6 +242,7 @@ void vtkShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "GhostLevels: " << this->GhostLevels << "\n";
   os << indent << "ParallelValueScale: " << this->ParallelValueScale << "\n";
+  os << indent << "ParallelLengthScale: " << this->ParallelLengthScale << "\n";
   os << indent << "LastSetupSeconds: " << this->LastSetupSeconds << "\n";
   os << indent << "LastFlowSeconds: " << this->LastFlowSeconds << "\n";
   os << indent << "LastAdvectionSeconds: " << this->LastAdvectionSeconds << "\n";

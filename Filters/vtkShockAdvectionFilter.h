@@ -263,7 +263,8 @@ protected:
    * vtkMultiProcessController has as many processes, reduce over all
    * processes the number of pieces holding points and (when
    * UsesParallelValueScale()) the data range of the array to process, into
-   * ParallelPiecesWithData and ParallelValueScale. Collective: every process
+   * ParallelPiecesWithData and ParallelValueScale, and (LocalEdgeLengthSum)
+   * the mean edge length into ParallelLengthScale. Collective: every process
    * runs it once per execution, before anything can fail, so that an error
    * on one process cannot leave the others waiting. Not for the blocks of a
    * composite input (ExecutingBlock), whose number differs between processes:
@@ -280,6 +281,15 @@ protected:
    * all finite). Returns false when there is none.
    */
   virtual bool LocalValueRange(vtkInformationVector** inputVector, double range[2]);
+
+  /**
+   * The sum of the edge lengths that define the mean edge length on the local
+   * piece, and how many edges they are, counting only what this piece owns
+   * (not its ghost cells), so that the sums over all pieces give the serial
+   * mean. Returns false when lengths need no reduction (images: the spacing is
+   * the same on every piece).
+   */
+  virtual bool LocalEdgeLengthSum(vtkInformationVector** inputVector, double& sum, double& count);
 
   /// Not a piece of a parallel request (one piece, or composite block by block).
   static constexpr int NOT_A_PIECE = -1;
@@ -303,6 +313,8 @@ protected:
 
   /// Set by PrepareParallelExecution for the current execution (see its documentation).
   double ParallelValueScale = 0.0;
+  /// Mean edge length over all pieces (0: not a parallel piece, or not reduced).
+  double ParallelLengthScale = 0.0;
   /// Pieces holding points over all processes, or NOT_A_PIECE / UNKNOWN_PIECES.
   int ParallelPiecesWithData = NOT_A_PIECE;
   /// True while vtkCompositeDataPipeline runs the filter on one block of a composite input.

@@ -79,11 +79,13 @@ struct Hinge
 class SurfaceTracer
 {
 public:
-  SurfaceTracer(const TriangleMesh& mesh, const double* velocity, const AdvectionParameters& p)
+  /// `length`: the length unit (mean edge length), so delta = stepFraction x length.
+  SurfaceTracer(
+    const TriangleMesh& mesh, const double* velocity, const AdvectionParameters& p, double length)
     : Mesh(mesh)
     , Velocity(velocity)
     , Mode(p.tracing)
-    , Delta(p.stepFraction * mesh.MeanEdgeLength())
+    , Delta(p.stepFraction * length)
   {
     // A discrete gradient flow has no cycles in the continuum limit; should the
     // discretisation create one, cap the work per trace at a few mesh diameters
@@ -352,6 +354,7 @@ struct MeshRun
   const AdvectionParameters& p;
   int C;
   int threads;
+  double length = 0.0; // length unit: the signal's lengthScale or the mean edge length
   double range = 0.0;
   std::vector<unsigned char> validPoint;    // point has a finite value (or, for cells, a finite neighbour)
   std::vector<unsigned char> validTriangle; // non-degenerate, finite corners (and value): carries flow
@@ -458,7 +461,7 @@ inline Vec3 TriangleGradient(const MeshRun& run, const double* values, int C, in
   {
     g = Combine(1.0, g, values[t[k] * C + c], Load(run.mesh.HatGradient(f, k)));
   }
-  const double l = run.mesh.MeanEdgeLength();
+  const double l = run.length;
   return { g[0] * l, g[1] * l, g[2] * l };
 }
 
@@ -769,7 +772,8 @@ bool Prepare(MeshRun& run)
     }
   }
   run.range = run.signal.valueScale > 0.0 ? run.signal.valueScale : high - low;
-  if (!(run.range > 0.0) || !std::isfinite(run.range) || !(mesh.MeanEdgeLength() > 0.0))
+  run.length = run.signal.lengthScale > 0.0 ? run.signal.lengthScale : mesh.MeanEdgeLength();
+  if (!(run.range > 0.0) || !std::isfinite(run.range) || !(run.length > 0.0))
   {
     return false; // constant or entirely non-finite signal, or no edges: no flow
   }
@@ -810,7 +814,7 @@ bool Prepare(MeshRun& run)
   }
 
   const CompressedLists& ring = mesh.OneRing();
-  const double l = mesh.MeanEdgeLength();
+  const double l = run.length;
   run.umbrellaWeight.resize(ring.items.size());
 #pragma omp parallel for num_threads(run.threads) schedule(static)
   for (std::int64_t p = 0; p < run.Points(); ++p)
@@ -892,7 +896,7 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
     std::vector<double> potential = ComputeFlow(run, std::move(normalised), flow);
     // Back-trace velocity in world units per unit normalised time: -u scaled by l-bar.
     velocity.resize(flow.size());
-    const double l = mesh.MeanEdgeLength();
+    const double l = run.length;
     for (size_t i = 0; i < flow.size(); ++i)
     {
       velocity[i] = -l * flow[i];
@@ -915,7 +919,7 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
     }
 
     const auto advectStart = Clock::now();
-    const SurfaceTracer tracer(mesh, velocity.data(), p);
+    const SurfaceTracer tracer(mesh, velocity.data(), p, run.length);
     AdvectionPass pass{ run, tracer, stepTime, progress, progressStart, 0.9 / updates, report };
     bool completed = true;
     switch (p.flowMode)
@@ -964,7 +968,7 @@ std::int64_t TraceOnMesh(const TriangleMesh& mesh, const double* velocity, Surfa
   double time, const AdvectionParameters& parameters, bool* truncated)
 {
   bool cut = false;
-  const SurfaceTracer tracer(mesh, velocity, parameters);
+  const SurfaceTracer tracer(mesh, velocity, parameters, mesh.MeanEdgeLength());
   const std::int64_t steps = tracer.Trace(point, time, cut);
   if (truncated)
   {
@@ -992,9 +996,10 @@ Status AdvectMeshSignal(const TriangleMesh& mesh, const MeshSignal& signal, doub
   {
     return { "input and output must be distinct, non-null buffers" };
   }
-  if (!(signal.valueScale >= 0.0) || !std::isfinite(signal.valueScale))
+  if (!(signal.valueScale >= 0.0) || !std::isfinite(signal.valueScale) ||
+    !(signal.lengthScale >= 0.0) || !std::isfinite(signal.lengthScale))
   {
-    return { "the value scale must be finite and >= 0" };
+    return { "the value and length scales must be finite and >= 0" };
   }
   AdvectionReport localReport;
   AdvectionReport& r = report ? *report : localReport;

@@ -72,6 +72,12 @@ struct MeshSignal
    * sharpening does this, as the paper does (its Figure 7).
    */
   bool sampleAtTimeZero = false;
+  /**
+   * Length unit used to normalise lengths; 0 (the default) uses the mesh's mean
+   * edge length. A piece of a parallel run passes the mean over all pieces so
+   * that every piece uses the serial unit.
+   */
+  double lengthScale = 0.0;
 };
 
 /**

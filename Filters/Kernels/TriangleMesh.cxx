@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace shock
 {
@@ -30,6 +31,19 @@ void SetOffsets(const std::vector<std::int64_t>& counts, CompressedLists& lists)
   lists.items.resize(static_cast<size_t>(lists.offsets.back()));
 }
 } // namespace
+
+double TrianglePerimeter(const double* points, const std::int64_t* corners)
+{
+  double sum = 0.0;
+  for (int e = 0; e < 3; ++e)
+  {
+    const double* x = points + 3 * corners[e];
+    const double* y = points + 3 * corners[(e + 1) % 3];
+    sum += std::sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+      (x[2] - y[2]) * (x[2] - y[2]));
+  }
+  return sum;
+}
 
 Status TriangleMesh::Build(const TriangleMeshView& view, int threads)
 {
@@ -111,12 +125,9 @@ Status TriangleMesh::Build(const TriangleMeshView& view, int threads)
     this->pointTriangles = std::move(compact);
   }
 
-  // One-ring neighbours and unique edge lengths, built per point from its triangles.
+  // One-ring neighbours and the number of unique edges, built per point from its triangles.
   {
     std::vector<std::int64_t> counts(static_cast<size_t>(np), 0);
-    // Per-point sums added in point order afterwards: the mean edge length (and so
-    // every result) must not depend on the number of threads.
-    std::vector<double> lengths(static_cast<size_t>(np), 0.0);
     std::vector<std::int64_t> edges(static_cast<size_t>(np), 0);
     auto collect = [this](std::int64_t p, std::vector<std::int64_t>& ring) {
       ring.clear();
@@ -142,17 +153,8 @@ Status TriangleMesh::Build(const TriangleMeshView& view, int threads)
       {
         collect(p, ring);
         counts[static_cast<size_t>(p)] = static_cast<std::int64_t>(ring.size());
-        const double* x = this->Point(p);
-        for (std::int64_t w : ring)
-        {
-          if (w > p)
-          {
-            const double* y = this->Point(w);
-            lengths[static_cast<size_t>(p)] += std::sqrt((x[0] - y[0]) * (x[0] - y[0]) +
-              (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]));
-            ++edges[static_cast<size_t>(p)];
-          }
-        }
+        edges[static_cast<size_t>(p)] =
+          std::count_if(ring.begin(), ring.end(), [p](std::int64_t w) { return w > p; });
       }
     }
     SetOffsets(counts, this->oneRing);
@@ -166,15 +168,20 @@ Status TriangleMesh::Build(const TriangleMeshView& view, int threads)
         std::copy(ring.begin(), ring.end(), this->oneRing.items.begin() + this->oneRing.Begin(p));
       }
     }
-    double lengthSum = 0.0;
-    std::int64_t edgeCount = 0;
-    for (std::int64_t p = 0; p < np; ++p)
+    this->numberOfEdges = std::accumulate(edges.begin(), edges.end(), std::int64_t{ 0 });
+  }
+
+  // Mean length of the triangles' edges, each triangle's three (see the header);
+  // per-triangle sums added in order, so it does not depend on the thread count.
+  {
+    std::vector<double> perimeter(static_cast<size_t>(nt));
+#pragma omp parallel for num_threads(nthreads) schedule(static)
+    for (std::int64_t f = 0; f < nt; ++f)
     {
-      lengthSum += lengths[static_cast<size_t>(p)];
-      edgeCount += edges[static_cast<size_t>(p)];
+      perimeter[static_cast<size_t>(f)] = TrianglePerimeter(this->points.data(), this->Corners(f));
     }
-    this->numberOfEdges = edgeCount;
-    this->meanEdgeLength = edgeCount > 0 ? lengthSum / static_cast<double>(edgeCount) : 0.0;
+    const double total = std::accumulate(perimeter.begin(), perimeter.end(), 0.0);
+    this->meanEdgeLength = nt > 0 ? total / (3.0 * static_cast<double>(nt)) : 0.0;
   }
 
   // Per-triangle geometry. grad(phi_c) = N x (edge opposite c, counter-clockwise) / (2A).

@@ -6,7 +6,11 @@
  * what the shock filters and the screened Poisson fit need: per-triangle area,
  * unit normal, centroid and the gradients of the three linear "hat" basis
  * functions; the triangles around each vertex; the one-ring of each vertex; the
- * triangle across each edge; and the mean edge length (the paper's l-bar).
+ * triangle across each edge; and the mean edge length (the paper's l-bar),
+ * taken over the triangles' edges: each triangle contributes its three edges,
+ * so an interior edge counts twice and a boundary edge once (on a closed
+ * surface this is the mean over unique edges). This definition can be summed
+ * piece by piece, which lets a parallel run use exactly the serial unit.
  *
  * Conventions that define the behaviour on meshes as users have them:
  *  - A triangle is degenerate when its area is below 1e-12 x l-bar^2 (repeated
@@ -47,6 +51,9 @@ struct CompressedLists
   std::int64_t Begin(std::int64_t i) const { return this->offsets[static_cast<size_t>(i)]; }
   std::int64_t End(std::int64_t i) const { return this->offsets[static_cast<size_t>(i) + 1]; }
 };
+
+/// Sum of the three edge lengths of the triangle with these corners (3 coordinates per point).
+double TrianglePerimeter(const double* points, const std::int64_t* corners);
 
 /// Precomputed geometry and adjacency of a triangle mesh (see the file comment).
 class TriangleMesh
@@ -92,7 +99,7 @@ public:
   const CompressedLists& PointTriangles() const { return this->pointTriangles; }
   /// Points joined to p by an edge (each once).
   const CompressedLists& OneRing() const { return this->oneRing; }
-  /// Mean length of the unique edges (l-bar); 0 when there is no edge.
+  /// Mean length of the triangles' edges (l-bar, see the file comment); 0 without triangles.
   double MeanEdgeLength() const { return this->meanEdgeLength; }
   /// Number of unique edges.
   std::int64_t NumberOfEdges() const { return this->numberOfEdges; }
