@@ -11,13 +11,18 @@
  *
  * Subcommands (the table is Commands()):
  *  - `image INPUT OUTPUT [options]` filters an image or volume file and writes
- *    the result; `--timings` prints one JSON object with the run times on stdout;
+ *    the result (vtkImageShockAdvectionFilter);
+ *  - `surface INPUT OUTPUT [options]` filters a point or cell array (e.g. the
+ *    vertex colours) of a surface mesh (vtkPolyDataShockAdvectionFilter);
+ *  - `sharpen INPUT OUTPUT [options]` sharpens the geometry of a surface mesh
+ *    (vtkPolyDataShockSharpenFilter);
  *  - `demo OUTDIR [options]` builds a blurred synthetic picture and volume,
  *    sharpens them and writes inputs, results and side-by-side comparisons.
- * The table is meant to grow (the mesh commands `surface` and `sharpen`): a
- * subcommand is a function of its arguments and a help text; its options are an
- * OptionSpec list parsed by ParseArguments(), and the parameters shared by every
- * shock filter are ShockOptions (ShockOptionSpecs(), ConfigureFilter()).
+ * `--timings` prints one JSON object with the run times on stdout.
+ * A subcommand is a function of its arguments and a help text (Dispatch()
+ * answers --help); its options are an OptionSpec list parsed by
+ * ParseCommandLine(), and the parameters shared by every shock filter are
+ * ShockOptions (ShockOptionSpecs(), ConfigureFilter()).
  *
  * Errors print exactly one line "shockfilter: <message>" on stderr and exit
  * with code 2. The errors and warnings of VTK objects are caught by a
@@ -26,13 +31,19 @@
  * line, warnings become "shockfilter: warning: ..." lines.
  */
 
+#include "ShockMeshIO.h"
 #include "vtkImageShockAdvectionFilter.h"
+#include "vtkPolyDataShockAdvectionFilter.h"
+#include "vtkPolyDataShockSharpenFilter.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkBMPReader.h"
 #include "vtkBMPWriter.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkDataSet.h"
 #include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkImageAppend.h"
@@ -50,6 +61,8 @@
 #include "vtkPNMReader.h"
 #include "vtkPNMWriter.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStructuredPointsReader.h"
 #include "vtkStructuredPointsWriter.h"
@@ -135,6 +148,76 @@ std::string NumberText(double value)
   text << std::setprecision(6) << value;
   return text.str();
 }
+
+/// "0.123 s"
+std::string SecondsText(double seconds)
+{
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(3) << seconds << " s";
+  return text.str();
+}
+
+/// 'text' as a JSON string literal, quotes included.
+std::string JsonString(const std::string& text)
+{
+  std::ostringstream json;
+  json << '"';
+  for (const unsigned char c : text)
+  {
+    if (c == '"' || c == '\\')
+    {
+      json << '\\' << c;
+    }
+    else if (c < 0x20)
+    {
+      json << "\\u" << std::hex << std::setw(4) << std::setfill('0') << static_cast<int>(c)
+           << std::dec << std::setfill(' ');
+    }
+    else
+    {
+      json << c;
+    }
+  }
+  json << '"';
+  return json.str();
+}
+
+/// A one-line JSON object, {"key":value,...}, members in the order added (the --timings reports).
+class JsonObject
+{
+public:
+  JsonObject& Add(const std::string& key, const std::string& text) { return this->AddRaw(key, JsonString(text)); }
+  JsonObject& Add(const std::string& key, const char* text) { return this->Add(key, std::string(text)); }
+
+  /// A number; 9 significant digits for floating point, null when not finite (JSON has no NaN).
+  template <typename Number, typename = std::enable_if_t<std::is_arithmetic<Number>::value>>
+  JsonObject& Add(const std::string& key, Number value)
+  {
+    static_assert(!std::is_same<Number, bool>::value && sizeof(Number) > 1, "not a number type");
+    if constexpr (std::is_floating_point<Number>::value)
+    {
+      if (!std::isfinite(value))
+      {
+        return this->AddRaw(key, "null");
+      }
+    }
+    std::ostringstream text;
+    text << std::setprecision(9) << value;
+    return this->AddRaw(key, text.str());
+  }
+
+  /// A member whose value is already JSON text (e.g. an array).
+  JsonObject& AddRaw(const std::string& key, const std::string& json)
+  {
+    this->Body += (this->Body.empty() ? "" : ",") + JsonString(key) + ":" + json;
+    return *this;
+  }
+
+  std::string Text() const { return "{" + this->Body + "}"; }
+
+private:
+  std::string Body;
+};
 
 /// "512x384x1"
 std::string DimensionsText(vtkImageData* image)
@@ -465,6 +548,27 @@ std::vector<std::string> ParseArguments(
   return positionals;
 }
 
+/**
+ * ParseArguments(), then checks that the positional arguments are exactly
+ * 'names' (e.g. {"INPUT", "OUTPUT"}) and returns them.
+ */
+std::vector<std::string> ParseCommandLine(const std::string& command, const std::vector<std::string>& args,
+  const std::vector<OptionSpec>& options, const std::vector<std::string>& names)
+{
+  std::vector<std::string> positionals = ParseArguments(command, args, options);
+  if (positionals.size() != names.size())
+  {
+    std::string expected;
+    for (std::size_t i = 0; i < names.size(); ++i)
+    {
+      expected += (i == 0 ? "" : (i + 1 == names.size() ? " and " : ", ")) + names[i];
+    }
+    throw CliError(command + ": expected " + expected + ", got " + std::to_string(positionals.size()) +
+      " argument(s) (see '" + ProgramName + " " + command + " --help')");
+  }
+  return positionals;
+}
+
 /// Parses a whole string as a number of type T (locale-independent); finite for floating point.
 template <typename T>
 T ParseNumber(const std::string& option, const std::string& text)
@@ -552,8 +656,7 @@ std::string FormatOptions(const std::vector<OptionSpec>& options)
 }
 
 // =============================================================================
-// Shock-filter parameters (shared by the image command, the demo and, later,
-// the mesh commands)
+// Shock-filter parameters (shared by every command)
 // =============================================================================
 
 const std::vector<Choice>& FlowModeChoices()
@@ -597,46 +700,52 @@ enum class ShockOptionSet
   ThreadsOnly ///< only --threads (the demo fixes the rest)
 };
 
+/// " (default <value>)", for option help lines.
+std::string DefaultText(const std::string& value)
+{
+  return " (default " + value + ")";
+}
+
 /**
  * The options setting ShockOptions. Ranges are those of vtkShockAdvectionFilter
- * (whose setters would clamp silently); the defaults shown are the filter's.
+ * (whose setters would clamp silently); the defaults shown are those of
+ * 'defaults', a new filter of the kind the command runs.
  */
-std::vector<OptionSpec> ShockOptionSpecs(ShockOptions& target, ShockOptionSet set)
+std::vector<OptionSpec> ShockOptionSpecs(
+  ShockOptions& target, ShockOptionSet set, vtkShockAdvectionFilter* defaults)
 {
-  vtkNew<vtkImageShockAdvectionFilter> defaults;
-  const auto defaultText = [](const std::string& value) { return " (default " + value + ")"; };
   std::vector<OptionSpec> specs;
   if (set == ShockOptionSet::All)
   {
     specs.push_back({ "--time", "T",
-      "flow time t >= 0, normalised units" + defaultText(NumberText(defaults->GetTimeStep())),
+      "flow time t >= 0, normalised units" + DefaultText(NumberText(defaults->GetTimeStep())),
       [&target](const std::string& v)
       { target.time = ParseInRange("--time", v, 0.0, std::numeric_limits<double>::max()); } });
     specs.push_back({ "--smoothing", "N",
       "smoothing passes, 0..10000" +
-        defaultText(std::to_string(defaults->GetSmoothingPasses())),
+        DefaultText(std::to_string(defaults->GetSmoothingPasses())),
       [&target](const std::string& v) { target.smoothingPasses = ParseInRange("--smoothing", v, 0, 10000); } });
     specs.push_back({ "--flow", "MODE",
-      "fixed|composed|naive" + defaultText(ChoiceName(defaults->GetFlowMode(), FlowModeChoices())),
+      "fixed|composed|naive" + DefaultText(ChoiceName(defaults->GetFlowMode(), FlowModeChoices())),
       [&target](const std::string& v) { target.flowMode = ParseChoice("--flow", v, FlowModeChoices()); } });
     specs.push_back({ "--updates", "K",
       "flow updates of composed/naive, 1..100000" +
-        defaultText(std::to_string(defaults->GetNumberOfFlowUpdates())),
+        DefaultText(std::to_string(defaults->GetNumberOfFlowUpdates())),
       [&target](const std::string& v) { target.flowUpdates = ParseInRange("--updates", v, 1, 100000); } });
     specs.push_back({ "--sampling", "MODE",
-      "linear|nearest" + defaultText(ChoiceName(defaults->GetSampling(), SamplingChoices())),
+      "linear|nearest" + DefaultText(ChoiceName(defaults->GetSampling(), SamplingChoices())),
       [&target](const std::string& v) { target.sampling = ParseChoice("--sampling", v, SamplingChoices()); } });
     specs.push_back({ "--tracing", "MODE",
-      "exact (face crossing)|stepped" + defaultText(ChoiceName(defaults->GetTracingMode(), TracingChoices())),
+      "exact (face crossing)|stepped" + DefaultText(ChoiceName(defaults->GetTracingMode(), TracingChoices())),
       [&target](const std::string& v) { target.tracingMode = ParseChoice("--tracing", v, TracingChoices()); } });
     specs.push_back({ "--step-fraction", "F",
       "step of stepped tracing (edges), 0.001..1" +
-        defaultText(NumberText(defaults->GetStepFraction())),
+        DefaultText(NumberText(defaults->GetStepFraction())),
       [&target](const std::string& v)
       { target.stepFraction = ParseInRange("--step-fraction", v, 0.001, 1.0); } });
   }
   specs.push_back({ "--threads", "N", "OpenMP threads, 0..4096, 0 = all cores" +
-      defaultText(std::to_string(defaults->GetNumberOfThreads())),
+      DefaultText(std::to_string(defaults->GetNumberOfThreads())),
     [&target](const std::string& v) { target.threads = ParseInRange("--threads", v, 0, 4096); } });
   return specs;
 }
@@ -720,12 +829,18 @@ const std::vector<FormatInfo>& Formats()
   return formats;
 }
 
-/// The format chosen by the (case-insensitive) extension of 'path'; throws if unsupported.
-const FormatInfo& FormatOfPath(const std::string& path, const std::string& role)
+/**
+ * The entry of a format table (items with an 'extensions' list, lower case,
+ * without the dot) matching the case-insensitive extension of 'path'; throws
+ * if there is none, listing the supported extensions.
+ */
+template <typename Format>
+const Format& FormatByExtension(
+  const std::vector<Format>& formats, const std::string& path, const std::string& role)
 {
   const std::string extension = ToLower(std::filesystem::path(path).extension().string());
   std::string known;
-  for (const FormatInfo& format : Formats())
+  for (const Format& format : formats)
   {
     for (const std::string& candidate : format.extensions)
     {
@@ -738,6 +853,12 @@ const FormatInfo& FormatOfPath(const std::string& path, const std::string& role)
   }
   throw CliError("unsupported " + role + " file extension '" + extension + "' of '" + path +
     "' (supported: " + known + ")");
+}
+
+/// The image format chosen by the extension of 'path'; throws if unsupported.
+const FormatInfo& FormatOfPath(const std::string& path, const std::string& role)
+{
+  return FormatByExtension(Formats(), path, role);
 }
 
 /// Checks that 'path' is an existing, non-empty, readable regular file.
@@ -1105,10 +1226,120 @@ void WriteImage(vtkImageData* image, const std::string& path, const std::string&
 }
 
 // =============================================================================
-// Running the filter
+// Running the filters
 // =============================================================================
 
-/// The result and measurements of one filter execution.
+/**
+ * Runs the pipeline of a shock filter whose input is set: returns the wall time
+ * of the update in seconds, prints its warnings, throws "shock filter failed:
+ * <VTK error>" when it fails.
+ */
+double TimedUpdate(vtkAlgorithm* filter)
+{
+  vtkNew<MessageCollector> messages;
+  messages->WatchAlgorithm(filter);
+  const auto start = std::chrono::steady_clock::now();
+  const bool ok = filter->GetExecutive()->Update() != 0;
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  CheckUpdate(ok, messages, "shock filter failed");
+  return elapsed.count();
+}
+
+const std::vector<Choice>& AssociationChoices()
+{
+  static const std::vector<Choice> choices = { { "point", vtkDataObject::FIELD_ASSOCIATION_POINTS },
+    { "cell", vtkDataObject::FIELD_ASSOCIATION_CELLS } };
+  return choices;
+}
+
+/// The array a command filters.
+struct SelectedArray
+{
+  std::string name;
+  int association = vtkDataObject::FIELD_ASSOCIATION_POINTS; ///< points or cells
+  vtkDataArray* array = nullptr;
+};
+
+/// Names of the arrays of 'attributes', for messages ("none" if there are none).
+std::string ArrayNames(vtkDataSetAttributes* attributes)
+{
+  std::string names;
+  for (int i = 0; i < attributes->GetNumberOfArrays(); ++i)
+  {
+    const char* name = attributes->GetArrayName(i);
+    names += (names.empty() ? "" : ", ") + std::string(name ? name : "(unnamed)");
+  }
+  return names.empty() ? "none" : names;
+}
+
+/**
+ * The array to filter: the numeric array named 'requested', looked for in the
+ * point data then in the cell data (only in those of 'association' when given);
+ * without a name, the active scalars of 'association' (default: the point
+ * data), named 'unnamedName' if they have no name. Throws, listing the arrays
+ * there are, when there is no such array.
+ */
+SelectedArray SelectArray(vtkDataSet* data, const std::string& requested, std::optional<int> association,
+  const char* unnamedName)
+{
+  const auto attributesOf = [data](int where) -> vtkDataSetAttributes*
+  {
+    return where == vtkDataObject::FIELD_ASSOCIATION_CELLS
+      ? static_cast<vtkDataSetAttributes*>(data->GetCellData())
+      : data->GetPointData();
+  };
+  const auto kind = [](int where) { return std::string(ChoiceName(where, AssociationChoices())); };
+  std::vector<int> searched = { vtkDataObject::FIELD_ASSOCIATION_POINTS,
+    vtkDataObject::FIELD_ASSOCIATION_CELLS };
+  if (association)
+  {
+    searched = { *association };
+  }
+  std::string available;
+  for (const int where : searched)
+  {
+    available += (available.empty() ? "" : "; ") + kind(where) + " arrays: " + ArrayNames(attributesOf(where));
+  }
+
+  SelectedArray selected;
+  if (requested.empty())
+  {
+    selected.association = association.value_or(vtkDataObject::FIELD_ASSOCIATION_POINTS);
+    selected.array = attributesOf(selected.association)->GetScalars();
+    if (!selected.array)
+    {
+      throw CliError("the input has no active " + kind(selected.association) +
+        " scalars; choose an array with --array (" + available + ")");
+    }
+    if (!selected.array->GetName() || !*selected.array->GetName())
+    {
+      selected.array->SetName(unnamedName);
+    }
+    selected.name = selected.array->GetName();
+    return selected;
+  }
+  for (const int where : searched)
+  {
+    vtkAbstractArray* found = attributesOf(where)->GetAbstractArray(requested.c_str());
+    if (!found)
+    {
+      continue;
+    }
+    selected.array = vtkDataArray::SafeDownCast(found);
+    if (!selected.array)
+    {
+      throw CliError("the " + kind(where) + " array '" + requested + "' is not numeric (" +
+        found->GetClassName() + ")");
+    }
+    selected.name = requested;
+    selected.association = where;
+    return selected;
+  }
+  const std::string what = association ? kind(*association) + " array" : "point or cell array";
+  throw CliError("the input has no " + what + " '" + requested + "' (" + available + ")");
+}
+
+/// The result and measurements of one image filter execution.
 struct FilterRun
 {
   vtkSmartPointer<vtkImageData> output;
@@ -1122,48 +1353,6 @@ struct FilterRun
   vtkTypeUInt64 traceSteps = 0;
 };
 
-/// Names of the point arrays of an image, for messages.
-std::string PointArrayNames(vtkImageData* image)
-{
-  std::string names;
-  vtkPointData* pointData = image->GetPointData();
-  for (int i = 0; i < pointData->GetNumberOfArrays(); ++i)
-  {
-    const char* name = pointData->GetArrayName(i);
-    names += (names.empty() ? "" : ", ") + std::string(name ? name : "(unnamed)");
-  }
-  return names.empty() ? "none" : names;
-}
-
-/**
- * The name of the point array to filter: 'requested', or the active point
- * scalars (named "ImageScalars" if they have no name). Throws if there is none.
- */
-std::string SelectPointArray(vtkImageData* image, const std::string& requested)
-{
-  vtkPointData* pointData = image->GetPointData();
-  if (!requested.empty())
-  {
-    if (!pointData->GetAbstractArray(requested.c_str()))
-    {
-      throw CliError("the input has no point array '" + requested +
-        "' (point arrays: " + PointArrayNames(image) + ")");
-    }
-    return requested;
-  }
-  vtkDataArray* scalars = pointData->GetScalars();
-  if (!scalars)
-  {
-    throw CliError("the input has no active point scalars; choose an array with --array "
-                   "(point arrays: " + PointArrayNames(image) + ")");
-  }
-  if (!scalars->GetName() || !*scalars->GetName())
-  {
-    scalars->SetName("ImageScalars");
-  }
-  return scalars->GetName();
-}
-
 /// Filters the point array 'arrayName' of 'input'; throws "shock filter failed: ..." on error.
 FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName, const ShockOptions& options)
 {
@@ -1172,15 +1361,9 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName, cons
   filter->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrayName.c_str());
   filter->SetInputData(input);
-  vtkNew<MessageCollector> messages;
-  messages->WatchAlgorithm(filter);
-
-  const auto start = std::chrono::steady_clock::now();
-  const bool ok = filter->GetExecutive()->Update() != 0;
-  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
-  CheckUpdate(ok, messages, "shock filter failed");
 
   FilterRun run;
+  run.totalSeconds = TimedUpdate(filter);
   run.output = vtkSmartPointer<vtkImageData>::New();
   run.output->ShallowCopy(filter->GetOutput());
   run.time = filter->GetTimeStep();
@@ -1188,29 +1371,75 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName, cons
   run.threads = filter->GetNumberOfThreads();
   vtkDataArray* array = input->GetPointData()->GetArray(arrayName.c_str());
   run.components = array ? array->GetNumberOfComponents() : 0;
-  run.totalSeconds = elapsed.count();
   run.flowSeconds = filter->GetLastFlowSeconds();
   run.advectionSeconds = filter->GetLastAdvectionSeconds();
   run.traceSteps = filter->GetLastTraceSteps();
   return run;
 }
 
-/// The --timings report: one JSON object on one line.
+/// The --timings report of the image command: one JSON object on one line.
 std::string TimingsJson(const std::string& command, vtkImageData* image, const FilterRun& run)
 {
   int dims[3];
   image->GetDimensions(dims);
-  std::ostringstream json;
-  json << std::setprecision(9);
-  json << "{\"command\":\"" << command << "\""
-       << ",\"dimensions\":[" << dims[0] << "," << dims[1] << "," << dims[2] << "]"
-       << ",\"samples\":" << image->GetNumberOfPoints() << ",\"components\":" << run.components
-       << ",\"time\":" << run.time << ",\"flow_mode\":\""
-       << ChoiceName(run.flowMode, FlowModeChoices()) << "\""
-       << ",\"threads\":" << run.threads << ",\"flow\":" << run.flowSeconds
-       << ",\"advection\":" << run.advectionSeconds << ",\"total\":" << run.totalSeconds
-       << ",\"trace_steps\":" << run.traceSteps << "}";
-  return json.str();
+  JsonObject json;
+  json.Add("command", command)
+    .AddRaw("dimensions",
+      "[" + std::to_string(dims[0]) + "," + std::to_string(dims[1]) + "," + std::to_string(dims[2]) + "]")
+    .Add("samples", image->GetNumberOfPoints())
+    .Add("components", run.components)
+    .Add("time", run.time)
+    .Add("flow_mode", ChoiceName(run.flowMode, FlowModeChoices()))
+    .Add("threads", run.threads)
+    .Add("flow", run.flowSeconds)
+    .Add("advection", run.advectionSeconds)
+    .Add("total", run.totalSeconds)
+    .Add("trace_steps", run.traceSteps);
+  return json.Text();
+}
+
+// =============================================================================
+// Options shared by the file commands
+// =============================================================================
+
+/// --array NAME (not empty).
+OptionSpec ArrayOptionSpec(std::string& target, const std::string& help)
+{
+  return { "--array", "NAME", help,
+    [&target](const std::string& v)
+    {
+      if (v.empty())
+      {
+        throw CliError("--array: the name is empty");
+      }
+      target = v;
+    } };
+}
+
+/// --timings (a flag).
+OptionSpec TimingsOptionSpec(bool& target)
+{
+  return { "--timings", "", "print the run times as one JSON object on stdout",
+    [&target](const std::string&) { target = true; } };
+}
+
+/// Help lines "  --timings prints {"key",...} on stdout;" (wrapped at 78 columns), then 'notes'.
+std::string TimingsHelp(const std::vector<std::string>& keys, const std::string& notes)
+{
+  std::string text = "  --timings prints {";
+  std::size_t column = text.size();
+  for (std::size_t i = 0; i < keys.size(); ++i)
+  {
+    const std::string item = "\"" + keys[i] + "\"" + (i + 1 < keys.size() ? "," : "} on stdout;");
+    if (column + item.size() > 78)
+    {
+      text += "\n  ";
+      column = 2;
+    }
+    text += item;
+    column += item.size();
+  }
+  return text + "\n" + notes;
 }
 
 // =============================================================================
@@ -1226,18 +1455,11 @@ struct ImageSettings
 
 std::vector<OptionSpec> ImageOptionSpecs(ImageSettings& settings)
 {
-  std::vector<OptionSpec> specs = ShockOptionSpecs(settings.shock, ShockOptionSet::All);
-  specs.push_back({ "--array", "NAME", "point array to filter (default: active point scalars)",
-    [&settings](const std::string& v)
-    {
-      if (v.empty())
-      {
-        throw CliError("--array: the name is empty");
-      }
-      settings.arrayName = v;
-    } });
-  specs.push_back({ "--timings", "", "print the run times as one JSON object on stdout",
-    [&settings](const std::string&) { settings.timings = true; } });
+  vtkNew<vtkImageShockAdvectionFilter> defaults;
+  std::vector<OptionSpec> specs = ShockOptionSpecs(settings.shock, ShockOptionSet::All, defaults);
+  specs.push_back(
+    ArrayOptionSpec(settings.arrayName, "point array to filter (default: active point scalars)"));
+  specs.push_back(TimingsOptionSpec(settings.timings));
   return specs;
 }
 
@@ -1258,36 +1480,28 @@ std::string ImageHelp()
           "    jpg bmp pnm  unsigned char, 1 or 3 components, 2D\n"
           "  For png/jpg/bmp/pnm other types are rounded and clamped to 0..255 (a note\n"
           "  on stderr says so); other component counts and volumes are refused.\n"
-          "  --timings prints {\"command\",\"dimensions\",\"samples\",\"components\",\"time\",\n"
-          "  \"flow_mode\",\"threads\",\"flow\",\"advection\",\"total\",\"trace_steps\"} on stdout;\n"
-          "  times in seconds, total = wall time of the filter only (no reading/writing).\n"
-          "  Options:\n"
+       << TimingsHelp({ "command", "dimensions", "samples", "components", "time", "flow_mode",
+                        "threads", "flow", "advection", "total", "trace_steps" },
+            "  times in seconds, total = wall time of the filter only (no reading/writing).\n")
+       << "  Options:\n"
        << FormatOptions(ImageOptionSpecs(unused));
   return text.str();
 }
 
 int RunImageCommand(const std::vector<std::string>& args)
 {
-  if (IsHelpRequest(args))
-  {
-    std::cout << ImageHelp();
-    return 0;
-  }
   ImageSettings settings;
-  const std::vector<std::string> positionals = ParseArguments("image", args, ImageOptionSpecs(settings));
-  if (positionals.size() != 2)
-  {
-    throw CliError("image: expected INPUT and OUTPUT, got " + std::to_string(positionals.size()) +
-      " argument(s) (see '" + ProgramName + " image --help')");
-  }
-  const std::string& inputPath = positionals[0];
-  const std::string& outputPath = positionals[1];
+  const std::vector<std::string> paths =
+    ParseCommandLine("image", args, ImageOptionSpecs(settings), { "INPUT", "OUTPUT" });
+  const std::string& inputPath = paths[0];
+  const std::string& outputPath = paths[1];
   FormatOfPath(inputPath, "input");
   const FormatInfo& outputFormat = FormatOfPath(outputPath, "output"); // before the work
   RequireOutputDirectory(outputPath);
 
   vtkSmartPointer<vtkImageData> input = ReadImage(inputPath);
-  const std::string arrayName = SelectPointArray(input, settings.arrayName);
+  const std::string arrayName =
+    SelectArray(input, settings.arrayName, vtkDataObject::FIELD_ASSOCIATION_POINTS, "ImageScalars").name;
   RequireStorable(input, arrayName, outputFormat, outputPath);
   const FilterRun run = RunImageFilter(input, arrayName, settings.shock);
   WriteImage(run.output, outputPath, arrayName);
@@ -1299,6 +1513,412 @@ int RunImageCommand(const std::vector<std::string>& args)
   std::cerr << "image: " << DimensionsText(input) << ", " << run.components << " component(s) of '"
             << arrayName << "', t=" << NumberText(run.time) << ": " << std::fixed
             << std::setprecision(3) << run.totalSeconds << " s -> " << outputPath << '\n';
+  return 0;
+}
+
+// =============================================================================
+// Mesh files (read and written by ShockMeshIO)
+// =============================================================================
+
+/// What a mesh format keeps of a mesh's arrays (see ShockMeshIO.h).
+enum class MeshArrays
+{
+  None,    ///< geometry only (and for PLY normals, texture coordinates)
+  Colours, ///< unsigned char RGB(A) point and cell colours
+  All      ///< every array
+};
+
+struct MeshFormatInfo
+{
+  const char* name;
+  std::vector<std::string> extensions; ///< lower case, without the dot
+  MeshArrays arrays;
+};
+
+/// The formats of ShockMeshIO.h, to check file names before any work is done.
+const std::vector<MeshFormatInfo>& MeshFormats()
+{
+  static const std::vector<MeshFormatInfo> formats = {
+    { "PLY", { "ply" }, MeshArrays::Colours },
+    { "OFF", { "off" }, MeshArrays::Colours },
+    { "OBJ", { "obj" }, MeshArrays::None },
+    { "STL", { "stl" }, MeshArrays::None },
+    { "VTK XML polydata", { "vtp" }, MeshArrays::All },
+    { "legacy VTK", { "vtk" }, MeshArrays::All },
+  };
+  return formats;
+}
+
+const MeshFormatInfo& MeshFormatOfPath(const std::string& path, const std::string& role)
+{
+  return FormatByExtension(MeshFormats(), path, role);
+}
+
+/// "ply, off, vtp or vtk": the extensions of the formats keeping at least 'arrays'.
+std::string MeshExtensionsKeeping(MeshArrays arrays)
+{
+  std::vector<std::string> extensions;
+  for (const MeshFormatInfo& format : MeshFormats())
+  {
+    if (format.arrays >= arrays)
+    {
+      extensions.insert(extensions.end(), format.extensions.begin(), format.extensions.end());
+    }
+  }
+  std::string text;
+  for (std::size_t i = 0; i < extensions.size(); ++i)
+  {
+    text += (i == 0 ? "" : (i + 1 == extensions.size() ? " or ." : ", .")) + extensions[i];
+  }
+  return text;
+}
+
+/// Reads a mesh file; throws CliError with ShockMeshIO's one-line message.
+vtkSmartPointer<vtkPolyData> ReadMeshFile(const std::string& path)
+{
+  MeshFormatOfPath(path, "input");
+  RequireReadableFile(path);
+  std::string error;
+  vtkSmartPointer<vtkPolyData> mesh = shockio::ReadMesh(path, error);
+  if (!mesh)
+  {
+    throw CliError(error.empty() ? "cannot read '" + path + "'" : error);
+  }
+  vtkNew<MessageCollector> warnings; // those of a successful read wait in the output window
+  warnings->PrintWarnings();
+  return mesh;
+}
+
+/// Writes a mesh file; throws CliError with ShockMeshIO's one-line message.
+void WriteMeshFile(vtkPolyData* mesh, const std::string& path)
+{
+  std::string error;
+  if (!shockio::WriteMesh(mesh, path, error))
+  {
+    throw CliError(error.empty() ? "cannot write '" + path + "'" : error);
+  }
+  vtkNew<MessageCollector> warnings;
+  warnings->PrintWarnings();
+}
+
+/// Number of triangles the filters make of the polygons and strips (n - 2 per cell of n points).
+vtkIdType CountTriangles(vtkPolyData* mesh)
+{
+  vtkIdType triangles = 0;
+  for (vtkCellArray* cells : { mesh->GetPolys(), mesh->GetStrips() })
+  {
+    for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
+    {
+      triangles += std::max<vtkIdType>(0, cells->GetCellSize(c) - 2);
+    }
+  }
+  return triangles;
+}
+
+/// The help lines on mesh file formats.
+std::string MeshFormatsHelp()
+{
+  std::string extensions;
+  for (const MeshFormatInfo& format : MeshFormats())
+  {
+    for (const std::string& extension : format.extensions)
+    {
+      extensions += " " + extension;
+    }
+  }
+  return "  Mesh formats, chosen by extension (case-insensitive), read and written:\n   " + extensions +
+    " (vtk: legacy polydata, or an unstructured\n"
+    "    grid read as its surface). ply and off keep vertex and face colours\n"
+    "    (unsigned char RGB or RGBA), obj and stl the geometry only, vtp and vtk\n"
+    "    every array.\n";
+}
+
+// =============================================================================
+// The "surface" command
+// =============================================================================
+
+struct SurfaceSettings
+{
+  ShockOptions shock;
+  std::string arrayName;
+  std::optional<int> association;
+  bool timings = false;
+};
+
+std::vector<OptionSpec> SurfaceOptionSpecs(SurfaceSettings& settings)
+{
+  vtkNew<vtkPolyDataShockAdvectionFilter> defaults;
+  std::vector<OptionSpec> specs = ShockOptionSpecs(settings.shock, ShockOptionSet::All, defaults);
+  specs.push_back(ArrayOptionSpec(settings.arrayName, "point or cell array to filter (default: active scalars)"));
+  specs.push_back({ "--association", "WHERE",
+    "point|cell data only, for --array and the default scalars",
+    [&settings](const std::string& v)
+    { settings.association = ParseChoice("--association", v, AssociationChoices()); } });
+  specs.push_back(TimingsOptionSpec(settings.timings));
+  return specs;
+}
+
+std::string SurfaceHelp()
+{
+  SurfaceSettings unused;
+  std::ostringstream text;
+  text << "shockfilter surface INPUT OUTPUT [options]\n"
+          "  Sharpens a point or cell array of a surface mesh (e.g. its vertex colours)\n"
+          "  by advection over the surface and writes the mesh with the filtered array.\n"
+       << MeshFormatsHelp()
+       << "  The array: --array NAME is looked for in the point data, then in the cell\n"
+          "  data (only in those of --association when given); by default, the active\n"
+          "  scalars of the point data (of the cell data with --association cell), e.g.\n"
+          "  the \"Colors\" of a PLY or OFF file. It keeps its name and type; an OUTPUT\n"
+          "  that cannot store it (e.g. float values in ply) is refused.\n"
+       << TimingsHelp({ "command", "points", "triangles", "array", "association", "components",
+                        "time", "flow_mode", "threads", "setup", "flow", "advection", "total",
+                        "trace_steps" },
+            "  times in seconds: setup = mesh preparation, flow = smoothing, potential and\n"
+            "  flow, advection = tracing and sampling, total = wall time of the filter\n"
+            "  only (no reading/writing).\n")
+       << "  Options:\n"
+       << FormatOptions(SurfaceOptionSpecs(unused));
+  return text.str();
+}
+
+/**
+ * Throws unless 'format' keeps the array to filter (checked before the work):
+ * ply and off keep unsigned char colours of 3 or 4 components, obj and stl no array.
+ */
+void RequireMeshStorable(const MeshFormatInfo& format, const SelectedArray& selected, const std::string& path)
+{
+  const std::string where = "cannot write '" + path + "': ";
+  const std::string kind = ChoiceName(selected.association, AssociationChoices());
+  vtkDataArray* array = selected.array;
+  switch (format.arrays)
+  {
+    case MeshArrays::All:
+      return;
+    case MeshArrays::Colours:
+      if (array->GetDataType() == VTK_UNSIGNED_CHAR &&
+        (array->GetNumberOfComponents() == 3 || array->GetNumberOfComponents() == 4))
+      {
+        return;
+      }
+      throw CliError(where + format.name + " stores only unsigned char RGB or RGBA colours; " + kind +
+        " array '" + selected.name + "' is " + array->GetDataTypeAsString() + " with " +
+        std::to_string(array->GetNumberOfComponents()) + " component(s) (write ." +
+        MeshExtensionsKeeping(MeshArrays::All) + ")");
+    case MeshArrays::None:
+      throw CliError(where + format.name + " does not store the filtered " + kind + " array '" +
+        selected.name + "' (write ." + MeshExtensionsKeeping(MeshArrays::Colours) + ")");
+  }
+}
+
+int RunSurfaceCommand(const std::vector<std::string>& args)
+{
+  SurfaceSettings settings;
+  const std::vector<std::string> paths =
+    ParseCommandLine("surface", args, SurfaceOptionSpecs(settings), { "INPUT", "OUTPUT" });
+  const std::string& inputPath = paths[0];
+  const std::string& outputPath = paths[1];
+  MeshFormatOfPath(inputPath, "input");
+  const MeshFormatInfo& outputFormat = MeshFormatOfPath(outputPath, "output"); // before the work
+  RequireOutputDirectory(outputPath);
+
+  vtkSmartPointer<vtkPolyData> input = ReadMeshFile(inputPath);
+  const SelectedArray selected = SelectArray(input, settings.arrayName, settings.association, "Scalars");
+  RequireMeshStorable(outputFormat, selected, outputPath);
+
+  vtkNew<vtkPolyDataShockAdvectionFilter> filter;
+  ConfigureFilter(filter, settings.shock);
+  filter->SetInputArrayToProcess(0, 0, 0, selected.association, selected.name.c_str());
+  filter->SetInputData(input);
+  const double seconds = TimedUpdate(filter);
+
+  vtkPolyData* output = filter->GetOutput();
+  // The mesh writers store the active scalars as colours: make them the filtered array.
+  vtkDataSetAttributes* attributes = selected.association == vtkDataObject::FIELD_ASSOCIATION_CELLS
+    ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
+    : output->GetPointData();
+  attributes->SetActiveScalars(selected.name.c_str());
+  WriteMeshFile(output, outputPath);
+
+  const char* kind = ChoiceName(selected.association, AssociationChoices());
+  if (settings.timings)
+  {
+    JsonObject json;
+    json.Add("command", "surface")
+      .Add("points", input->GetNumberOfPoints())
+      .Add("triangles", CountTriangles(input))
+      .Add("array", selected.name)
+      .Add("association", kind)
+      .Add("components", selected.array->GetNumberOfComponents())
+      .Add("time", filter->GetTimeStep())
+      .Add("flow_mode", ChoiceName(filter->GetFlowMode(), FlowModeChoices()))
+      .Add("threads", filter->GetNumberOfThreads())
+      .Add("setup", filter->GetLastSetupSeconds())
+      .Add("flow", filter->GetLastFlowSeconds())
+      .Add("advection", filter->GetLastAdvectionSeconds())
+      .Add("total", seconds)
+      .Add("trace_steps", filter->GetLastTraceSteps());
+    std::cout << json.Text() << std::endl;
+  }
+  std::cerr << "surface: " << input->GetNumberOfPoints() << " points, " << CountTriangles(input)
+            << " triangles, " << selected.array->GetNumberOfComponents() << " component(s) of " << kind
+            << " array '" << selected.name << "', t=" << NumberText(filter->GetTimeStep()) << ": "
+            << std::fixed << std::setprecision(3) << seconds << " s -> " << outputPath << '\n';
+  return 0;
+}
+
+// =============================================================================
+// The "sharpen" command
+// =============================================================================
+
+const std::vector<Choice>& SolverChoices()
+{
+  static const std::vector<Choice> choices = {
+    { "cg", vtkPolyDataShockSharpenFilter::CONJUGATE_GRADIENT },
+    { "cg-tolerance", vtkPolyDataShockSharpenFilter::CONJUGATE_GRADIENT_TOLERANCE },
+    { "exact", vtkPolyDataShockSharpenFilter::EXACT },
+  };
+  return choices;
+}
+
+struct SharpenSettings
+{
+  ShockOptions shock;
+  std::optional<int> normalSmoothingPasses;
+  std::optional<double> screeningWeight;
+  std::optional<int> solver;
+  std::optional<int> iterations;
+  std::optional<double> tolerance;
+  bool timings = false;
+};
+
+std::vector<OptionSpec> SharpenOptionSpecs(SharpenSettings& settings)
+{
+  vtkNew<vtkPolyDataShockSharpenFilter> defaults;
+  std::vector<OptionSpec> specs = ShockOptionSpecs(settings.shock, ShockOptionSet::All, defaults);
+  specs.push_back({ "--normal-smoothing", "N",
+    "smoothing passes of the normals before, 0..1000" +
+      DefaultText(std::to_string(defaults->GetNormalSmoothingPasses())),
+    [&settings](const std::string& v)
+    { settings.normalSmoothingPasses = ParseInRange("--normal-smoothing", v, 0, 1000); } });
+  specs.push_back({ "--screening", "EPS",
+    "screening weight of the fit, 1e-6..1e6" + DefaultText(NumberText(defaults->GetScreeningWeight())),
+    [&settings](const std::string& v)
+    { settings.screeningWeight = ParseInRange("--screening", v, 1e-6, 1e6); } });
+  specs.push_back({ "--solver", "NAME",
+    "cg|cg-tolerance|exact" + DefaultText(ChoiceName(defaults->GetSolver(), SolverChoices())),
+    [&settings](const std::string& v) { settings.solver = ParseChoice("--solver", v, SolverChoices()); } });
+  specs.push_back({ "--iterations", "K",
+    "CG iterations (cap of cg-tolerance), 0..100000" +
+      DefaultText(std::to_string(defaults->GetSolverIterations())),
+    [&settings](const std::string& v) { settings.iterations = ParseInRange("--iterations", v, 0, 100000); } });
+  specs.push_back({ "--tolerance", "X",
+    "stop residual of cg-tolerance (implied), 0..1" +
+      DefaultText(NumberText(defaults->GetSolverTolerance())),
+    [&settings](const std::string& v) { settings.tolerance = ParseInRange("--tolerance", v, 0.0, 1.0); } });
+  specs.push_back(TimingsOptionSpec(settings.timings));
+  return specs;
+}
+
+std::string SharpenHelp()
+{
+  SharpenSettings unused;
+  std::ostringstream text;
+  text << "shockfilter sharpen INPUT OUTPUT [options]\n"
+          "  Sharpens the geometry of a surface mesh: its face normals are shock-filtered,\n"
+          "  then the points are fitted to them (screened Poisson equation). Creases\n"
+          "  and corners become sharp; flat and smooth parts stay. Arrays pass through.\n"
+       << MeshFormatsHelp()
+       << TimingsHelp({ "command", "points", "triangles", "time", "smoothing", "normal_smoothing",
+                        "flow_mode", "solver", "threads", "preprocessing", "setup", "fit_setup",
+                        "flow", "advection", "fitting", "total", "trace_steps", "solver_iterations",
+                        "solver_residual", "flipped_triangles", "max_displacement" },
+            "  times in seconds, the phases of the paper's Table 3: preprocessing = setup\n"
+            "  (mesh preparation) + fit_setup (system set-up), flow = normals, smoothing,\n"
+            "  potential and flow, advection, fitting = solve; total = wall time of the\n"
+            "  filter only (no reading/writing). max_displacement is relative to the\n"
+            "  bounding-box diagonal.\n")
+       << "  Options:\n"
+       << FormatOptions(SharpenOptionSpecs(unused));
+  return text.str();
+}
+
+int RunSharpenCommand(const std::vector<std::string>& args)
+{
+  SharpenSettings settings;
+  const std::vector<std::string> paths =
+    ParseCommandLine("sharpen", args, SharpenOptionSpecs(settings), { "INPUT", "OUTPUT" });
+  const int tolerantSolver = vtkPolyDataShockSharpenFilter::CONJUGATE_GRADIENT_TOLERANCE;
+  if (settings.tolerance && settings.solver.value_or(tolerantSolver) != tolerantSolver)
+  {
+    throw CliError("sharpen: --tolerance applies to --solver cg-tolerance only");
+  }
+  const std::string& inputPath = paths[0];
+  const std::string& outputPath = paths[1];
+  MeshFormatOfPath(inputPath, "input");
+  MeshFormatOfPath(outputPath, "output"); // before the work
+  RequireOutputDirectory(outputPath);
+  vtkSmartPointer<vtkPolyData> input = ReadMeshFile(inputPath);
+
+  vtkNew<vtkPolyDataShockSharpenFilter> filter;
+  ConfigureFilter(filter, settings.shock);
+  if (settings.normalSmoothingPasses)
+  {
+    filter->SetNormalSmoothingPasses(*settings.normalSmoothingPasses);
+  }
+  if (settings.screeningWeight)
+  {
+    filter->SetScreeningWeight(*settings.screeningWeight);
+  }
+  if (settings.solver || settings.tolerance)
+  {
+    filter->SetSolver(settings.solver.value_or(tolerantSolver));
+  }
+  if (settings.iterations)
+  {
+    filter->SetSolverIterations(*settings.iterations);
+  }
+  if (settings.tolerance)
+  {
+    filter->SetSolverTolerance(*settings.tolerance);
+  }
+  filter->SetInputData(input);
+  const double seconds = TimedUpdate(filter);
+  WriteMeshFile(filter->GetOutput(), outputPath);
+
+  if (settings.timings)
+  {
+    JsonObject json;
+    json.Add("command", "sharpen")
+      .Add("points", input->GetNumberOfPoints())
+      .Add("triangles", CountTriangles(input))
+      .Add("time", filter->GetTimeStep())
+      .Add("smoothing", filter->GetSmoothingPasses())
+      .Add("normal_smoothing", filter->GetNormalSmoothingPasses())
+      .Add("flow_mode", ChoiceName(filter->GetFlowMode(), FlowModeChoices()))
+      .Add("solver", ChoiceName(filter->GetSolver(), SolverChoices()))
+      .Add("threads", filter->GetNumberOfThreads())
+      .Add("preprocessing", filter->GetLastSetupSeconds() + filter->GetLastFitSetupSeconds())
+      .Add("setup", filter->GetLastSetupSeconds())
+      .Add("fit_setup", filter->GetLastFitSetupSeconds())
+      .Add("flow", filter->GetLastFlowSeconds())
+      .Add("advection", filter->GetLastAdvectionSeconds())
+      .Add("fitting", filter->GetLastFitSolveSeconds())
+      .Add("total", seconds)
+      .Add("trace_steps", filter->GetLastTraceSteps())
+      .Add("solver_iterations", filter->GetLastSolverIterations())
+      .Add("solver_residual", filter->GetLastSolverResidual())
+      .Add("flipped_triangles", filter->GetLastFlippedTriangles())
+      .Add("max_displacement", filter->GetLastMaxDisplacement());
+    std::cout << json.Text() << std::endl;
+  }
+  std::cerr << "sharpen: " << input->GetNumberOfPoints() << " points, " << CountTriangles(input)
+            << " triangles, t=" << NumberText(filter->GetTimeStep()) << ": " << std::fixed
+            << std::setprecision(3) << seconds << " s (" << filter->GetLastSolverIterations()
+            << " solver iterations, relative residual " << NumberText(filter->GetLastSolverResidual())
+            << ", " << filter->GetLastFlippedTriangles() << " flipped triangles, max displacement "
+            << NumberText(filter->GetLastMaxDisplacement()) << " of the diagonal) -> " << outputPath
+            << '\n';
   return 0;
 }
 
@@ -1678,6 +2298,145 @@ void RunVolumeDemo(const std::filesystem::path& directory, const ShockOptions& c
       "pixels enlarged " + std::to_string(zoom) + "x");
 }
 
+/// Flow times of the mesh demo: the sphere's colours and the rounded box's geometry.
+constexpr double SphereDemoTime = 1024;
+constexpr double BoxDemoTime = 2048;
+
+/**
+ * The surface of the cube [-1, 1]^3 with n x n squares per face, two triangles
+ * each (counter-clockwise seen from outside; edge and corner points shared),
+ * with its creases rounded to radius 'rounding' in [0, 1] (1 gives the unit sphere).
+ */
+vtkSmartPointer<vtkPolyData> MakeRoundedCube(int n, double rounding)
+{
+  const int m = n + 1;
+  std::vector<vtkIdType> ids(static_cast<std::size_t>(m) * m * m, -1); // lattice point -> point id
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  const double inner = 1.0 - rounding;
+  const auto pointId = [&](const std::array<int, 3>& lattice)
+  {
+    vtkIdType& id = ids[(static_cast<std::size_t>(lattice[2]) * m + lattice[1]) * m + lattice[0]];
+    if (id < 0)
+    {
+      // The rounded box is the inner cube grown by a ball: a point moves to distance
+      // 'rounding' from its nearest point on the inner cube.
+      std::array<double, 3> x, nearest;
+      double distance = 0.0;
+      for (int a = 0; a < 3; ++a)
+      {
+        x[a] = 2.0 * lattice[a] / n - 1.0;
+        nearest[a] = std::clamp(x[a], -inner, inner);
+        distance += (x[a] - nearest[a]) * (x[a] - nearest[a]);
+      }
+      distance = std::sqrt(distance);
+      for (int a = 0; a < 3 && distance > 0.0; ++a)
+      {
+        x[a] = nearest[a] + rounding * (x[a] - nearest[a]) / distance;
+      }
+      id = points->InsertNextPoint(x.data());
+    }
+    return id;
+  };
+  vtkNew<vtkCellArray> triangles;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    for (const int side : { 0, n })
+    {
+      for (int u = 0; u < n; ++u)
+      {
+        for (int v = 0; v < n; ++v)
+        {
+          // Axes (axis + 1, axis + 2) turn counter-clockwise seen from the + side.
+          const auto corner = [&](int du, int dv)
+          {
+            std::array<int, 3> lattice;
+            lattice[axis] = side;
+            lattice[(axis + 1) % 3] = u + du;
+            lattice[(axis + 2) % 3] = v + dv;
+            return pointId(lattice);
+          };
+          std::array<vtkIdType, 4> square = { corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1) };
+          if (side == 0)
+          {
+            std::swap(square[1], square[3]);
+          }
+          triangles->InsertNextCell({ square[0], square[1], square[2] });
+          triangles->InsertNextCell({ square[0], square[2], square[3] });
+        }
+      }
+    }
+  }
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->SetPoints(points);
+  mesh->SetPolys(triangles);
+  return mesh;
+}
+
+/// Colour of the sphere demo at a point of the unit sphere: three regions with blurred borders.
+Rgb DemoSphereColour(const double p[3])
+{
+  const auto step = [](double signedDistance) { return 0.5 + 0.5 * std::tanh(signedDistance / 0.1); };
+  const double a = step(p[0] + 0.3 * p[1]); // across a tilted great circle
+  const double b = step(p[2] - 0.45);       // across a latitude
+  const Rgb blue = { 30, 70, 190 }, orange = { 240, 140, 25 }, white = { 235, 235, 225 };
+  Rgb colour;
+  for (int c = 0; c < 3; ++c)
+  {
+    colour[c] = (1.0 - b) * ((1.0 - a) * blue[c] + a * orange[c]) + b * white[c];
+  }
+  return colour;
+}
+
+/// Writes 'mesh' to 'directory'/'name' and tells so on stderr.
+void WriteDemoMesh(vtkPolyData* mesh, const std::filesystem::path& directory, const std::string& name,
+  const std::string& description)
+{
+  const std::string path = (directory / name).string();
+  WriteMeshFile(mesh, path);
+  std::cerr << "demo: wrote " << path << " (" << description << ")\n";
+}
+
+/// The mesh part of the demo: blurred colours on a sphere, the geometry of a rounded box.
+void RunMeshDemo(const std::filesystem::path& directory, const ShockOptions& common)
+{
+  vtkSmartPointer<vtkPolyData> sphere = MakeRoundedCube(40, 1.0);
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetName(shockio::PointColorsName);
+  colours->SetNumberOfComponents(3);
+  colours->SetNumberOfTuples(sphere->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < sphere->GetNumberOfPoints(); ++p)
+  {
+    const Rgb colour = DemoSphereColour(sphere->GetPoint(p));
+    for (int c = 0; c < 3; ++c)
+    {
+      colours->SetTypedComponent(p, c, static_cast<unsigned char>(std::lround(colour[c])));
+    }
+  }
+  sphere->GetPointData()->SetScalars(colours);
+  WriteDemoMesh(sphere, directory, "sphere_input.ply",
+    std::to_string(sphere->GetNumberOfPoints()) + "-point sphere, blurred vertex colours");
+  vtkNew<vtkPolyDataShockAdvectionFilter> surface;
+  ConfigureFilter(surface, common);
+  surface->SetTimeStep(SphereDemoTime);
+  surface->SetInputData(sphere);
+  const double surfaceSeconds = TimedUpdate(surface);
+  WriteDemoMesh(surface->GetOutput(), directory, "sphere_sharpened.ply",
+    "colours filtered at t=" + NumberText(SphereDemoTime) + ": " + SecondsText(surfaceSeconds));
+
+  vtkSmartPointer<vtkPolyData> box = MakeRoundedCube(32, 0.3);
+  WriteDemoMesh(box, directory, "rounded_box_input.ply",
+    std::to_string(box->GetNumberOfPoints()) + "-point cube, creases rounded to 0.3 of the half side");
+  vtkNew<vtkPolyDataShockSharpenFilter> sharpen;
+  ConfigureFilter(sharpen, common);
+  sharpen->SetTimeStep(BoxDemoTime);
+  sharpen->SetInputData(box);
+  const double sharpenSeconds = TimedUpdate(sharpen);
+  WriteDemoMesh(sharpen->GetOutput(), directory, "rounded_box_sharpened.ply",
+    "geometry sharpened at t=" + NumberText(BoxDemoTime) + ": " + SecondsText(sharpenSeconds) +
+      ", largest displacement " + NumberText(sharpen->GetLastMaxDisplacement()) + " of the diagonal");
+}
+
 struct DemoSettings
 {
   ShockOptions shock;
@@ -1685,7 +2444,8 @@ struct DemoSettings
 
 std::vector<OptionSpec> DemoOptionSpecs(DemoSettings& settings)
 {
-  return ShockOptionSpecs(settings.shock, ShockOptionSet::ThreadsOnly);
+  vtkNew<vtkImageShockAdvectionFilter> defaults;
+  return ShockOptionSpecs(settings.shock, ShockOptionSet::ThreadsOnly, defaults);
 }
 
 std::string DemoHelp()
@@ -1708,8 +2468,14 @@ std::string DemoHelp()
        << NumberText(VolumeDemoTime) << "\n"
        << "    volume_before_after.png middle z-slices, input | t=" << NumberText(VolumeDemoTime)
        << "\n"
-          "  Fixed flow, other parameters at their defaults. Prints on stderr what it\n"
-          "  wrote, the run times and a sharpness figure per t.\n"
+          "    sphere_input.ply        sphere with blurred vertex colours\n"
+          "    sphere_sharpened.ply    its colours filtered at t="
+       << NumberText(SphereDemoTime) << "\n"
+       << "    rounded_box_input.ply   cube with rounded creases\n"
+          "    rounded_box_sharpened.ply  its geometry sharpened at t="
+       << NumberText(BoxDemoTime) << "\n"
+       << "  Fixed flow, other parameters at their defaults. Prints on stderr what it\n"
+          "  wrote, the run times and a sharpness figure per t of the picture.\n"
           "  Options:\n"
        << FormatOptions(DemoOptionSpecs(unused));
   return text.str();
@@ -1717,22 +2483,13 @@ std::string DemoHelp()
 
 int RunDemoCommand(const std::vector<std::string>& args)
 {
-  if (IsHelpRequest(args))
-  {
-    std::cout << DemoHelp();
-    return 0;
-  }
   DemoSettings settings;
-  const std::vector<std::string> positionals = ParseArguments("demo", args, DemoOptionSpecs(settings));
-  if (positionals.size() != 1)
-  {
-    throw CliError("demo: expected OUTDIR, got " + std::to_string(positionals.size()) +
-      " argument(s) (see '" + ProgramName + " demo --help')");
-  }
-  const std::filesystem::path directory = positionals[0];
+  const std::filesystem::path directory =
+    ParseCommandLine("demo", args, DemoOptionSpecs(settings), { "OUTDIR" })[0];
   CreateDirectory(directory);
   RunPictureDemo(directory, settings.shock);
   RunVolumeDemo(directory, settings.shock);
+  RunMeshDemo(directory, settings.shock);
   return 0;
 }
 
@@ -1753,6 +2510,9 @@ const std::vector<Command>& Commands()
 {
   static const std::vector<Command> commands = {
     { "image", "sharpen an image or volume file", ImageHelp, RunImageCommand },
+    { "surface", "sharpen the colours (or another array) of a surface mesh file", SurfaceHelp,
+      RunSurfaceCommand },
+    { "sharpen", "sharpen the geometry of a surface mesh file", SharpenHelp, RunSharpenCommand },
     { "demo", "sharpen built-in test data, write the results to a directory", DemoHelp,
       RunDemoCommand },
   };
@@ -1823,7 +2583,13 @@ int Dispatch(const std::vector<std::string>& args)
     throw CliError("unknown command '" + args[0] + "' (commands: " + names + "; see '" +
       ProgramName + " --help')");
   }
-  return command->run(std::vector<std::string>(args.begin() + 1, args.end()));
+  const std::vector<std::string> commandArgs(args.begin() + 1, args.end());
+  if (IsHelpRequest(commandArgs))
+  {
+    std::cout << command->help();
+    return 0;
+  }
+  return command->run(commandArgs);
 }
 } // namespace
 
