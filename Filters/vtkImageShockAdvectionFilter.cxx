@@ -147,9 +147,7 @@ int vtkImageShockAdvectionFilter::RequestData(
     vtkErrorMacro("Input and output must be vtkImageData.");
     return 0;
   }
-  this->LastFlowSeconds = this->LastAdvectionSeconds = 0.0;
-  this->LastTraceSteps = 0;
-  if (!this->ValidateParameters())
+  if (!this->BeginExecution())
   {
     return 0;
   }
@@ -161,35 +159,9 @@ int vtkImageShockAdvectionFilter::RequestData(
   }
 
   int association = -1;
-  vtkAbstractArray* selected = this->GetInputAbstractArrayToProcess(0, inputVector, association);
-  if (!selected)
-  {
-    vtkInformation* selection = this->GetInputArrayInformation(0);
-    if (selection->Has(vtkDataObject::FIELD_NAME()))
-    {
-      vtkErrorMacro("No array to process: the input has no point or cell array named '"
-        << selection->Get(vtkDataObject::FIELD_NAME()) << "'.");
-    }
-    else
-    {
-      vtkErrorMacro("No array to process: the input has no active point scalars; select an "
-                    "array with SetInputArrayToProcess.");
-    }
-    return 0;
-  }
-  vtkDataArray* array = vtkDataArray::SafeDownCast(selected);
+  vtkDataArray* array = this->GetArrayToFilter(inputVector, association);
   if (!array)
   {
-    vtkErrorMacro("Array '" << (selected->GetName() ? selected->GetName() : "(unnamed)")
-                            << "' is a " << selected->GetClassName()
-                            << ", not a numeric array: it cannot be filtered.");
-    return 0;
-  }
-  if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
-    association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
-  {
-    vtkErrorMacro("Array '" << (array->GetName() ? array->GetName() : "(unnamed)")
-                            << "' must be point or cell data.");
     return 0;
   }
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
@@ -230,14 +202,7 @@ int vtkImageShockAdvectionFilter::RequestData(
     vtkErrorMacro("Shock filter failed: " << status.error);
     return 0;
   }
-  this->LastFlowSeconds = report.flowSeconds;
-  this->LastAdvectionSeconds = report.advectionSeconds;
-  this->LastTraceSteps = report.traceSteps;
-  if (report.truncatedTraces > 0)
-  {
-    vtkWarningMacro(<< report.truncatedTraces
-                    << " flow lines were cut at the step limit (a cycle of the discrete flow).");
-  }
+  this->RecordRun(report.flowSeconds, report.advectionSeconds, report.traceSteps, report.truncatedTraces);
   if (report.aborted)
   {
     return 1; // aborted: the output holds the unfiltered input
