@@ -21,8 +21,8 @@
  *    coloured regions (Voronoi cells of fixed random seeds), blurred by
  *    umbrella smoothing so that every colour edge is a blurred edge, stored as
  *    unsigned char RGB. Tables: the t = 4096 target, time vs t for the fixed,
- *    composed and naive flows, 1 vs all threads. Default: armadillo, 2 levels
- *    (~416K vertices).
+ *    composed and naive flows, 1 thread vs --threads (default all). Default:
+ *    armadillo, 2 levels (~416K vertices).
  *  - sharpen: vtkPolyDataShockSharpenFilter (the paper's Table 3): t = 2048
  *    with 1 smoothing pass (the target), then the phase table for 0, 1, 2, 4,
  *    8 and 16 smoothing passes. Default: ChineseDragon-10kv, 3 levels (~640K
@@ -206,16 +206,6 @@ std::string Count(double value)
     return Fixed(value / 1e3, 1) + "K";
   }
   return Fixed(value, 0);
-}
-
-std::string Join(const std::vector<double>& values)
-{
-  std::string text;
-  for (const double v : values)
-  {
-    text += (text.empty() ? "" : ", ") + Fixed(v, 0);
-  }
-  return text;
 }
 
 // =============================================================================

@@ -1554,7 +1554,7 @@ const MeshFormatInfo& MeshFormatOfPath(const std::string& path, const std::strin
   return FormatByExtension(MeshFormats(), path, role);
 }
 
-/// "ply, off, vtp or vtk": the extensions of the formats keeping at least 'arrays'.
+/// ".ply, .off, .vtp or .vtk": the extensions of the formats keeping at least 'arrays'.
 std::string MeshExtensionsKeeping(MeshArrays arrays)
 {
   std::vector<std::string> extensions;
@@ -1568,7 +1568,7 @@ std::string MeshExtensionsKeeping(MeshArrays arrays)
   std::string text;
   for (std::size_t i = 0; i < extensions.size(); ++i)
   {
-    text += (i == 0 ? "" : (i + 1 == extensions.size() ? " or ." : ", .")) + extensions[i];
+    text += (i == 0 ? "." : (i + 1 == extensions.size() ? " or ." : ", .")) + extensions[i];
   }
   return text;
 }
@@ -1703,11 +1703,11 @@ void RequireMeshStorable(const MeshFormatInfo& format, const SelectedArray& sele
       }
       throw CliError(where + format.name + " stores only unsigned char RGB or RGBA colours; " + kind +
         " array '" + selected.name + "' is " + array->GetDataTypeAsString() + " with " +
-        std::to_string(array->GetNumberOfComponents()) + " component(s) (write ." +
+        std::to_string(array->GetNumberOfComponents()) + " component(s) (write " +
         MeshExtensionsKeeping(MeshArrays::All) + ")");
     case MeshArrays::None:
       throw CliError(where + format.name + " does not store the filtered " + kind + " array '" +
-        selected.name + "' (write ." + MeshExtensionsKeeping(MeshArrays::Colours) + ")");
+        selected.name + "' (write " + MeshExtensionsKeeping(MeshArrays::Colours) + ")");
   }
 }
 
