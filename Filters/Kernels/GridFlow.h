@@ -1,0 +1,641 @@
+/**
+ * @file GridFlow.h
+ * @brief Internal building blocks of the grid kernels: the lattice of active axes,
+ * row-blocked loops, validity masks, umbrella smoothing and the shock-filter flow.
+ *
+ * Shared by GridShockAdvection.cxx (advection along the flow) and GridShockPDE.cxx
+ * (the Osher-Rudin PDE driven by the same flow), so that both methods compute
+ * the potential and the flow identically. Not installed; not part of the API.
+ * Loops use OpenMP: include only from translation units built with it.
+ */
+#ifndef GridFlow_h
+#define GridFlow_h
+
+#include "GridShockAdvection.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace shock
+{
+namespace grid
+{
+
+// Elements per work unit of the row-wise loops (see RowBlocks).
+constexpr std::int64_t BlockLength = 256;
+
+/// The active axes of a grid, with strides and normalised spacings.
+template <int D>
+struct Lattice
+{
+  static constexpr int Corners = 1 << D;
+  std::array<int, D> axis{};                // grid axis (0..2) of each active axis
+  std::array<std::int64_t, D> n{};          // samples per active axis (>= 2)
+  std::array<std::int64_t, D> m{};          // faces per active axis (n - 1)
+  std::array<std::int64_t, D> sampleStride{};
+  std::array<std::int64_t, D> faceStride{};
+  std::array<double, D> h{};                // spacing / mean edge length
+  std::array<double, D> h2{};               // h^2: metric for dot products of index velocities
+  std::array<std::int64_t, Corners> corner{}; // sample offset of face corner with bit pattern b
+  std::int64_t numSamples = 0;
+  std::int64_t numFaces = 0;
+
+  explicit Lattice(const GridShape& shape)
+  {
+    const double meanEdge = shape.MeanEdgeLength();
+    std::int64_t stride = 1;
+    int k = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (shape.dimensions[a] > 1)
+      {
+        this->axis[k] = a;
+        this->n[k] = shape.dimensions[a];
+        this->m[k] = shape.dimensions[a] - 1;
+        this->sampleStride[k] = stride;
+        this->h[k] = shape.spacing[a] / meanEdge;
+        this->h2[k] = this->h[k] * this->h[k];
+        ++k;
+      }
+      stride *= shape.dimensions[a];
+    }
+    this->numSamples = stride;
+    this->numFaces = 1;
+    for (int d = 0; d < D; ++d)
+    {
+      this->faceStride[d] = this->numFaces;
+      this->numFaces *= this->m[d];
+    }
+    for (int b = 0; b < Corners; ++b)
+    {
+      std::int64_t offset = 0;
+      for (int d = 0; d < D; ++d)
+      {
+        offset += ((b >> d) & 1) ? this->sampleStride[d] : 0;
+      }
+      this->corner[b] = offset;
+    }
+  }
+
+  /// Index of the sample with coordinates i; also the lower corner of the face with coordinates i.
+  std::int64_t SampleIndex(const std::array<std::int64_t, D>& i) const
+  {
+    std::int64_t s = 0;
+    for (int d = 0; d < D; ++d)
+    {
+      s += i[d] * this->sampleStride[d];
+    }
+    return s;
+  }
+
+  std::int64_t FaceIndex(const std::array<std::int64_t, D>& c) const
+  {
+    std::int64_t f = 0;
+    for (int d = 0; d < D; ++d)
+    {
+      f += c[d] * this->faceStride[d];
+    }
+    return f;
+  }
+};
+
+/**
+ * Work units of the row-wise loops over the samples (extent n) or the faces
+ * (extent m) of a lattice: runs of at most BlockLength consecutive elements of one
+ * row along the first active axis, which has stride 1. A loop over a block steps
+ * along x without decomposing indices into coordinates, and long rows (1D grids
+ * in particular) still spread over the threads.
+ */
+template <int D>
+class RowBlocks
+{
+public:
+  explicit RowBlocks(const std::array<std::int64_t, D>& extent)
+    : Extent(extent)
+    , PerRow((extent[0] + BlockLength - 1) / BlockLength)
+  {
+    this->Total = this->PerRow;
+    for (int d = 1; d < D; ++d)
+    {
+      this->Total *= extent[d];
+    }
+  }
+
+  std::int64_t Count() const { return this->Total; }
+
+  /// Block k: sets the coordinates of its first element and returns its length.
+  std::int64_t Get(std::int64_t k, std::array<std::int64_t, D>& first) const
+  {
+    std::int64_t row = k / this->PerRow;
+    first[0] = (k - row * this->PerRow) * BlockLength;
+    for (int d = 1; d < D; ++d)
+    {
+      first[d] = row % this->Extent[d];
+      row /= this->Extent[d];
+    }
+    return std::min(BlockLength, this->Extent[0] - first[0]);
+  }
+
+private:
+  std::array<std::int64_t, D> Extent;
+  std::int64_t PerRow;
+  std::int64_t Total = 0;
+};
+
+/**
+ * The faces adjacent to the samples of one row. A sample's face through corner
+ * bit pattern b has coordinates i - bits(b); the bits along the axes other than
+ * the first are the same for the whole row, so their rows of faces are found once.
+ */
+template <int D>
+class AdjacentFaces
+{
+public:
+  AdjacentFaces(const Lattice<D>& lattice, const std::array<std::int64_t, D>& i)
+    : L(lattice)
+  {
+    for (int r = 0; r < Lattice<D>::Corners / 2; ++r)
+    {
+      std::int64_t f = 0;
+      bool inside = true;
+      for (int d = 1; d < D; ++d)
+      {
+        const std::int64_t c = i[d] - ((r >> (d - 1)) & 1);
+        inside = inside && c >= 0 && c < L.m[d];
+        f += c * L.faceStride[d];
+      }
+      this->RowStart[r] = inside ? f : -1;
+    }
+  }
+
+  /// The face adjacent to sample x of the row through corner pattern b; -1 outside the grid.
+  std::int64_t Face(std::int64_t x, int b) const
+  {
+    const std::int64_t start = this->RowStart[b >> 1];
+    const std::int64_t fx = x - (b & 1);
+    return (start < 0 || fx < 0 || fx >= L.m[0]) ? -1 : start + fx;
+  }
+
+private:
+  const Lattice<D>& L;
+  std::array<std::int64_t, Lattice<D>::Corners / 2> RowStart{}; // face at x = 0, or -1
+};
+
+/// Data range over the samples whose components are all finite.
+struct SignalRange
+{
+  double low = std::numeric_limits<double>::infinity();
+  double high = -std::numeric_limits<double>::infinity();
+  bool allFinite = true;
+};
+
+/// The range and finiteness of a signal in one parallel pass (min and max are
+/// exact, so any thread count gives the same range).
+inline SignalRange ScanSignal(std::int64_t numSamples, int components, const double* values, int threads)
+{
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  bool allFinite = true;
+#pragma omp parallel for schedule(static) num_threads(threads) \
+  reduction(min : low) reduction(max : high) reduction(&& : allFinite)
+  for (std::int64_t s = 0; s < numSamples; ++s)
+  {
+    const double* v = values + s * components;
+    bool finite = true;
+    for (int c = 0; c < components; ++c)
+    {
+      finite = finite && std::isfinite(v[c]);
+    }
+    if (!finite)
+    {
+      allFinite = false;
+      continue;
+    }
+    for (int c = 0; c < components; ++c)
+    {
+      low = std::min(low, v[c]);
+      high = std::max(high, v[c]);
+    }
+  }
+  return { low, high, allFinite };
+}
+
+/// Per-sample validity: all components finite.
+inline std::vector<unsigned char> FiniteSamples(
+  std::int64_t numSamples, int components, const double* values, int threads)
+{
+  std::vector<unsigned char> valid(static_cast<size_t>(numSamples));
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t s = 0; s < numSamples; ++s)
+  {
+    const double* v = values + s * components;
+    valid[s] = std::all_of(v, v + components, [](double x) { return std::isfinite(x); });
+  }
+  return valid;
+}
+
+/// Faces whose corners are all valid samples; only they carry gradients and flow.
+template <int D>
+std::vector<unsigned char> ValidFaces(
+  const Lattice<D>& L, const unsigned char* validSample, int threads)
+{
+  std::vector<unsigned char> valid(static_cast<size_t>(L.numFaces));
+  const RowBlocks<D> blocks(L.m);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
+  {
+    std::array<std::int64_t, D> c;
+    const std::int64_t length = blocks.Get(k, c);
+    const std::int64_t f0 = L.FaceIndex(c);
+    const std::int64_t base0 = L.SampleIndex(c);
+    for (std::int64_t j = 0; j < length; ++j)
+    {
+      bool all = true;
+      for (int b = 0; b < Lattice<D>::Corners; ++b)
+      {
+        all = all && validSample[base0 + j + L.corner[b]];
+      }
+      valid[f0 + j] = all;
+    }
+  }
+  return valid;
+}
+
+/**
+ * SmoothPass on a block of `length` samples of one row when every sample is
+ * valid: the same operations in the same order as the general case, arranged as
+ * whole-block loops over the values, which vectorise. The weight total is the
+ * same along the row except at its ends (`rowStart`, `rowEnd`: the block holds
+ * them). `offset` are sample offsets of the neighbours along the other axes.
+ */
+template <size_t N>
+void SmoothBlockAllValid(int C, const double* in, double scale, double* out,
+  std::int64_t length, bool rowStart, bool rowEnd, double alphaX, int neighbours,
+  const std::array<std::int64_t, N>& offset, const std::array<double, N>& weight)
+{
+  const std::int64_t count = length * C;
+  std::copy(in, in + count, out);
+  for (std::int64_t v = rowStart ? C : 0; v < count; ++v)
+  {
+    out[v] += alphaX * in[v - C];
+  }
+  for (std::int64_t v = 0; v < (rowEnd ? count - C : count); ++v)
+  {
+    out[v] += alphaX * in[v + C];
+  }
+  for (int r = 0; r < neighbours; ++r)
+  {
+    const double* row = in + offset[r] * C;
+    for (std::int64_t v = 0; v < count; ++v)
+    {
+      out[v] += weight[r] * row[v];
+    }
+  }
+  const auto factor = [&](bool left, bool right) {
+    double total = 1.0;
+    total += left ? alphaX : 0.0;
+    total += right ? alphaX : 0.0;
+    for (int r = 0; r < neighbours; ++r)
+    {
+      total += weight[r];
+    }
+    return scale / total;
+  };
+  // The row's end samples miss one neighbour along x (a row has >= 2 samples).
+  const std::int64_t innerBegin = rowStart ? C : 0;
+  const std::int64_t innerEnd = rowEnd ? count - C : count;
+  const double inner = factor(true, true);
+  for (std::int64_t v = innerBegin; v < innerEnd; ++v)
+  {
+    out[v] *= inner;
+  }
+  if (rowStart)
+  {
+    const double first = factor(false, true);
+    for (int c = 0; c < C; ++c)
+    {
+      out[c] *= first;
+    }
+  }
+  if (rowEnd)
+  {
+    const double last = factor(true, false);
+    for (std::int64_t v = count - C; v < count; ++v)
+    {
+      out[v] *= last;
+    }
+  }
+}
+
+/**
+ * One pass of the Appendix A umbrella smoothing with Gaussian weights
+ * exp(-|(v-w)/l|^2) over the grid one-ring (the 2D neighbours along the active
+ * axes), scaled: out = scale x smooth(in). Invalid samples (`valid` non-null and
+ * 0) neither change nor contribute.
+ */
+template <int D>
+void SmoothPass(const Lattice<D>& L, int C, const double* in, double scale, double* out,
+  const unsigned char* valid, int threads)
+{
+  std::array<double, D> alpha{};
+  for (int d = 0; d < D; ++d)
+  {
+    alpha[d] = std::exp(-L.h2[d]);
+  }
+  const RowBlocks<D> blocks(L.n);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
+  {
+    std::array<std::int64_t, D> i;
+    const std::int64_t length = blocks.Get(k, i);
+    const std::int64_t s0 = L.SampleIndex(i);
+    // The neighbours along the other axes are the same for the whole block.
+    std::array<std::int64_t, 2 * D> offset{};
+    std::array<double, 2 * D> weight{};
+    int neighbours = 0;
+    for (int d = 1; d < D; ++d)
+    {
+      for (int dir = -1; dir <= 1; dir += 2)
+      {
+        if (i[d] + dir >= 0 && i[d] + dir < L.n[d])
+        {
+          offset[neighbours] = dir * L.sampleStride[d];
+          weight[neighbours] = alpha[d];
+          ++neighbours;
+        }
+      }
+    }
+    if (!valid)
+    {
+      SmoothBlockAllValid(C, in + s0 * C, scale, out + s0 * C, length, i[0] == 0,
+        i[0] + length == L.n[0], alpha[0], neighbours, offset, weight);
+      continue;
+    }
+    for (std::int64_t j = 0; j < length; ++j)
+    {
+      const std::int64_t x = i[0] + j;
+      const std::int64_t s = s0 + j;
+      double* o = out + s * C;
+      std::copy(in + s * C, in + (s + 1) * C, o);
+      double total = 1.0;
+      const auto add = [&](std::int64_t w, double a) {
+        if (valid[w])
+        {
+          total += a;
+          for (int c = 0; c < C; ++c)
+          {
+            o[c] += a * in[w * C + c];
+          }
+        }
+      };
+      if (valid[s])
+      {
+        if (x > 0)
+        {
+          add(s - 1, alpha[0]);
+        }
+        if (x + 1 < L.n[0])
+        {
+          add(s + 1, alpha[0]);
+        }
+        for (int r = 0; r < neighbours; ++r)
+        {
+          add(s + offset[r], weight[r]);
+        }
+      }
+      const double factor = scale / total;
+      for (int c = 0; c < C; ++c)
+      {
+        o[c] *= factor;
+      }
+    }
+  }
+}
+
+/**
+ * `passes` smoothing passes (SmoothPass) of scale x in, into out; passes = 0 gives
+ * the scaled copy. `scratch`, of the size of out, is used when passes >= 2.
+ */
+template <int D>
+void UmbrellaSmooth(const Lattice<D>& L, int C, const double* in, double scale, double* out,
+  double* scratch, const unsigned char* valid, int passes, int threads)
+{
+  if (passes == 0)
+  {
+    const std::int64_t count = L.numSamples * C;
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::int64_t v = 0; v < count; ++v)
+    {
+      out[v] = scale * in[v];
+    }
+    return;
+  }
+  const double* source = in;
+  for (int pass = 0; pass < passes; ++pass)
+  {
+    // Alternate between the buffers so that the last pass writes `out`.
+    double* target = (passes - 1 - pass) % 2 == 0 ? out : scratch;
+    SmoothPass<D>(L, C, source, pass == 0 ? scale : 1.0, target, valid, threads);
+    source = target;
+  }
+}
+
+/// Face gradient of channel c: per axis, the mean finite difference over the face's parallel edges.
+template <int D>
+std::array<double, D> FaceGradient(
+  const Lattice<D>& L, const double* values, int C, int c, std::int64_t base)
+{
+  std::array<double, D> g{};
+  constexpr double edgesPerAxis = Lattice<D>::Corners / 2;
+  for (int d = 0; d < D; ++d)
+  {
+    double sum = 0.0;
+    for (int b = 0; b < Lattice<D>::Corners; ++b)
+    {
+      if (!((b >> d) & 1))
+      {
+        sum += values[(base + L.corner[b | (1 << d)]) * C + c] - values[(base + L.corner[b]) * C + c];
+      }
+    }
+    g[d] = sum / (edgesPerAxis * L.h[d]);
+  }
+  return g;
+}
+
+/**
+ * The flow of a signal (sections 3.2-3.3): smoothing, face gradients, potential,
+ * smoothing of the potential, back-trace velocity. Holds the buffers, which the
+ * flow updates of a run reuse.
+ */
+template <int D>
+class FlowComputation
+{
+public:
+  /// `validSample` and `validFace` are null when every sample is finite.
+  FlowComputation(const Lattice<D>& lattice, int components, int smoothingPasses,
+    const unsigned char* validSample, const unsigned char* validFace, int threads)
+    : L(lattice)
+    , C(components)
+    , Passes(smoothingPasses)
+    , ValidSample(validSample)
+    , ValidFace(validFace)
+    , Threads(threads)
+    , Smoothed(AllocateLargeArray<double>(lattice.numSamples * components))
+    , PotentialField(AllocateLargeArray<double>(lattice.numSamples))
+    , VelocityField(AllocateLargeArray<float>(lattice.numFaces * D))
+  {
+    if (smoothingPasses >= 2)
+    {
+      this->Scratch = AllocateLargeArray<double>(lattice.numSamples * components);
+    }
+  }
+
+  /// Compute the flow of `signal`, intensities divided by `range`.
+  void Compute(const double* signal, double range)
+  {
+    UmbrellaSmooth<D>(L, C, signal, 1.0 / range, this->Smoothed.get(), this->Scratch.get(),
+      this->ValidSample, this->Passes, this->Threads);
+    // Each buffer serves twice, to save memory and first-touch page faults: the
+    // energy per face (there are fewer faces than samples) goes to the potential's
+    // buffer, and the raw potential to the smoothed signal's, each once its
+    // previous content has been used.
+    double* energy = this->PotentialField.get();
+    this->ComputeEnergy(energy);
+    double* rawPotential = this->Smoothed.get();
+    this->ComputePotential(energy, rawPotential);
+    UmbrellaSmooth<D>(L, 1, rawPotential, 1.0, this->PotentialField.get(), this->Scratch.get(),
+      this->ValidSample, this->Passes, this->Threads);
+    this->ComputeVelocity();
+  }
+
+  /// Potential P per sample, normalised units.
+  const double* Potential() const { return this->PotentialField.get(); }
+  /// Back-trace velocity per face in index units, -u / h with u = 1/2 grad P; D per face.
+  const float* Velocity() const { return this->VelocityField.get(); }
+
+private:
+  bool FaceIsValid(std::int64_t f) const { return !this->ValidFace || this->ValidFace[f]; }
+
+  /// |grad I|^2 per face summed over channels (section 3.3 coupling); 0 on invalid faces.
+  void ComputeEnergy(double* energy) const
+  {
+    const RowBlocks<D> blocks(L.m);
+#pragma omp parallel for schedule(static) num_threads(this->Threads)
+    for (std::int64_t k = 0; k < blocks.Count(); ++k)
+    {
+      std::array<std::int64_t, D> c;
+      const std::int64_t length = blocks.Get(k, c);
+      const std::int64_t f0 = L.FaceIndex(c);
+      const std::int64_t base0 = L.SampleIndex(c);
+      for (std::int64_t j = 0; j < length; ++j)
+      {
+        double e = 0.0;
+        if (this->FaceIsValid(f0 + j))
+        {
+          for (int channel = 0; channel < C; ++channel)
+          {
+            const auto g = FaceGradient<D>(L, this->Smoothed.get(), C, channel, base0 + j);
+            for (int d = 0; d < D; ++d)
+            {
+              e += g[d] * g[d];
+            }
+          }
+        }
+        energy[f0 + j] = e;
+      }
+    }
+  }
+
+  /// Potential before smoothing: the face energy averaged over each sample's valid
+  /// adjacent faces (all faces have equal area).
+  void ComputePotential(const double* energy, double* potential) const
+  {
+    const RowBlocks<D> blocks(L.n);
+#pragma omp parallel for schedule(static) num_threads(this->Threads)
+    for (std::int64_t k = 0; k < blocks.Count(); ++k)
+    {
+      std::array<std::int64_t, D> i;
+      const std::int64_t length = blocks.Get(k, i);
+      const std::int64_t s0 = L.SampleIndex(i);
+      const AdjacentFaces<D> faces(L, i);
+      for (std::int64_t j = 0; j < length; ++j)
+      {
+        double sum = 0.0;
+        int count = 0;
+        for (int b = 0; b < Lattice<D>::Corners; ++b)
+        {
+          const std::int64_t f = faces.Face(i[0] + j, b);
+          if (f >= 0 && this->FaceIsValid(f))
+          {
+            sum += energy[f];
+            ++count;
+          }
+        }
+        potential[s0 + j] = count > 0 ? sum / count : 0.0;
+      }
+    }
+  }
+
+  void ComputeVelocity()
+  {
+    const RowBlocks<D> blocks(L.m);
+#pragma omp parallel for schedule(static) num_threads(this->Threads)
+    for (std::int64_t k = 0; k < blocks.Count(); ++k)
+    {
+      std::array<std::int64_t, D> c;
+      const std::int64_t length = blocks.Get(k, c);
+      const std::int64_t f0 = L.FaceIndex(c);
+      const std::int64_t base0 = L.SampleIndex(c);
+      for (std::int64_t j = 0; j < length; ++j)
+      {
+        float* v = this->VelocityField.get() + (f0 + j) * D;
+        if (!this->FaceIsValid(f0 + j))
+        {
+          std::fill(v, v + D, 0.0f);
+          continue;
+        }
+        const auto g = FaceGradient<D>(L, this->PotentialField.get(), 1, 0, base0 + j);
+        for (int d = 0; d < D; ++d)
+        {
+          v[d] = static_cast<float>(-0.5 * g[d] / L.h[d]);
+        }
+      }
+    }
+  }
+
+  const Lattice<D>& L;
+  const int C;
+  const int Passes;
+  const unsigned char* ValidSample;
+  const unsigned char* ValidFace;
+  const int Threads;
+  LargeArray<double> Smoothed;       // range-normalised smoothed signal, then the raw potential
+  LargeArray<double> Scratch;        // second smoothing buffer (2+ passes)
+  LargeArray<double> PotentialField; // face energy, then the smoothed potential
+  LargeArray<float> VelocityField;
+};
+
+/// Copy the potential and the flow u (world grid axes, 3 per face) of `flow` into `fields`.
+template <int D>
+void ExportFlowFields(const Lattice<D>& L, const FlowComputation<D>& flow, GridFlowFields& fields)
+{
+  fields.potential.assign(flow.Potential(), flow.Potential() + L.numSamples);
+  fields.flow.assign(static_cast<size_t>(L.numFaces * 3), 0.0);
+  const float* velocity = flow.Velocity();
+  for (std::int64_t f = 0; f < L.numFaces; ++f)
+  {
+    for (int d = 0; d < D; ++d)
+    {
+      fields.flow[f * 3 + L.axis[d]] = -static_cast<double>(velocity[f * D + d]) * L.h[d];
+    }
+  }
+}
+
+} // namespace grid
+} // namespace shock
+
+#endif
