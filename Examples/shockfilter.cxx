@@ -666,6 +666,13 @@ const std::vector<Choice>& FlowModeChoices()
   return choices;
 }
 
+const std::vector<Choice>& MethodChoices()
+{
+  static const std::vector<Choice> choices = { { "advection", vtkImageShockAdvectionFilter::ADVECTION },
+    { "pde", vtkImageShockAdvectionFilter::PDE } };
+  return choices;
+}
+
 const std::vector<Choice>& SamplingChoices()
 {
   static const std::vector<Choice> choices = { { "linear", vtkShockAdvectionFilter::LINEAR },
@@ -1351,13 +1358,36 @@ struct FilterRun
   double flowSeconds = 0.0;
   double advectionSeconds = 0.0;
   vtkTypeUInt64 traceSteps = 0;
+  int method = vtkImageShockAdvectionFilter::ADVECTION; ///< image filter only
+  vtkTypeInt64 iterations = 0;                           ///< PDE steps (image filter only)
+};
+
+/// The image filter's own parameters (the PDE baseline); unset ones keep the defaults.
+struct ImageMethodOptions
+{
+  std::optional<int> method;
+  std::optional<double> courantNumber;
+  std::optional<int> maximumIterations;
 };
 
 /// Filters the point array 'arrayName' of 'input'; throws "shock filter failed: ..." on error.
-FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName, const ShockOptions& options)
+FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
+  const ShockOptions& options, const ImageMethodOptions& methodOptions = ImageMethodOptions())
 {
   vtkNew<vtkImageShockAdvectionFilter> filter;
   ConfigureFilter(filter, options);
+  if (methodOptions.method)
+  {
+    filter->SetMethod(*methodOptions.method);
+  }
+  if (methodOptions.courantNumber)
+  {
+    filter->SetCourantNumber(*methodOptions.courantNumber);
+  }
+  if (methodOptions.maximumIterations)
+  {
+    filter->SetMaximumIterations(*methodOptions.maximumIterations);
+  }
   filter->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrayName.c_str());
   filter->SetInputData(input);
@@ -1374,6 +1404,8 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName, cons
   run.flowSeconds = filter->GetLastFlowSeconds();
   run.advectionSeconds = filter->GetLastAdvectionSeconds();
   run.traceSteps = filter->GetLastTraceSteps();
+  run.method = filter->GetMethod();
+  run.iterations = filter->GetLastIterations();
   return run;
 }
 
@@ -1394,7 +1426,9 @@ std::string TimingsJson(const std::string& command, vtkImageData* image, const F
     .Add("flow", run.flowSeconds)
     .Add("advection", run.advectionSeconds)
     .Add("total", run.totalSeconds)
-    .Add("trace_steps", run.traceSteps);
+    .Add("trace_steps", run.traceSteps)
+    .Add("method", ChoiceName(run.method, MethodChoices()))
+    .Add("iterations", run.iterations);
   return json.Text();
 }
 
@@ -1449,6 +1483,7 @@ std::string TimingsHelp(const std::vector<std::string>& keys, const std::string&
 struct ImageSettings
 {
   ShockOptions shock;
+  ImageMethodOptions method;
   std::string arrayName;
   bool timings = false;
 };
@@ -1456,7 +1491,23 @@ struct ImageSettings
 std::vector<OptionSpec> ImageOptionSpecs(ImageSettings& settings)
 {
   vtkNew<vtkImageShockAdvectionFilter> defaults;
-  std::vector<OptionSpec> specs = ShockOptionSpecs(settings.shock, ShockOptionSet::All, defaults);
+  std::vector<OptionSpec> specs;
+  ImageMethodOptions& method = settings.method;
+  specs.push_back({ "--method", "METHOD",
+    "advection|pde (the Osher-Rudin PDE baseline, linear in t)" +
+      DefaultText(ChoiceName(defaults->GetMethod(), MethodChoices())),
+    [&method](const std::string& v) { method.method = ParseChoice("--method", v, MethodChoices()); } });
+  const std::vector<OptionSpec> shared = ShockOptionSpecs(settings.shock, ShockOptionSet::All, defaults);
+  specs.insert(specs.end(), shared.begin(), shared.end());
+  specs.push_back({ "--courant", "C",
+    "pde: Courant number of the explicit step, 0.01..1" +
+      DefaultText(NumberText(defaults->GetCourantNumber())),
+    [&method](const std::string& v) { method.courantNumber = ParseInRange("--courant", v, 0.01, 1.0); } });
+  specs.push_back({ "--max-iterations", "N",
+    "pde: most explicit steps, 1..100000000" +
+      DefaultText(std::to_string(defaults->GetMaximumIterations())),
+    [&method](const std::string& v)
+    { method.maximumIterations = ParseInRange("--max-iterations", v, 1, 100000000); } });
   specs.push_back(
     ArrayOptionSpec(settings.arrayName, "point array to filter (default: active point scalars)"));
   specs.push_back(TimingsOptionSpec(settings.timings));
@@ -1481,8 +1532,10 @@ std::string ImageHelp()
           "  For png/jpg/bmp/pnm other types are rounded and clamped to 0..255 (a note\n"
           "  on stderr says so); other component counts and volumes are refused.\n"
        << TimingsHelp({ "command", "dimensions", "samples", "components", "time", "flow_mode",
-                        "threads", "flow", "advection", "total", "trace_steps" },
-            "  times in seconds, total = wall time of the filter only (no reading/writing).\n")
+                        "threads", "flow", "advection", "total", "trace_steps", "method",
+                        "iterations" },
+            "  times in seconds, total = wall time of the filter only (no reading/writing);\n"
+            "  for --method pde, advection = the explicit updates, iterations = their number.\n")
        << "  Options:\n"
        << FormatOptions(ImageOptionSpecs(unused));
   return text.str();
@@ -1503,7 +1556,7 @@ int RunImageCommand(const std::vector<std::string>& args)
   const std::string arrayName =
     SelectArray(input, settings.arrayName, vtkDataObject::FIELD_ASSOCIATION_POINTS, "ImageScalars").name;
   RequireStorable(input, arrayName, outputFormat, outputPath);
-  const FilterRun run = RunImageFilter(input, arrayName, settings.shock);
+  const FilterRun run = RunImageFilter(input, arrayName, settings.shock, settings.method);
   WriteImage(run.output, outputPath, arrayName);
 
   if (settings.timings)
@@ -1511,7 +1564,11 @@ int RunImageCommand(const std::vector<std::string>& args)
     std::cout << TimingsJson("image", input, run) << std::endl;
   }
   std::cerr << "image: " << DimensionsText(input) << ", " << run.components << " component(s) of '"
-            << arrayName << "', t=" << NumberText(run.time) << ": " << std::fixed
+            << arrayName << "', t=" << NumberText(run.time)
+            << (run.method == vtkImageShockAdvectionFilter::PDE
+                   ? " (pde, " + std::to_string(run.iterations) + " steps)"
+                   : std::string())
+            << ": " << std::fixed
             << std::setprecision(3) << run.totalSeconds << " s -> " << outputPath << '\n';
   return 0;
 }

@@ -1,6 +1,7 @@
 #include "vtkImageShockAdvectionFilter.h"
 
 #include "GridShockAdvection.h"
+#include "GridShockPDE.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDoubleArray.h"
@@ -185,25 +186,22 @@ int vtkImageShockAdvectionFilter::RequestData(
 
   // Everything checked: the output starts as the input, arrays shared.
   output->ShallowCopy(input);
-  const shock::AdvectionParameters parameters = vtkShockFilterInternals::MakeParameters(this);
+  const int threads = this->NumberOfThreads;
   // Uninitialised buffers, filled in parallel (no serial zero fill of the whole signal).
   const vtkIdType count = array->GetNumberOfValues();
   shock::LargeArray<double> values = shock::AllocateLargeArray<double>(count);
-  vtkShockFilterInternals::ToDoubles(array, values.get(), parameters.numberOfThreads);
+  vtkShockFilterInternals::ToDoubles(array, values.get(), threads);
   const shock::LargeArray<double> filtered = shock::AllocateLargeArray<double>(count);
-  shock::AdvectionReport report;
   shock::GridFlowFields fields;
-  const shock::Status status = shock::AdvectGridSignal(grid, array->GetNumberOfComponents(),
-    values.get(), filtered.get(), parameters, &report, this->GenerateFlowArrays ? &fields : nullptr,
-    [this](double fraction) { return this->ReportProgress(fraction); });
+  bool aborted = false;
+  const bool ran = this->RunKernel(grid, array->GetNumberOfComponents(), values.get(),
+    filtered.get(), this->GenerateFlowArrays ? &fields : nullptr, aborted);
   values.reset();
-  if (!status.Ok())
+  if (!ran)
   {
-    vtkErrorMacro("Shock filter failed: " << status.error);
     return 0;
   }
-  this->RecordRun(report.flowSeconds, report.advectionSeconds, report.traceSteps, report.truncatedTraces);
-  if (report.aborted)
+  if (aborted)
   {
     return 1; // aborted: the output holds the unfiltered input
   }
@@ -211,12 +209,71 @@ int vtkImageShockAdvectionFilter::RequestData(
   vtkDataSetAttributes* attributes =
     cellData ? static_cast<vtkDataSetAttributes*>(output->GetCellData()) : output->GetPointData();
   vtkShockFilterInternals::ReplaceArray(attributes, array,
-    vtkShockFilterInternals::FromDoubles(array, filtered.get(), parameters.numberOfThreads));
+    vtkShockFilterInternals::FromDoubles(array, filtered.get(), threads));
   if (this->GenerateFlowArrays)
   {
     AttachFlowArrays(output, cellData, grid, fields);
   }
   return 1;
+}
+
+bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, int components,
+  const double* input, double* output, shock::GridFlowFields* fields, bool& aborted)
+{
+  const auto progress = [this](double fraction) { return this->ReportProgress(fraction); };
+  shock::Status status;
+  if (this->Method == ADVECTION)
+  {
+    shock::AdvectionReport report;
+    status = shock::AdvectGridSignal(grid, components, input, output,
+      vtkShockFilterInternals::MakeParameters(this), &report, fields, progress);
+    if (status.Ok())
+    {
+      this->RecordRun(
+        report.flowSeconds, report.advectionSeconds, report.traceSteps, report.truncatedTraces);
+      aborted = report.aborted;
+    }
+  }
+  else
+  {
+    shock::PDEParameters parameters;
+    parameters.time = this->TimeStep;
+    parameters.smoothingPasses = this->SmoothingPasses;
+    parameters.courantNumber = this->CourantNumber;
+    parameters.maximumIterations = this->MaximumIterations;
+    parameters.numberOfThreads = this->NumberOfThreads;
+    parameters.valueScale = this->ParallelValueScale;
+    shock::PDEReport report;
+    status = shock::SolveGridShockPDE(grid, components, input, output, parameters, &report, fields,
+      progress);
+    if (status.Ok())
+    {
+      this->RecordRun(report.flowSeconds, report.updateSeconds, 0, 0);
+      this->LastIterations = report.iterations;
+      this->LastReachedTime = report.reachedTime;
+      aborted = report.aborted;
+      if (report.iterationLimit)
+      {
+        vtkWarningMacro("The PDE stopped at MaximumIterations (" << this->MaximumIterations
+                                                                 << " steps) at flow time "
+                                                                 << report.reachedTime << " of "
+                                                                 << this->TimeStep << ".");
+      }
+    }
+  }
+  if (!status.Ok())
+  {
+    vtkErrorMacro("Shock filter failed: " << status.error);
+    return false;
+  }
+  return true;
+}
+
+void vtkImageShockAdvectionFilter::ResetMeasurements()
+{
+  this->Superclass::ResetMeasurements();
+  this->LastIterations = 0;
+  this->LastReachedTime = 0.0;
 }
 
 // --- Parallel execution: ghost samples in, cropped output out ------------------
@@ -356,4 +413,9 @@ void vtkImageShockAdvectionFilter::CropToUpdateExtent(vtkInformationVector* outp
 void vtkImageShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Method: " << (this->Method == ADVECTION ? "Advection" : "PDE") << "\n";
+  os << indent << "CourantNumber: " << this->CourantNumber << "\n";
+  os << indent << "MaximumIterations: " << this->MaximumIterations << "\n";
+  os << indent << "LastIterations: " << this->LastIterations << "\n";
+  os << indent << "LastReachedTime: " << this->LastReachedTime << "\n";
 }

@@ -40,6 +40,22 @@
  * An input that is not cut into pieces (a reader that gives the whole image to
  * one process) is kept whole.
  *
+ * Method selects how the shock filter is computed: ADVECTION (default, the
+ * paper's method, above) or PDE, the Osher-Rudin shock-filter PDE integrated
+ * with the classic explicit upwind/minmod scheme (GridShockPDE.h): equation
+ * (1) of the paper with F the identity and the second derivative along the
+ * gradient as edge detector, which is equation (2), the PDE that the advection
+ * solves. It uses the same flow (so SmoothingPasses means the same), the same
+ * normalisation and the same flow time TimeStep, so that both methods can be
+ * compared parameter for parameter; FlowMode, NumberOfFlowUpdates, Sampling,
+ * TracingMode and StepFraction do not apply to it. Its cost is linear in
+ * TimeStep (one flow computation per CFL step, CourantNumber) and it is meant
+ * as a reference, not for production: see the paper's Figure 9 and
+ * docs/paper-evidence.md. In parallel each piece integrates the PDE on its
+ * piece with its ghost layers, so pieces agree with the serial result only
+ * near their centres (a step moves information by up to 2 x SmoothingPasses + 2
+ * samples).
+ *
  * @warning Errors (RequestData returns 0): negative or non-finite TimeStep,
  * missing or non-numeric array, field-data array, zero spacing. An empty image
  * passes through with a warning.
@@ -53,6 +69,11 @@
 #include "vtkFiltersShockModule.h" // for export macro
 
 class vtkImageData;
+namespace shock
+{
+struct GridShape;
+struct GridFlowFields;
+}
 
 class VTKFILTERSSHOCK_EXPORT vtkImageShockAdvectionFilter : public vtkShockAdvectionFilter
 {
@@ -60,6 +81,53 @@ public:
   static vtkImageShockAdvectionFilter* New();
   vtkTypeMacro(vtkImageShockAdvectionFilter, vtkShockAdvectionFilter);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// How the shock filter is computed.
+  enum Methods
+  {
+    ADVECTION = 0, ///< back-tracing along the flow (Prada and Kazhdan 2015): stable for any t
+    PDE = 1        ///< explicit Osher-Rudin PDE (upwind/minmod, CFL step): the baseline
+  };
+
+  ///@{
+  /**
+   * ADVECTION (default) or PDE; see the class documentation.
+   */
+  vtkSetClampMacro(Method, int, ADVECTION, PDE);
+  vtkGetMacro(Method, int);
+  void SetMethodToAdvection() { this->SetMethod(ADVECTION); }
+  void SetMethodToPDE() { this->SetMethod(PDE); }
+  ///@}
+
+  ///@{
+  /**
+   * PDE method: Courant number of the explicit step, dt = CourantNumber /
+   * (max |u| x sum over axes of 1 / spacing), spacings in mean edge lengths.
+   * Range [0.01, 1], default 0.5; above 1 the scheme is not stable.
+   */
+  vtkSetClampMacro(CourantNumber, double, 0.01, 1.0);
+  vtkGetMacro(CourantNumber, double);
+  ///@}
+
+  ///@{
+  /**
+   * PDE method: the most explicit steps one execution may take. When they do
+   * not reach TimeStep, the output holds the solution at the time reached
+   * (LastReachedTime) and a warning says so. Range [1, 100000000], default 100000.
+   */
+  vtkSetClampMacro(MaximumIterations, int, 1, 100000000);
+  vtkGetMacro(MaximumIterations, int);
+  ///@}
+
+  ///@{
+  /**
+   * PDE method, measurements of the last execution: explicit steps taken and
+   * the flow time reached (TimeStep, unless MaximumIterations stopped it
+   * first). Both 0 after an ADVECTION run.
+   */
+  vtkGetMacro(LastIterations, vtkTypeInt64);
+  vtkGetMacro(LastReachedTime, double);
+  ///@}
 
   ///@{
   /// The filtered image (output port 0, or the given port).
@@ -87,7 +155,19 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
+  void ResetMeasurements() override;
+
+  int Method = ADVECTION;
+  double CourantNumber = 0.5;
+  int MaximumIterations = 100000;
+  vtkTypeInt64 LastIterations = 0;
+  double LastReachedTime = 0.0;
+
 private:
+  /// Run the selected method on double samples; false (with vtkErrorMacro) on failure.
+  bool RunKernel(const shock::GridShape& grid, int components, const double* input,
+    double* output, shock::GridFlowFields* fields, bool& aborted);
+
   vtkImageShockAdvectionFilter(const vtkImageShockAdvectionFilter&) = delete;
   void operator=(const vtkImageShockAdvectionFilter&) = delete;
 };

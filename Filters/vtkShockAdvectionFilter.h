@@ -216,6 +216,8 @@ public:
    * (mesh topology and geometry; 0 for images), computing the flow
    * (smoothing, potential, flow) and advecting (tracing and sampling), and the
    * number of tracing steps (face crossings or delta-steps) over all traces.
+   * For vtkImageShockAdvectionFilter with Method PDE, the "advection" seconds
+   * are those of the explicit updates and there are no tracing steps.
    */
   vtkGetMacro(LastSetupSeconds, double);
   vtkGetMacro(LastFlowSeconds, double);

@@ -132,13 +132,16 @@ EXPECTED_NAMES = {
         "LastSetupSeconds", "LastFlowSeconds", "LastAdvectionSeconds", "LastTraceSteps",
         "GhostLevels"},
 }
-EXPECTED_NAMES["SurfaceShockAdvection"] = EXPECTED_NAMES["ImageShockAdvection"]
+EXPECTED_NAMES["SurfaceShockAdvection"] = set(EXPECTED_NAMES["ImageShockAdvection"])
 # GhostLevels: the sharpen filter refuses pieces, so its proxy does not show it.
 EXPECTED_NAMES["SurfaceShockSharpen"] = (EXPECTED_NAMES["ImageShockAdvection"] - {"InputArray", "GhostLevels"}) | {
     "NormalSmoothingPasses", "ScreeningWeight", "Solver", "SolverIterations", "SolverTolerance",
     "MergeCoincidentPoints", "GenerateSharpenedNormals", "LastFitSetupSeconds",
     "LastFitSolveSeconds", "LastSolverIterations", "LastSolverResidual", "LastFlippedTriangles",
     "LastMaxDisplacement"}
+# The image filter alone offers the PDE baseline.
+EXPECTED_NAMES["ImageShockAdvection"] = EXPECTED_NAMES["ImageShockAdvection"] | {
+    "Method", "CourantNumber", "MaximumIterations", "LastIterations", "LastReachedTime"}
 
 # The panel order, computed as pqProxyWidget::createPropertyWidgets does it:
 # XML order, properties of groups with the same label placed together.
@@ -382,6 +385,27 @@ one_thread = point_array(fetch(image), "RTData")
 image.NumberOfThreads = 2
 image.UpdatePipeline()
 check(np.array_equal(one_thread, point_array(fetch(image), "RTData")), "image: same result on 1 and 2 threads")
+
+# Method PDE: the Osher-Rudin baseline, with the same parameters.
+check(image.Method == "Advection", "image: Advection is the default method")
+pde = ImageShockAdvection(Input=step, TimeStep=1024.0, Method="PDE")
+pde.InputArray = ["POINTS", "Step"]
+pde.UpdatePipeline()
+pde.UpdatePropertyInformation()
+p_out = point_array(fetch(pde), "Step")
+check(within(p_out, s_in.min(), s_in.max(), 1e-9), "image pde: range kept")
+check(band(p_out) < 0.5 * band(s_in), "image pde: band %.3f -> %.3f" % (band(s_in), band(p_out)))
+check(float(np.mean(np.abs(p_out - s_out))) < 0.05 * float(s_in.max() - s_in.min()),
+      "image pde: close to the advection, mean difference %.4f" % float(np.mean(np.abs(p_out - s_out))))
+check(pde.LastIterations > 1 and pde.LastReachedTime == 1024.0 and pde.LastTraceSteps == 0,
+      "image pde: measurements %s %s" % (pde.LastIterations, pde.LastReachedTime))
+pde.MaximumIterations = 2
+pde.CourantNumber = 0.25
+pde.UpdatePipeline()
+pde.UpdatePropertyInformation()
+check(pde.LastIterations == 2 and 0.0 < pde.LastReachedTime < 1024.0,
+      "image pde: stops at MaximumIterations, reached %s" % pde.LastReachedTime)
+Delete(pde)
 
 # Cell data on the grid of cell centres.
 cells = PointDatatoCellData(Input=wavelet)
