@@ -24,7 +24,8 @@
  *    composed and naive flows, 1 thread vs --threads (default all). Default:
  *    armadillo, 2 levels (~416K vertices).
  *  - sharpen: vtkPolyDataShockSharpenFilter (the paper's Table 3): t = 2048
- *    with 1 smoothing pass (the target), then the phase table for 0, 1, 2, 4,
+ *    with 1 smoothing pass (the target), time vs t for --times with 1 pass
+ *    (the paper's Table 2, "Positions"), then the phase table for 0, 1, 2, 4,
  *    8 and 16 smoothing passes. Default: ChineseDragon-10kv, 3 levels (~640K
  *    vertices).
  *
@@ -846,6 +847,27 @@ void SharpenBenchmark(const Options& options)
             << " of the bounding-box diagonal. Peak memory: " << PeakText(goal, vertices) << ".\n";
   std::cout.flush();
 
+  // Time vs t, 1 smoothing pass (the paper's Table 2, "Positions" row).
+  std::cerr << "[time vs t]\n";
+  std::cout << "\n### Time vs t (the paper's Table 2, positions), 1 smoothing pass\n\n"
+            << "Wall time of `Update()` in seconds, best of " << options.reps
+            << " (median), and its phases as in the table below.\n\n"
+            << "| t | total | pre-processing | flow | advection | fitting | trace steps |\n"
+            << "|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const double time : options.times)
+  {
+    filter->SetTimeStep(time);
+    const Measurement m =
+      time == t ? goal : Measure(filter, options, "t=" + Fixed(time, 0) + " smoothing=1");
+    const RunRecord& b = m.best;
+    std::cout << "| " << Fixed(time, 0) << " | " << BestMedian(m) << " | "
+              << Seconds(b.setup + b.fitSetup) << " | " << Seconds(b.flow) << " | "
+              << Seconds(b.advection) << " | " << Seconds(b.fitSolve) << " | " << Count(b.steps)
+              << " |\n";
+    std::cout.flush();
+  }
+  filter->SetTimeStep(t);
+
   std::cerr << "[smoothing passes]\n";
   std::vector<std::pair<int, Measurement>> rows;
   for (const double passes : options.smoothing)
@@ -917,7 +939,7 @@ void Usage()
        "                        wall time in CPU seconds (+0.02 s) (default 0.05)\n"
        "  --max-run-seconds S   do not repeat a measurement whose first run took longer (default 60)\n"
        "  --cap K               colors: maximum flow updates of composed/naive (default 64)\n"
-       "  --times a,b,...       colors: t of the time-vs-t table (default 1,4,16,64,256,1024,4096)\n"
+       "  --times a,b,...       colors, sharpen: t of the time-vs-t table (default 1,4,16,64,256,1024,4096)\n"
        "  --flows a,b,...       colors: among fixed,composed,naive (default all)\n"
        "  --blur N              colors: umbrella smoothing passes of the colours (default 16)\n"
        "  --smoothing a,b,...   sharpen: smoothing passes of the phase table (default 0,1,2,4,8,16)\n"

@@ -17,6 +17,8 @@ PACKAGES=(
   libtheora-dev libogg-dev mpi-default-dev libjsoncpp-dev liblzma-dev
   libgl-dev libx11-dev libavcodec-dev libavformat-dev libavutil-dev
   libswscale-dev libgdal-dev libproj-dev
+  # plots of the paper evidence (Benchmarks/reproduce_paper.sh)
+  python3-numpy python3-matplotlib python3-pil
   # headless display for rendering tests and screenshots; MPI launcher
   xvfb xauth mpi-default-bin
 )
