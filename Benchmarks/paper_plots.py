@@ -6,7 +6,7 @@
 Reads OUTDIR/figure9_threads*.csv (paperbench) and, when present,
 OUTDIR/input.png, pde.png and advection.png; writes OUTDIR/figure9.png
 (convergence to the steady state against compute time, one curve per method
-and thread count) and OUTDIR/figure2.png (the photo with three zoom-ins of the
+and thread count), OUTDIR/figure9_scaling.md (seconds per t and thread count) and OUTDIR/figure2.png (the photo with three zoom-ins of the
 input, the PDE's and the advection's steady states). Needs numpy, matplotlib
 and PIL (Debian: python3-numpy python3-matplotlib python3-pil).
 """
@@ -38,12 +38,64 @@ def read_curves(outdir):
     return curves
 
 
+def reference_ratios(curves):
+    """Per method, the ratio at each t from its longest curve. The kernels give
+    bit-identical results for any thread count, so a shorter curve (the 1-thread
+    PDE run stops early) is placed at the ratios of the longest one; its own
+    I_inf would be an earlier state."""
+    longest = {}
+    for (method, _), points in curves.items():
+        if method not in longest or max(p[0] for p in points) > max(p[0] for p in longest[method]):
+            longest[method] = points
+    return {method: {t: ratio for t, _, ratio in points} for method, points in longest.items()}
+
+
+def scaling_table(curves):
+    """Markdown: seconds per t for each thread count, and the speed-up."""
+    threads = sorted({n for _, n in curves})
+    lines = ["| method | t | " + " | ".join("%d thread%s (s)" % (n, "s" if n > 1 else "") for n in threads)
+             + " | speed-up |", "|---|---:|" + "---:|" * (len(threads) + 1)]
+    for method in sorted({m for m, _ in curves}):
+        seconds = {n: {t: s for t, s, _ in curves.get((method, n), [])} for n in threads}
+        for t in sorted(set.intersection(*(set(seconds[n]) for n in threads))):
+            row = [seconds[n][t] for n in threads]
+            lines.append("| %s | %g | %s | %.2f |" % (method, t, " | ".join("%.3f" % s for s in row),
+                                                      row[0] / row[-1]))
+    return "\n".join(lines) + "\n"
+
+
+def time_to_fraction(points, fraction):
+    """Seconds at which the curve (t, seconds, ratio) first reaches `fraction`,
+    interpolated linearly between the two samples around it; None if never."""
+    previous = (0.0, 0.0)
+    for _, seconds, ratio in sorted(points):
+        if ratio >= fraction:
+            s0, r0 = previous
+            return s0 + (seconds - s0) * (fraction - r0) / (ratio - r0) if ratio > r0 else seconds
+        previous = (seconds, ratio)
+    return None
+
+
+def summary_table(curves, threads):
+    """Markdown: seconds for each method to reach given fractions of its own steady state."""
+    lines = ["| fraction of the steady state | advection (s) | PDE (s) | PDE / advection |",
+             "|---:|---:|---:|---:|"]
+    for fraction in (0.25, 0.5, 0.8, 0.9, 0.99):
+        a = time_to_fraction(curves.get(("advection", threads), []), fraction)
+        p = time_to_fraction(curves.get(("pde", threads), []), fraction)
+        if a is not None and p is not None:
+            lines.append("| %g %% | %.2f | %.1f | %.0fx |" % (100 * fraction, a, p, p / a))
+    return "\n".join(lines) + "\n"
+
+
 def plot_figure9(outdir, curves):
+    ratios = reference_ratios(curves)
     fig, ax = plt.subplots(figsize=(7.5, 4.6), dpi=120)
     colours = {"advection": "tab:blue", "pde": "tab:red"}
     names = {"advection": "advection (fixed flow)", "pde": "PDE (Osher-Rudin, upwind/minmod)"}
     for (method, threads), points in sorted(curves.items()):
-        t, seconds, ratio = (np.array(v) for v in zip(*points))
+        t, seconds, _ = (np.array(v) for v in zip(*points))
+        ratio = np.array([ratios[method][ti] for ti in t])
         style = "-" if threads > 1 else "--"
         ax.plot(seconds, ratio, style, marker="o", markersize=3.5, color=colours.get(method, "k"),
                 label="%s, %d thread%s" % (names.get(method, method), threads, "s" if threads > 1 else ""))
@@ -104,6 +156,12 @@ def main():
     if not curves:
         sys.exit("paper_plots.py: no figure9_threads*.csv in %s" % outdir)
     plot_figure9(outdir, curves)
+    most = max(n for _, n in curves)
+    with open(os.path.join(outdir, "figure9_summary.md"), "w") as f:
+        f.write(summary_table(curves, most))
+    if len({n for _, n in curves}) > 1:
+        with open(os.path.join(outdir, "figure9_scaling.md"), "w") as f:
+            f.write(scaling_table(curves))
     steady_time = max(t for points in curves.values() for t, _, _ in points)
     wrote = ["figure9.png"] + (["figure2.png"] if plot_figure2(outdir, steady_time) else [])
     print("wrote %s in %s" % (", ".join(wrote), outdir))

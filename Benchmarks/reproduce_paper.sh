@@ -74,5 +74,8 @@ run table3_one_thread "$bin/meshbench" sharpen --threads 1 --times 2048 --smooth
     cat "$out/$name.md"
     echo
   done
+  echo "## Thread scaling of Figure 9 (seconds to reach t)"
+  echo
+  cat "$out/figure9_scaling.md"
 } > "$out/EVIDENCE.md"
 echo "reproduce_paper: wrote $out/EVIDENCE.md, figure2.png, figure9.png" >&2
