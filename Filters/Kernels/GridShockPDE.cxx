@@ -310,7 +310,9 @@ Status RunPDE(const GridShape& shape, int C, const double* input, double* output
       report.aborted = true;
       break;
     }
-    if (change <= SteadyChange)
+    // Only a full CFL step can tell: one shortened to land on a checkpoint may
+    // be too short to change anything.
+    if (change <= SteadyChange && dt >= cflStep)
     {
       report.steadyState = t < p.time;
       break;
