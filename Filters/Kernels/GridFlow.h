@@ -619,6 +619,39 @@ private:
   LargeArray<float> VelocityField;
 };
 
+/// The argument checks shared by the grid kernels' entry points; an empty Status when valid.
+inline Status CheckGridArguments(
+  const GridShape& shape, int components, const double* input, const double* output)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (shape.dimensions[a] < 1)
+    {
+      return { "grid dimensions must be >= 1" };
+    }
+    if (!(shape.spacing[a] > 0.0) || !std::isfinite(shape.spacing[a]))
+    {
+      return { "grid spacing must be finite and > 0" };
+    }
+  }
+  if (components < 1)
+  {
+    return { "the signal needs at least one component" };
+  }
+  if (!input || !output || input == output)
+  {
+    return { "input and output must be distinct, non-null buffers" };
+  }
+  return {};
+}
+
+/// Flow fields of a signal without flow (constant, or no faces): zero potential and flow.
+inline void ZeroFlowFields(std::int64_t samples, std::int64_t faces, GridFlowFields& fields)
+{
+  fields.potential.assign(static_cast<size_t>(samples), 0.0);
+  fields.flow.assign(static_cast<size_t>(faces * 3), 0.0);
+}
+
 /// Copy the potential and the flow u (world grid axes, 3 per face) of `flow` into `fields`.
 template <int D>
 void ExportFlowFields(const Lattice<D>& L, const FlowComputation<D>& flow, GridFlowFields& fields)

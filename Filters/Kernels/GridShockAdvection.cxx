@@ -711,8 +711,7 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
   const double range = p.valueScale > 0.0 ? p.valueScale : scan.high - scan.low;
   if (fields)
   {
-    fields->potential.assign(static_cast<size_t>(L.numSamples), 0.0);
-    fields->flow.assign(static_cast<size_t>(shape.NumberOfFaces() * 3), 0.0);
+    ZeroFlowFields(L.numSamples, L.numFaces, *fields);
   }
   if (!(range > 0.0) || !std::isfinite(range))
   {
@@ -803,24 +802,10 @@ Status AdvectGridSignal(const GridShape& shape, int components, const double* in
   double* output, const AdvectionParameters& parameters, AdvectionReport* report,
   GridFlowFields* fields, const ProgressFunction& progress)
 {
-  for (int a = 0; a < 3; ++a)
+  const Status arguments = CheckGridArguments(shape, components, input, output);
+  if (!arguments.Ok())
   {
-    if (shape.dimensions[a] < 1)
-    {
-      return { "grid dimensions must be >= 1" };
-    }
-    if (!(shape.spacing[a] > 0.0) || !std::isfinite(shape.spacing[a]))
-    {
-      return { "grid spacing must be finite and > 0" };
-    }
-  }
-  if (components < 1)
-  {
-    return { "the signal needs at least one component" };
-  }
-  if (!input || !output || input == output)
-  {
-    return { "input and output must be distinct, non-null buffers" };
+    return arguments;
   }
   const Status valid = CheckAdvectionParameters(parameters);
   if (!valid.Ok())
@@ -844,8 +829,7 @@ Status AdvectGridSignal(const GridShape& shape, int components, const double* in
       std::copy(input, input + shape.NumberOfSamples() * components, output);
       if (fields)
       {
-        fields->potential.assign(static_cast<size_t>(shape.NumberOfSamples()), 0.0);
-        fields->flow.assign(static_cast<size_t>(shape.NumberOfFaces() * 3), 0.0);
+        ZeroFlowFields(shape.NumberOfSamples(), shape.NumberOfFaces(), *fields);
       }
       return {};
   }

@@ -187,6 +187,20 @@ private:
   const int Threads;
 };
 
+/// A signal that cannot move (no flow): every checkpoint sees the input.
+void PassWithoutFlow(const PDEParameters& p, const double* input, PDEReport& report,
+  const PDECheckpointFunction& checkpoint)
+{
+  report.reachedTime = p.time;
+  for (double t : p.checkpointTimes)
+  {
+    if (checkpoint)
+    {
+      checkpoint(t, 0.0, input);
+    }
+  }
+}
+
 template <int D>
 Status RunPDE(const GridShape& shape, int C, const double* input, double* output,
   const PDEParameters& p, PDEReport& report, GridFlowFields* fields,
@@ -204,18 +218,10 @@ Status RunPDE(const GridShape& shape, int C, const double* input, double* output
     std::copy(input, input + count, output);
     if (fields)
     {
-      fields->potential.assign(static_cast<size_t>(L.numSamples), 0.0);
-      fields->flow.assign(static_cast<size_t>(L.numFaces * 3), 0.0);
+      ZeroFlowFields(L.numSamples, L.numFaces, *fields);
     }
-    report.reachedTime = p.time;
     report.steadyState = p.time > 0.0;
-    for (double t : p.checkpointTimes)
-    {
-      if (checkpoint)
-      {
-        checkpoint(t, 0.0, input);
-      }
-    }
+    PassWithoutFlow(p, input, report, checkpoint);
     return {};
   }
 
@@ -386,24 +392,10 @@ Status SolveGridShockPDE(const GridShape& shape, int components, const double* i
   double* output, const PDEParameters& parameters, PDEReport* report, GridFlowFields* fields,
   const ProgressFunction& progress, const PDECheckpointFunction& checkpoint)
 {
-  for (int a = 0; a < 3; ++a)
+  const Status arguments = CheckGridArguments(shape, components, input, output);
+  if (!arguments.Ok())
   {
-    if (shape.dimensions[a] < 1)
-    {
-      return { "grid dimensions must be >= 1" };
-    }
-    if (!(shape.spacing[a] > 0.0) || !std::isfinite(shape.spacing[a]))
-    {
-      return { "grid spacing must be finite and > 0" };
-    }
-  }
-  if (components < 1)
-  {
-    return { "the signal needs at least one component" };
-  }
-  if (!input || !output || input == output)
-  {
-    return { "input and output must be distinct, non-null buffers" };
+    return arguments;
   }
   const Status valid = CheckPDEParameters(parameters);
   if (!valid.Ok())
@@ -427,17 +419,9 @@ Status SolveGridShockPDE(const GridShape& shape, int components, const double* i
       std::copy(input, input + shape.NumberOfSamples() * components, output);
       if (fields)
       {
-        fields->potential.assign(static_cast<size_t>(shape.NumberOfSamples()), 0.0);
-        fields->flow.assign(static_cast<size_t>(shape.NumberOfFaces() * 3), 0.0);
+        ZeroFlowFields(shape.NumberOfSamples(), shape.NumberOfFaces(), *fields);
       }
-      r.reachedTime = parameters.time;
-      for (double t : parameters.checkpointTimes)
-      {
-        if (checkpoint)
-        {
-          checkpoint(t, 0.0, input);
-        }
-      }
+      PassWithoutFlow(parameters, input, r, checkpoint);
       return {};
   }
 }
