@@ -71,9 +71,13 @@ run table3_one_thread "$bin/meshbench" sharpen --threads 1 --times 2048 --smooth
     echo
     echo "Command: $(cat "$out/$name.cmd")"
     echo
-    cat "$out/$name.md"
+    sed 's/^#/##/' "$out/$name.md" # one level below this section
     echo
   done
+  echo "## Figure 9: seconds to reach a fraction of each method's steady state (2 threads)"
+  echo
+  cat "$out/figure9_summary.md"
+  echo
   echo "## Thread scaling of Figure 9 (seconds to reach t)"
   echo
   cat "$out/figure9_scaling.md"
