@@ -35,6 +35,7 @@
  *
  * Markdown on stdout, progress on stderr.
  */
+#include "BenchmarkSupport.h"
 #include "ShockMeshIO.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
@@ -76,51 +77,11 @@
 
 namespace
 {
+using namespace shockbench;
+
 // =============================================================================
-// Machine, clocks, memory
+// Memory and threads (the rest: BenchmarkSupport.h)
 // =============================================================================
-
-double Now()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-/// The value after "key:" on the first line of 'file' starting with 'key', or "unknown".
-std::string ProcField(const char* file, const std::string& key)
-{
-  std::ifstream in(file);
-  for (std::string line; std::getline(in, line);)
-  {
-    if (line.rfind(key, 0) == 0 && line.find(':') != std::string::npos)
-    {
-      std::string value = line.substr(line.find(':') + 1);
-      value.erase(0, value.find_first_not_of(" \t"));
-      return value;
-    }
-  }
-  return "unknown";
-}
-
-double LoadAverage1()
-{
-  std::ifstream in("/proc/loadavg");
-  double load = 0.0;
-  in >> load;
-  return load;
-}
-
-std::string LoadAverages()
-{
-  std::ifstream in("/proc/loadavg");
-  std::string a, b, c;
-  in >> a >> b >> c;
-  return a + ", " + b + ", " + c;
-}
-
-int HardwareThreads()
-{
-  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-}
 
 /// "all (2)" for 0 (the filters' "all cores"), else the number.
 std::string ThreadsText(int threads)
@@ -142,71 +103,6 @@ bool ResetPeakResidentSet()
   clear << "5";
   clear.flush();
   return static_cast<bool>(clear);
-}
-
-/// CPU seconds used by the whole machine (/proc/stat) and by this process.
-struct CpuClock
-{
-  double machine = 0.0;
-  double self = 0.0;
-
-  static CpuClock Read()
-  {
-    CpuClock clock;
-    std::ifstream in("/proc/stat");
-    std::string cpu;
-    unsigned long long user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0,
-                       steal = 0;
-    in >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal;
-    static const double tick = static_cast<double>(sysconf(_SC_CLK_TCK));
-    clock.machine = static_cast<double>(user + nice + system + irq + softirq + steal) / tick;
-    struct rusage usage;
-    getrusage(RUSAGE_SELF, &usage);
-    clock.self = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-      1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-    return clock;
-  }
-
-  /// CPU seconds other processes used since 'start'.
-  double OthersSince(const CpuClock& start) const
-  {
-    return std::max(0.0, (this->machine - start.machine) - (this->self - start.self));
-  }
-};
-
-// =============================================================================
-// Formatting
-// =============================================================================
-
-std::string Fixed(double value, int digits)
-{
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.*f", digits, value);
-  return text;
-}
-
-/// Seconds with about 3 significant digits.
-std::string Seconds(double value)
-{
-  return value < 1.0 ? Fixed(value, 3) : (value < 100.0 ? Fixed(value, 2) : Fixed(value, 1));
-}
-
-/// 1234567 -> "1.23M".
-std::string Count(double value)
-{
-  if (value >= 1e9)
-  {
-    return Fixed(value / 1e9, 2) + "G";
-  }
-  if (value >= 1e6)
-  {
-    return Fixed(value / 1e6, 2) + "M";
-  }
-  if (value >= 1e4)
-  {
-    return Fixed(value / 1e3, 1) + "K";
-  }
-  return Fixed(value, 0);
 }
 
 // =============================================================================

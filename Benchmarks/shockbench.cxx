@@ -18,6 +18,7 @@
  * Modes: table1, threads, volume, tracing, all (several may be given).
  * Markdown tables go to stdout, progress to stderr.
  */
+#include "BenchmarkSupport.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkFloatArray.h"
@@ -48,6 +49,8 @@
 
 namespace
 {
+using namespace shockbench;
+
 // ----------------------------------------------------------------------------
 // Deterministic random numbers (splitmix64: identical on every platform, unlike
 // the std:: distributions).
@@ -368,70 +371,6 @@ vtkSmartPointer<vtkImageData> MakeVolume(int n, std::uint64_t seed)
 }
 
 // ----------------------------------------------------------------------------
-double Now()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-std::string ReadFirstMatch(const char* file, const std::string& key)
-{
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line))
-  {
-    if (line.compare(0, key.size(), key) == 0)
-    {
-      const auto colon = line.find(':');
-      std::string value = colon == std::string::npos ? line : line.substr(colon + 1);
-      value.erase(0, value.find_first_not_of(" \t"));
-      return value;
-    }
-  }
-  return "unknown";
-}
-
-std::string LoadAverage()
-{
-  std::ifstream in("/proc/loadavg");
-  double a = 0, b = 0, c = 0;
-  in >> a >> b >> c;
-  std::ostringstream s;
-  s << a << ", " << b << ", " << c;
-  return s.str();
-}
-
-std::string Fixed(double v, int digits)
-{
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, v);
-  return buffer;
-}
-
-/// Seconds with 3 significant-ish digits.
-std::string Seconds(double v)
-{
-  return v < 1.0 ? Fixed(v, 3) : (v < 100.0 ? Fixed(v, 2) : Fixed(v, 1));
-}
-
-std::string Big(std::uint64_t v)
-{
-  char buffer[64];
-  if (v >= 1000000000ull)
-  {
-    std::snprintf(buffer, sizeof(buffer), "%.2fG", v / 1e9);
-  }
-  else if (v >= 1000000ull)
-  {
-    std::snprintf(buffer, sizeof(buffer), "%.1fM", v / 1e6);
-  }
-  else
-  {
-    std::snprintf(buffer, sizeof(buffer), "%llu", static_cast<unsigned long long>(v));
-  }
-  return buffer;
-}
-
-// ----------------------------------------------------------------------------
 struct Options
 {
   int reps = 3;
@@ -506,34 +445,6 @@ std::uint64_t TruncatedFromWarnings(const std::vector<std::string>& warnings)
   return total;
 }
 
-/// CPU seconds used by the whole machine (busy time in /proc/stat) and by this process.
-struct CpuClock
-{
-  double machine = 0.0;
-  double self = 0.0;
-  static CpuClock Read()
-  {
-    CpuClock c;
-    std::ifstream in("/proc/stat");
-    std::string cpu;
-    unsigned long long user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0,
-                       steal = 0;
-    in >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal;
-    static const double tick = static_cast<double>(sysconf(_SC_CLK_TCK));
-    c.machine = static_cast<double>(user + nice + system + irq + softirq + steal) / tick;
-    struct rusage usage;
-    getrusage(RUSAGE_SELF, &usage);
-    c.self = usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
-      1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-    return c;
-  }
-  /// CPU seconds used by other processes since `start`.
-  double ForeignSince(const CpuClock& start) const
-  {
-    return std::max(0.0, (this->machine - start.machine) - (this->self - start.self));
-  }
-};
-
 Measurement Run(vtkImageData* input, const Config& config, const Options& options, const std::string& label)
 {
   vtkNew<vtkImageShockAdvectionFilter> filter;
@@ -574,7 +485,7 @@ Measurement Run(vtkImageData* input, const Config& config, const Options& option
     const double start = Now();
     filter->Update();
     const double wall = Now() - start;
-    const double foreign = CpuClock::Read().ForeignSince(cpuStart);
+    const double foreign = CpuClock::Read().OthersSince(cpuStart);
     spent += wall;
     if (!log.errors.empty())
     {
@@ -592,7 +503,7 @@ Measurement Run(vtkImageData* input, const Config& config, const Options& option
     m.truncated = TruncatedFromWarnings(log.warnings);
     std::cerr << "  " << label << "  run " << runs.size() << ": " << Seconds(wall) << " s (flow "
               << Seconds(runs.back().flow) << ", advection " << Seconds(runs.back().advection) << ", "
-              << Big(m.steps) << " steps"
+              << Count(static_cast<double>(m.steps)) << " steps"
               << (m.truncated ? ", " + std::to_string(m.truncated) + " truncated" : std::string())
               << ", other processes " << Fixed(foreign, 2) << " CPU s"
               << (disturbed ? ": DISTURBED" : "") << ")\n";
@@ -658,11 +569,6 @@ std::uint64_t TracesPerPass(vtkImageData* image)
     }
   }
   return faces * corners;
-}
-
-int HardwareThreads()
-{
-  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 // ----------------------------------------------------------------------------
@@ -756,7 +662,7 @@ void Table1(const Options& options)
       const int k = i == 0 ? 1 : r.updates;
       std::cout << "| " << r.t << " | " << FlowName(modes[i]) << " | " << k << " | " << Seconds(m.best)
                 << " | " << Seconds(m.flow) << " | " << Seconds(m.advection) << " | "
-                << Seconds(std::max(0.0, m.best - m.flow - m.advection)) << " | " << Big(m.steps)
+                << Seconds(std::max(0.0, m.best - m.flow - m.advection)) << " | " << Count(static_cast<double>(m.steps))
                 << " | " << Fixed(static_cast<double>(m.steps) / (static_cast<double>(traces) * k), 2)
                 << " |\n";
     }
@@ -832,7 +738,7 @@ void Volume(const Options& options)
     const Measurement& m = ms[i];
     std::cout << "| " << (counts[i] ? std::to_string(counts[i]) : "all (" + std::to_string(HardwareThreads()) + ")")
               << " | " << BestMedian(m) << " | " << Seconds(m.flow) << " | " << Seconds(m.advection)
-              << " | " << Big(m.steps) << " | " << Fixed(static_cast<double>(m.steps) / traces, 2) << " |\n";
+              << " | " << Count(static_cast<double>(m.steps)) << " | " << Fixed(static_cast<double>(m.steps) / traces, 2) << " |\n";
   }
   std::cout.flush();
 }
@@ -874,7 +780,7 @@ void Tracing(const Options& options)
     {
       const Measurement& m = *ms[i];
       std::cout << "| " << r.t << " | " << names[i] << " | " << BestMedian(m) << " | " << Seconds(m.flow)
-                << " | " << Seconds(m.advection) << " | " << Big(m.steps) << " | "
+                << " | " << Seconds(m.advection) << " | " << Count(static_cast<double>(m.steps)) << " | "
                 << Fixed(static_cast<double>(m.steps) / traces, 2) << " | " << m.truncated << " |\n";
     }
   }
@@ -1039,15 +945,15 @@ int main(int argc, char* argv[])
   std::cout << "## shockbench\n\n"
             << "- command: `" << command.str() << "`\n"
             << "- date: " << date << "\n"
-            << "- CPU: " << ReadFirstMatch("/proc/cpuinfo", "model name") << ", "
+            << "- CPU: " << ProcField("/proc/cpuinfo", "model name") << ", "
             << HardwareThreads() << " hardware threads\n"
-            << "- RAM: " << ReadFirstMatch("/proc/meminfo", "MemTotal") << "\n"
+            << "- RAM: " << ProcField("/proc/meminfo", "MemTotal") << "\n"
             << "- compiler: " << __VERSION__
 #ifdef SHOCKBENCH_BUILD_TYPE
             << ", build type " << SHOCKBENCH_BUILD_TYPE
 #endif
             << "\n"
-            << "- load average at start (1, 5, 15 min): " << LoadAverage() << "\n"
+            << "- load average at start (1, 5, 15 min): " << LoadAverages() << "\n"
             << "- repetitions per measurement: " << options.reps << " (best and median of "
             << options.reps << " runs undisturbed by other processes; up to " << options.retries
             << " extra runs replace disturbed ones, i.e. runs during which other processes used more "
@@ -1076,7 +982,7 @@ int main(int argc, char* argv[])
   struct rusage usage;
   getrusage(RUSAGE_SELF, &usage);
   std::cout << "\n- peak RSS (getrusage ru_maxrss): " << Fixed(usage.ru_maxrss / 1024.0, 1) << " MiB\n"
-            << "- load average at end (1, 5, 15 min): " << LoadAverage() << "\n"
+            << "- load average at end (1, 5, 15 min): " << LoadAverages() << "\n"
             << "- total benchmark time: " << Seconds(Now() - start) << " s\n";
   return 0;
 }
