@@ -573,7 +573,7 @@ void ColoursBenchmark(const Options& options)
   filter->SetSmoothingPasses(1);
   const auto configure = [&](double t, int flowMode, int updates, int threads)
   {
-    filter->SetTimeStep(t);
+    filter->SetFlowTime(t);
     filter->SetFlowMode(flowMode);
     filter->SetNumberOfFlowUpdates(updates);
     filter->SetNumberOfThreads(threads);
@@ -711,7 +711,7 @@ void SharpenBenchmark(const Options& options)
 
   vtkNew<vtkPolyDataShockSharpenFilter> filter;
   filter->SetInputData(bench.mesh);
-  filter->SetTimeStep(t);
+  filter->SetFlowTime(t);
   filter->SetNumberOfThreads(options.threads);
   std::cout << "\n### Mesh\n\n"
             << "- " << bench.description << "\n"
@@ -752,7 +752,7 @@ void SharpenBenchmark(const Options& options)
             << "|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const double time : options.times)
   {
-    filter->SetTimeStep(time);
+    filter->SetFlowTime(time);
     const Measurement m =
       time == t ? goal : Measure(filter, options, "t=" + Fixed(time, 0) + " smoothing=1");
     const RunRecord& b = m.best;
@@ -762,7 +762,7 @@ void SharpenBenchmark(const Options& options)
               << " |\n";
     std::cout.flush();
   }
-  filter->SetTimeStep(t);
+  filter->SetFlowTime(t);
 
   std::cerr << "[smoothing passes]\n";
   std::vector<std::pair<int, Measurement>> rows;

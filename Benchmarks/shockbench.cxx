@@ -449,7 +449,7 @@ Measurement Run(vtkImageData* input, const Config& config, const Options& option
 {
   vtkNew<vtkImageShockAdvectionFilter> filter;
   filter->SetInputData(input);
-  filter->SetTimeStep(config.time);
+  filter->SetFlowTime(config.time);
   filter->SetFlowMode(config.flowMode);
   filter->SetNumberOfFlowUpdates(config.updates);
   filter->SetTracingMode(config.tracing);
@@ -813,7 +813,7 @@ void Dump(const std::string& prefix)
   {
     vtkNew<vtkImageShockAdvectionFilter> filter;
     filter->SetInputData(image);
-    filter->SetTimeStep(t);
+    filter->SetFlowTime(t);
     filter->Update();
     const std::string path = prefix + "-fixed-t" + Fixed(t, 0) + ".ppm";
     WritePPM(vtkImageData::SafeDownCast(filter->GetOutput()), path);

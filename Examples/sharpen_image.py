@@ -54,7 +54,7 @@ output.GetPointData().SetScalars(colours)
 
 sharp = simple.ImageShockAdvection(Input=picture)
 sharp.InputArray = ["POINTS", "Colour"]
-sharp.TimeStep = 4096.0       # long enough for a blur of a few pixels to become an edge
+sharp.FlowTime = 4096.0       # long enough for a blur of a few pixels to become an edge
 sharp.SmoothingPasses = 1
 
 

@@ -28,7 +28,7 @@ colours.Function = (
 
 sharp = simple.SurfaceShockAdvection(Input=colours)
 sharp.InputArray = ["POINTS", "Colour"]
-sharp.TimeStep = 4096.0
+sharp.FlowTime = 4096.0
 sharp.SmoothingPasses = 1
 
 

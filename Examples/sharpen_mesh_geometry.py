@@ -25,7 +25,7 @@ fine = simple.Subdivide(Input=triangles, NumberofSubdivisions=4)  # 3072 triangl
 rounded = simple.Smooth(Input=fine, NumberofIterations=300)  # rounds edges and corners
 
 sharp = simple.SurfaceShockSharpen(Input=rounded)
-sharp.TimeStep = 256.0
+sharp.FlowTime = 256.0
 sharp.ScreeningWeight = 1.0
 sharp.SolverIterations = 50
 

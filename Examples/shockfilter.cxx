@@ -725,7 +725,7 @@ std::vector<OptionSpec> ShockOptionSpecs(
   if (set == ShockOptionSet::All)
   {
     specs.push_back({ "--time", "T",
-      "flow time t >= 0, normalised units" + DefaultText(NumberText(defaults->GetTimeStep())),
+      "flow time t >= 0, normalised units" + DefaultText(NumberText(defaults->GetFlowTime())),
       [&target](const std::string& v)
       { target.time = ParseInRange("--time", v, 0.0, std::numeric_limits<double>::max()); } });
     specs.push_back({ "--smoothing", "N",
@@ -762,7 +762,7 @@ void ConfigureFilter(vtkShockAdvectionFilter* filter, const ShockOptions& option
 {
   if (options.time)
   {
-    filter->SetTimeStep(*options.time);
+    filter->SetFlowTime(*options.time);
   }
   if (options.smoothingPasses)
   {
@@ -1396,7 +1396,7 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   run.totalSeconds = TimedUpdate(filter);
   run.output = vtkSmartPointer<vtkImageData>::New();
   run.output->ShallowCopy(filter->GetOutput());
-  run.time = filter->GetTimeStep();
+  run.time = filter->GetFlowTime();
   run.flowMode = filter->GetFlowMode();
   run.threads = filter->GetNumberOfThreads();
   vtkDataArray* array = input->GetPointData()->GetArray(arrayName.c_str());
@@ -1807,7 +1807,7 @@ int RunSurfaceCommand(const std::vector<std::string>& args)
       .Add("array", selected.name)
       .Add("association", kind)
       .Add("components", selected.array->GetNumberOfComponents())
-      .Add("time", filter->GetTimeStep())
+      .Add("time", filter->GetFlowTime())
       .Add("flow_mode", ChoiceName(filter->GetFlowMode(), FlowModeChoices()))
       .Add("threads", filter->GetNumberOfThreads())
       .Add("setup", filter->GetLastSetupSeconds())
@@ -1819,7 +1819,7 @@ int RunSurfaceCommand(const std::vector<std::string>& args)
   }
   std::cerr << "surface: " << input->GetNumberOfPoints() << " points, " << CountTriangles(input)
             << " triangles, " << selected.array->GetNumberOfComponents() << " component(s) of " << kind
-            << " array '" << selected.name << "', t=" << NumberText(filter->GetTimeStep()) << ": "
+            << " array '" << selected.name << "', t=" << NumberText(filter->GetFlowTime()) << ": "
             << std::fixed << std::setprecision(3) << seconds << " s -> " << outputPath << '\n';
   return 0;
 }
@@ -1949,7 +1949,7 @@ int RunSharpenCommand(const std::vector<std::string>& args)
     json.Add("command", "sharpen")
       .Add("points", input->GetNumberOfPoints())
       .Add("triangles", CountTriangles(input))
-      .Add("time", filter->GetTimeStep())
+      .Add("time", filter->GetFlowTime())
       .Add("smoothing", filter->GetSmoothingPasses())
       .Add("normal_smoothing", filter->GetNormalSmoothingPasses())
       .Add("flow_mode", ChoiceName(filter->GetFlowMode(), FlowModeChoices()))
@@ -1970,7 +1970,7 @@ int RunSharpenCommand(const std::vector<std::string>& args)
     std::cout << json.Text() << std::endl;
   }
   std::cerr << "sharpen: " << input->GetNumberOfPoints() << " points, " << CountTriangles(input)
-            << " triangles, t=" << NumberText(filter->GetTimeStep()) << ": " << std::fixed
+            << " triangles, t=" << NumberText(filter->GetFlowTime()) << ": " << std::fixed
             << std::setprecision(3) << seconds << " s (" << filter->GetLastSolverIterations()
             << " solver iterations, relative residual " << NumberText(filter->GetLastSolverResidual())
             << ", " << filter->GetLastFlippedTriangles() << " flipped triangles, max displacement "
@@ -2475,7 +2475,7 @@ void RunMeshDemo(const std::filesystem::path& directory, const ShockOptions& com
     std::to_string(sphere->GetNumberOfPoints()) + "-point sphere, blurred vertex colours");
   vtkNew<vtkPolyDataShockAdvectionFilter> surface;
   ConfigureFilter(surface, common);
-  surface->SetTimeStep(SphereDemoTime);
+  surface->SetFlowTime(SphereDemoTime);
   surface->SetInputData(sphere);
   const double surfaceSeconds = TimedUpdate(surface);
   WriteDemoMesh(surface->GetOutput(), directory, "sphere_sharpened.ply",
@@ -2486,7 +2486,7 @@ void RunMeshDemo(const std::filesystem::path& directory, const ShockOptions& com
     std::to_string(box->GetNumberOfPoints()) + "-point cube, creases rounded to 0.3 of the half side");
   vtkNew<vtkPolyDataShockSharpenFilter> sharpen;
   ConfigureFilter(sharpen, common);
-  sharpen->SetTimeStep(BoxDemoTime);
+  sharpen->SetFlowTime(BoxDemoTime);
   sharpen->SetInputData(box);
   const double sharpenSeconds = TimedUpdate(sharpen);
   WriteDemoMesh(sharpen->GetOutput(), directory, "rounded_box_sharpened.ply",

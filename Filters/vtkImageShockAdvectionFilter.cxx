@@ -237,7 +237,7 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, int c
   else
   {
     shock::PDEParameters parameters;
-    parameters.time = this->TimeStep;
+    parameters.time = this->FlowTime;
     parameters.smoothingPasses = this->SmoothingPasses;
     parameters.courantNumber = this->CourantNumber;
     parameters.maximumIterations = this->MaximumIterations;
@@ -257,7 +257,7 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, int c
         vtkWarningMacro("The PDE stopped at MaximumIterations (" << this->MaximumIterations
                                                                  << " steps) at flow time "
                                                                  << report.reachedTime << " of "
-                                                                 << this->TimeStep << ".");
+                                                                 << this->FlowTime << ".");
       }
     }
   }

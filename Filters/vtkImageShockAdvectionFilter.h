@@ -46,17 +46,17 @@
  * (1) of the paper with F the identity and the second derivative along the
  * gradient as edge detector, which is equation (2), the PDE that the advection
  * solves. It uses the same flow (so SmoothingPasses means the same), the same
- * normalisation and the same flow time TimeStep, so that both methods can be
+ * normalisation and the same flow time FlowTime, so that both methods can be
  * compared parameter for parameter; FlowMode, NumberOfFlowUpdates, Sampling,
  * TracingMode and StepFraction do not apply to it. Its cost is linear in
- * TimeStep (one flow computation per CFL step, CourantNumber) and it is meant
+ * FlowTime (one flow computation per CFL step, CourantNumber) and it is meant
  * as a reference, not for production: see the paper's Figure 9 and
  * docs/paper-evidence.md. In parallel each piece integrates the PDE on its
  * piece with its ghost layers, so pieces agree with the serial result only
  * near their centres (a step moves information by up to 2 x SmoothingPasses + 2
  * samples).
  *
- * @warning Errors (RequestData returns 0): negative or non-finite TimeStep,
+ * @warning Errors (RequestData returns 0): negative or non-finite FlowTime,
  * missing or non-numeric array, field-data array, zero spacing. An empty image
  * passes through with a warning.
  *
@@ -112,7 +112,7 @@ public:
   ///@{
   /**
    * PDE method: the most explicit steps one execution may take. When they do
-   * not reach TimeStep, the output holds the solution at the time reached
+   * not reach FlowTime, the output holds the solution at the time reached
    * (LastReachedTime) and a warning says so. Range [1, 100000000], default 100000.
    */
   vtkSetClampMacro(MaximumIterations, int, 1, 100000000);
@@ -122,7 +122,7 @@ public:
   ///@{
   /**
    * PDE method, measurements of the last execution: explicit steps taken and
-   * the flow time reached (TimeStep, unless MaximumIterations stopped it
+   * the flow time reached (FlowTime, unless MaximumIterations stopped it
    * first). Both 0 after an ADVECTION run.
    */
   vtkGetMacro(LastIterations, vtkTypeInt64);

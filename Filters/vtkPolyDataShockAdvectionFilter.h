@@ -57,7 +57,7 @@
  * whole mesh's: parallel results are close to, not equal to, the serial ones
  * (measured in docs/parallel.md).
  *
- * @warning Errors (RequestData returns 0): negative or non-finite TimeStep,
+ * @warning Errors (RequestData returns 0): negative or non-finite FlowTime,
  * missing or non-numeric array, field-data array, cell data on non-triangle
  * polygons or strips, non-finite point coordinates. An empty input, or an input
  * without polygons, passes through with a warning.

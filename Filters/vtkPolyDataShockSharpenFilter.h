@@ -18,9 +18,9 @@
  * of noisy normals), ScreeningWeight (eps), Solver, SolverIterations,
  * SolverTolerance, MergeCoincidentPoints, GenerateSharpenedNormals. Of the base
  * class, Sampling LINEAR (default) interpolates the per-point normals
- * barycentrically, which also smooths the normals (even at TimeStep 0, as the
+ * barycentrically, which also smooths the normals (even at FlowTime 0, as the
  * paper's Figure 7 shows); NEAREST copies the normal of the triangle reached, so
- * that TimeStep 0 with the EXACT solver returns the input. The normals are unit
+ * that FlowTime 0 with the EXACT solver returns the input. The normals are unit
  * vectors, so their intensity scale is fixed (2) instead of the data range. The
  * input array selection of the base class is not used.
  *
@@ -60,7 +60,7 @@
  * it in the builtin session, pvpython or a serial pvbatch. GhostLevels is
  * ignored.
  *
- * @warning Errors (RequestData returns 0): negative or non-finite TimeStep,
+ * @warning Errors (RequestData returns 0): negative or non-finite FlowTime,
  * non-finite point coordinates, a failed exact factorisation, one piece of a
  * mesh distributed over several processes (see above). An empty input, or
  * one without polygons, passes through with a warning.

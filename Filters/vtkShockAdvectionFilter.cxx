@@ -29,9 +29,9 @@ vtkShockAdvectionFilter::vtkShockAdvectionFilter()
 
 bool vtkShockAdvectionFilter::ValidateParameters()
 {
-  if (!(this->TimeStep >= 0.0) || !std::isfinite(this->TimeStep))
+  if (!(this->FlowTime >= 0.0) || !std::isfinite(this->FlowTime))
   {
-    vtkErrorMacro("TimeStep must be a finite number >= 0, got " << this->TimeStep << ".");
+    vtkErrorMacro("FlowTime must be a finite number >= 0, got " << this->FlowTime << ".");
     return false;
   }
   return true;
@@ -230,7 +230,7 @@ void vtkShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   static const char* flowNames[] = { "Fixed", "Composed", "Naive" };
-  os << indent << "TimeStep: " << this->TimeStep << "\n";
+  os << indent << "FlowTime: " << this->FlowTime << "\n";
   os << indent << "SmoothingPasses: " << this->SmoothingPasses << "\n";
   os << indent << "StepFraction: " << this->StepFraction << "\n";
   os << indent << "FlowMode: " << flowNames[this->FlowMode] << "\n";

@@ -17,7 +17,7 @@
  * of the flow, the tracing and sampling rules, the multi-step flow modes and the
  * thread count. Parameters are made scale-free: intensities are divided by the
  * data range of the processed array and lengths by the mean edge length of the
- * domain, so a TimeStep means the same on 8-bit and floating-point data, and on
+ * domain, so a FlowTime means the same on 8-bit and floating-point data, and on
  * any uniform scaling of the domain.
  *
  * Subclasses: vtkImageShockAdvectionFilter (images and volumes),
@@ -72,8 +72,8 @@ public:
    * t = 0 returns the input exactly. Typical values 1 to 4096; the result
    * converges to a steady state as t grows. Default 64.
    */
-  vtkSetMacro(TimeStep, double);
-  vtkGetMacro(TimeStep, double);
+  vtkSetMacro(FlowTime, double);
+  vtkGetMacro(FlowTime, double);
   ///@}
 
   ///@{
@@ -112,7 +112,7 @@ public:
   ///@{
   /**
    * Number of flow computations K for the COMPOSED and NAIVE modes; each
-   * advection step lasts TimeStep / K. Ignored by FIXED. Range [1, 100000], default 8.
+   * advection step lasts FlowTime / K. Ignored by FIXED. Range [1, 100000], default 8.
    */
   vtkSetClampMacro(NumberOfFlowUpdates, int, 1, 100000);
   vtkGetMacro(NumberOfFlowUpdates, int);
@@ -176,7 +176,7 @@ public:
    * whose flow line would run further is traced as if the data ended there.
    * Flow lines stop at ridges of the potential, so they are short: with the
    * default SmoothingPasses, 8 layers gave the serial result in every
-   * measurement (TimeStep up to 4096) and 16 leaves room for up to 4
+   * measurement (FlowTime up to 4096) and 16 leaves room for up to 4
    * smoothing passes; docs/parallel.md has the measured fractions. 0 filters
    * each piece alone. Rule of thumb: GhostLevels >= 2 x SmoothingPasses + 4.
    *
@@ -302,7 +302,7 @@ protected:
   void RecordRun(double flowSeconds, double advectionSeconds, vtkTypeUInt64 traceSteps,
     vtkTypeUInt64 truncatedTraces);
 
-  double TimeStep = 64.0;
+  double FlowTime = 64.0;
   int SmoothingPasses = 1;
   double StepFraction = 0.1;
   int FlowMode = FIXED;

@@ -69,7 +69,7 @@ namespace vtkShockFilterInternals
 shock::AdvectionParameters MakeParameters(vtkShockAdvectionFilter* filter)
 {
   shock::AdvectionParameters p;
-  p.time = filter->GetTimeStep();
+  p.time = filter->GetFlowTime();
   p.smoothingPasses = filter->GetSmoothingPasses();
   p.stepFraction = filter->GetStepFraction();
   p.flowMode = static_cast<shock::FlowMode>(filter->GetFlowMode());

@@ -112,7 +112,7 @@ vtkSmartPointer<vtkImageData> FilterImage(vtkImageData* input, double time, int 
 {
   vtkNew<vtkImageShockAdvectionFilter> filter;
   filter->SetInputData(input);
-  filter->SetTimeStep(time);
+  filter->SetFlowTime(time);
   filter->SetNumberOfThreads(threads);
   filter->Update();
   return filter->GetOutput();
@@ -133,7 +133,7 @@ TEST(ImageShockAdvectionFilter, WorksInAPipelineAndKeepsTheImageStructure)
   blur->SetDimensionality(2);
   vtkNew<vtkImageShockAdvectionFilter> filter;
   filter->SetInputConnection(blur->GetOutputPort());
-  filter->SetTimeStep(2000.0);
+  filter->SetFlowTime(2000.0);
   filter->Update();
 
   vtkImageData* in = blur->GetOutput();
@@ -177,7 +177,7 @@ TEST(ImageShockAdvectionFilter, PngRoundTrip)
   reader->SetFileName(path.c_str());
   vtkNew<vtkImageShockAdvectionFilter> filter;
   filter->SetInputConnection(reader->GetOutputPort());
-  filter->SetTimeStep(500.0);
+  filter->SetFlowTime(500.0);
   filter->Update();
   vtkDataArray* out = filter->GetOutput()->GetPointData()->GetScalars();
   ASSERT_NE(out, nullptr);
@@ -267,7 +267,7 @@ TEST(ImageShockAdvectionFilter, OtherArraysPassThroughAndTheInputIsUntouched)
 
   vtkNew<vtkImageShockAdvectionFilter> filter;
   filter->SetInputData(image);
-  filter->SetTimeStep(300.0);
+  filter->SetFlowTime(300.0);
   filter->Update();
   vtkImageData* out = filter->GetOutput();
   EXPECT_EQ(Values(intensity), before);
@@ -289,7 +289,7 @@ TEST(ImageShockAdvectionFilter, SelectedNonScalarArrayIsFiltered)
   image->GetPointData()->AddArray(second);
   vtkNew<vtkImageShockAdvectionFilter> filter;
   filter->SetInputData(image);
-  filter->SetTimeStep(300.0);
+  filter->SetFlowTime(300.0);
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Second");
   filter->Update();
   vtkImageData* out = filter->GetOutput();
@@ -313,7 +313,7 @@ TEST(ImageShockAdvectionFilter, CellDataIsFilteredOnTheGridOfCellCentres)
 
   vtkNew<vtkImageShockAdvectionFilter> filter;
   filter->SetInputData(cellImage);
-  filter->SetTimeStep(300.0);
+  filter->SetFlowTime(300.0);
   filter->SetGenerateFlowArrays(true);
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "CellIntensity");
   filter->Update();
@@ -337,7 +337,7 @@ TEST(ImageShockAdvectionFilter, FlowArraysAreInWorldAxes)
   vtkNew<vtkImageShockAdvectionFilter> filter;
   filter->SetInputData(image);
   filter->SetGenerateFlowArrays(true);
-  filter->SetTimeStep(10.0);
+  filter->SetFlowTime(10.0);
   filter->Update();
   vtkSmartPointer<vtkDataArray> potential = filter->GetOutput()->GetPointData()->GetArray("ShockPotential");
   vtkSmartPointer<vtkDataArray> flow = filter->GetOutput()->GetCellData()->GetArray("ShockFlow");
@@ -458,13 +458,13 @@ TEST(ImageShockAdvectionFilter, BadInputsFailWithAClearError)
     const char* message;
   };
   const std::vector<Case> cases = {
-    { "negative time", [](vtkImageShockAdvectionFilter* f) { f->SetTimeStep(-1.0); }, "TimeStep" },
+    { "negative time", [](vtkImageShockAdvectionFilter* f) { f->SetFlowTime(-1.0); }, "FlowTime" },
     { "NaN time",
-      [](vtkImageShockAdvectionFilter* f) { f->SetTimeStep(std::numeric_limits<double>::quiet_NaN()); },
-      "TimeStep" },
+      [](vtkImageShockAdvectionFilter* f) { f->SetFlowTime(std::numeric_limits<double>::quiet_NaN()); },
+      "FlowTime" },
     { "infinite time",
-      [](vtkImageShockAdvectionFilter* f) { f->SetTimeStep(std::numeric_limits<double>::infinity()); },
-      "TimeStep" },
+      [](vtkImageShockAdvectionFilter* f) { f->SetFlowTime(std::numeric_limits<double>::infinity()); },
+      "FlowTime" },
     { "missing array",
       [](vtkImageShockAdvectionFilter* f) {
         f->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "NoSuchArray");
@@ -517,7 +517,7 @@ TEST(ImageShockAdvectionFilter, ReportsProgressAndHonoursAbort)
   auto image = MakeImage(values, 400, 300);
   vtkNew<vtkImageShockAdvectionFilter> filter;
   filter->SetInputData(image);
-  filter->SetTimeStep(1000.0);
+  filter->SetFlowTime(1000.0);
   std::vector<double> progress;
   vtkNew<vtkCallbackCommand> onProgress;
   onProgress->SetClientData(&progress);
@@ -533,7 +533,7 @@ TEST(ImageShockAdvectionFilter, ReportsProgressAndHonoursAbort)
   // Abort at the first progress report: the run stops and the data is unfiltered.
   vtkNew<vtkImageShockAdvectionFilter> aborting;
   aborting->SetInputData(image);
-  aborting->SetTimeStep(1000.0);
+  aborting->SetFlowTime(1000.0);
   int calls = 0;
   vtkNew<vtkCallbackCommand> onAbort;
   onAbort->SetClientData(&calls);
@@ -569,13 +569,13 @@ TEST(ImageShockAdvectionFilter, PDEMethodSharpensLikeTheAdvection)
   vtkNew<vtkImageShockAdvectionFilter> pde;
   pde->SetInputConnection(blur->GetOutputPort());
   pde->SetMethodToPDE();
-  pde->SetTimeStep(4096.0);
+  pde->SetFlowTime(4096.0);
   MessageLog log(pde);
   ASSERT_TRUE(UpdateSucceeds(pde));
   EXPECT_TRUE(log.Warnings.empty()) << log.Warnings;
   vtkNew<vtkImageShockAdvectionFilter> advection;
   advection->SetInputConnection(blur->GetOutputPort());
-  advection->SetTimeStep(4096.0);
+  advection->SetFlowTime(4096.0);
   advection->Update();
 
   vtkImageData* in = blur->GetOutput();
@@ -629,7 +629,7 @@ TEST(ImageShockAdvectionFilter, PDEMethodEqualsTheKernelAndHandlesEveryAssociati
       cells ? vtkDataObject::FIELD_ASSOCIATION_CELLS : vtkDataObject::FIELD_ASSOCIATION_POINTS,
       "Intensity");
     filter->SetMethod(vtkImageShockAdvectionFilter::PDE);
-    filter->SetTimeStep(48.0);
+    filter->SetFlowTime(48.0);
     filter->SetCourantNumber(0.3);
     filter->SetSmoothingPasses(2);
     ASSERT_TRUE(UpdateSucceeds(filter));
@@ -663,7 +663,7 @@ TEST(ImageShockAdvectionFilter, PDEMethodWarnsAtTheIterationLimit)
   MessageLog log(filter);
   filter->SetInputData(image);
   filter->SetMethodToPDE();
-  filter->SetTimeStep(5000.0);
+  filter->SetFlowTime(5000.0);
   filter->SetMaximumIterations(2);
   ASSERT_TRUE(UpdateSucceeds(filter));
   EXPECT_NE(log.Warnings.find("MaximumIterations"), std::string::npos) << log.Warnings;
@@ -684,9 +684,9 @@ TEST(ImageShockAdvectionFilter, PDEMethodFailsCleanlyAndHonoursAbort)
     MessageLog log(filter);
     filter->SetInputData(image);
     filter->SetMethodToPDE();
-    filter->SetTimeStep(bad);
+    filter->SetFlowTime(bad);
     EXPECT_FALSE(UpdateSucceeds(filter));
-    EXPECT_NE(log.Errors.find("TimeStep"), std::string::npos) << log.Errors;
+    EXPECT_NE(log.Errors.find("FlowTime"), std::string::npos) << log.Errors;
     EXPECT_EQ(filter->GetLastIterations(), 0);
   }
   // A NaN sample stays where it is and does not spread.
@@ -697,7 +697,7 @@ TEST(ImageShockAdvectionFilter, PDEMethodFailsCleanlyAndHonoursAbort)
     vtkNew<vtkImageShockAdvectionFilter> filter;
     filter->SetInputData(nanImage);
     filter->SetMethodToPDE();
-    filter->SetTimeStep(256.0);
+    filter->SetFlowTime(256.0);
     ASSERT_TRUE(UpdateSucceeds(filter));
     const auto out = Values(filter->GetOutput()->GetPointData()->GetScalars());
     for (size_t i = 0; i < out.size(); ++i)
@@ -709,7 +709,7 @@ TEST(ImageShockAdvectionFilter, PDEMethodFailsCleanlyAndHonoursAbort)
   vtkNew<vtkImageShockAdvectionFilter> aborting;
   aborting->SetInputData(image);
   aborting->SetMethodToPDE();
-  aborting->SetTimeStep(100000.0);
+  aborting->SetFlowTime(100000.0);
   vtkNew<vtkCallbackCommand> onAbort;
   onAbort->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
     static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
@@ -728,7 +728,7 @@ TEST(ImageShockAdvectionFilter, PrintSelfListsTheParameters)
   filter->SetTracingModeToStepped();
   std::ostringstream os;
   filter->Print(os);
-  for (const char* key : { "TimeStep", "SmoothingPasses", "StepFraction", "FlowMode: Composed",
+  for (const char* key : { "FlowTime", "SmoothingPasses", "StepFraction", "FlowMode: Composed",
          "NumberOfFlowUpdates", "Sampling: Nearest", "TracingMode: Stepped", "GenerateFlowArrays",
          "NumberOfThreads", "Method: Advection", "CourantNumber", "MaximumIterations" })
   {

@@ -250,12 +250,12 @@ double MaxAbsDifference(const std::vector<double>& a, const std::vector<double>&
 // ---------------------------------------------------------------------------
 // Running the filter
 
-/// Filter `input` with TimeStep `time` after `setup`; the output (kept alive after the filter).
+/// Filter `input` with FlowTime `time` after `setup`; the output (kept alive after the filter).
 vtkSmartPointer<vtkPolyData> FilterMesh(vtkPolyData* input, double time, const Configure& setup = Configure())
 {
   vtkNew<Filter> filter;
   filter->SetInputData(input);
-  filter->SetTimeStep(time);
+  filter->SetFlowTime(time);
   if (setup)
   {
     setup(filter);
@@ -299,7 +299,7 @@ TEST(PolyDataShockAdvectionFilter, ElevationOnASphereInAPipelineKeepsTheMesh)
   elevation->SetHighPoint(0.0, 0.0, 0.5);
   vtkNew<Filter> filter;
   filter->SetInputConnection(elevation->GetOutputPort());
-  filter->SetTimeStep(RampSharpeningTime);
+  filter->SetFlowTime(RampSharpeningTime);
   MessageLog log(filter);
   ASSERT_TRUE(UpdateSucceeds(filter));
   EXPECT_TRUE(log.Errors.empty()) << log.Errors;
@@ -599,7 +599,7 @@ TEST(PolyDataShockAdvectionFilter, CellDataOnTrianglesIsFiltered)
   mesh->GetCellData()->SetScalars(cells);
   vtkNew<Filter> filter;
   filter->SetInputData(mesh);
-  filter->SetTimeStep(SharpeningTime);
+  filter->SetFlowTime(SharpeningTime);
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "CellStep");
   MessageLog log(filter);
   ASSERT_TRUE(UpdateSucceeds(filter));
@@ -633,7 +633,7 @@ TEST(PolyDataShockAdvectionFilter, QuadsAndStripsKeepTheirCells)
   {
     vtkNew<Filter> filter;
     filter->SetInputData(quads);
-    filter->SetTimeStep(SharpeningTime);
+    filter->SetFlowTime(SharpeningTime);
     filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "CellStep");
     MessageLog log(filter);
     EXPECT_FALSE(UpdateSucceeds(filter));
@@ -644,7 +644,7 @@ TEST(PolyDataShockAdvectionFilter, QuadsAndStripsKeepTheirCells)
   {
     vtkNew<Filter> filter;
     filter->SetInputData(quads);
-    filter->SetTimeStep(SharpeningTime);
+    filter->SetFlowTime(SharpeningTime);
     MessageLog log(filter);
     ASSERT_TRUE(UpdateSucceeds(filter));
     EXPECT_TRUE(log.Errors.empty()) << log.Errors;
@@ -668,7 +668,7 @@ TEST(PolyDataShockAdvectionFilter, QuadsAndStripsKeepTheirCells)
   stripper->SetInputData(sphere);
   vtkNew<Filter> filter;
   filter->SetInputConnection(stripper->GetOutputPort());
-  filter->SetTimeStep(SharpeningTime);
+  filter->SetFlowTime(SharpeningTime);
   MessageLog log(filter);
   ASSERT_TRUE(UpdateSucceeds(filter));
   EXPECT_TRUE(log.Errors.empty()) << log.Errors;
@@ -727,7 +727,7 @@ TEST(PolyDataShockAdvectionFilter, VerticesAndLinesPassThrough)
   elevation->SetHighPoint(0.0, 0.0, 0.5);
   vtkNew<Filter> filter;
   filter->SetInputConnection(elevation->GetOutputPort());
-  filter->SetTimeStep(RampSharpeningTime);
+  filter->SetFlowTime(RampSharpeningTime);
   filter->GenerateFlowArraysOn();
   MessageLog log(filter);
   ASSERT_TRUE(UpdateSucceeds(filter));
@@ -827,7 +827,7 @@ TEST(PolyDataShockAdvectionFilter, OtherArraysPassThroughAndTheInputIsUntouched)
   {
     vtkNew<Filter> filter;
     filter->SetInputData(mesh);
-    filter->SetTimeStep(SharpeningTime);
+    filter->SetFlowTime(SharpeningTime);
     filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, selected);
     filter->Update();
     vtkPolyData* out = filter->GetOutput();
@@ -881,7 +881,7 @@ TEST(PolyDataShockAdvectionFilter, FlowArraysAreTangentToTheSurface)
   auto mesh = StepSphere();
   vtkNew<Filter> filter;
   filter->SetInputData(mesh);
-  filter->SetTimeStep(100.0);
+  filter->SetFlowTime(100.0);
   filter->GenerateFlowArraysOn();
   filter->Update();
   vtkPolyData* out = filter->GetOutput();
@@ -1103,7 +1103,7 @@ TEST(PolyDataShockAdvectionFilter, MultiStepModesSamplingAndSteppedTracing)
   {
     vtkNew<Filter> filter;
     filter->SetInputData(mesh);
-    filter->SetTimeStep(SharpeningTime);
+    filter->SetFlowTime(SharpeningTime);
     mode.setup(filter);
     MessageLog log(filter);
     ASSERT_TRUE(UpdateSucceeds(filter)) << mode.what;
@@ -1169,10 +1169,10 @@ TEST(PolyDataShockAdvectionFilter, BadInputsFailWithAClearError)
     const char* message;
   };
   const std::vector<Case> cases = {
-    { "negative time", [](Filter* f) { f->SetTimeStep(-1.0); }, "TimeStep" },
-    { "NaN time", [](Filter* f) { f->SetTimeStep(std::numeric_limits<double>::quiet_NaN()); }, "TimeStep" },
-    { "infinite time", [](Filter* f) { f->SetTimeStep(std::numeric_limits<double>::infinity()); },
-      "TimeStep" },
+    { "negative time", [](Filter* f) { f->SetFlowTime(-1.0); }, "FlowTime" },
+    { "NaN time", [](Filter* f) { f->SetFlowTime(std::numeric_limits<double>::quiet_NaN()); }, "FlowTime" },
+    { "infinite time", [](Filter* f) { f->SetFlowTime(std::numeric_limits<double>::infinity()); },
+      "FlowTime" },
     { "missing array", PointArrayNamed("NoSuchArray"), "NoSuchArray" },
     { "string array", PointArrayNamed("Labels"), "not a numeric array" },
     { "field data",
@@ -1186,7 +1186,7 @@ TEST(PolyDataShockAdvectionFilter, BadInputsFailWithAClearError)
     vtkNew<Filter> filter;
     MessageLog log(filter);
     filter->SetInputData(mesh);
-    filter->SetTimeStep(10.0);
+    filter->SetFlowTime(10.0);
     c.setup(filter);
     EXPECT_FALSE(UpdateSucceeds(filter)) << c.what;
     EXPECT_NE(log.Errors.find(c.message), std::string::npos) << c.what << ": " << log.Errors;
@@ -1200,7 +1200,7 @@ TEST(PolyDataShockAdvectionFilter, BadInputsFailWithAClearError)
     vtkNew<Filter> filter;
     MessageLog log(filter);
     filter->SetInputData(broken);
-    filter->SetTimeStep(10.0);
+    filter->SetFlowTime(10.0);
     EXPECT_FALSE(UpdateSucceeds(filter));
     EXPECT_NE(log.Errors.find("not finite"), std::string::npos) << log.Errors;
   }
@@ -1425,7 +1425,7 @@ TEST(PolyDataShockAdvectionFilter, MeshDefectsGiveFiniteValuesInRange)
     ASSERT_EQ(in->GetNumberOfTuples(), mesh->GetNumberOfPoints()) << defect.what;
     vtkNew<Filter> filter;
     filter->SetInputData(mesh);
-    filter->SetTimeStep(2000.0);
+    filter->SetFlowTime(2000.0);
     MessageLog log(filter);
     ASSERT_TRUE(UpdateSucceeds(filter)) << defect.what << ": " << log.Errors;
     EXPECT_TRUE(log.Errors.empty()) << defect.what << ": " << log.Errors;
@@ -1538,7 +1538,7 @@ TEST(PolyDataShockAdvectionFilter, ReportsProgressAndHonoursAbort)
   ASSERT_LE(mesh->GetNumberOfPoints(), 50000);
   vtkNew<Filter> filter;
   filter->SetInputData(mesh);
-  filter->SetTimeStep(500.0);
+  filter->SetFlowTime(500.0);
   std::vector<double> progress;
   vtkNew<vtkCallbackCommand> onProgress;
   onProgress->SetClientData(&progress);
@@ -1564,7 +1564,7 @@ TEST(PolyDataShockAdvectionFilter, ReportsProgressAndHonoursAbort)
   } state;
   vtkNew<Filter> aborting;
   aborting->SetInputData(mesh);
-  aborting->SetTimeStep(500.0);
+  aborting->SetFlowTime(500.0);
   vtkNew<vtkCallbackCommand> onAbort;
   onAbort->SetClientData(&state);
   onAbort->SetCallback([](vtkObject* caller, unsigned long, void* client, void* data) {
@@ -1591,7 +1591,7 @@ TEST(PolyDataShockAdvectionFilter, ReportsProgressAndHonoursAbort)
 TEST(PolyDataShockAdvectionFilter, PrintSelfListsTheParameters)
 {
   vtkNew<Filter> filter;
-  filter->SetTimeStep(123.25);
+  filter->SetFlowTime(123.25);
   filter->SetSmoothingPasses(3);
   filter->SetFlowModeToNaive();
   filter->SetNumberOfFlowUpdates(5);
@@ -1601,7 +1601,7 @@ TEST(PolyDataShockAdvectionFilter, PrintSelfListsTheParameters)
   filter->SetNumberOfThreads(2);
   std::ostringstream os;
   filter->Print(os);
-  for (const char* key : { "vtkPolyDataShockAdvectionFilter", "TimeStep: 123.25", "SmoothingPasses: 3",
+  for (const char* key : { "vtkPolyDataShockAdvectionFilter", "FlowTime: 123.25", "SmoothingPasses: 3",
          "StepFraction", "FlowMode: Naive", "NumberOfFlowUpdates: 5", "Sampling: Nearest",
          "TracingMode: Stepped", "GenerateFlowArrays: On", "NumberOfThreads: 2" })
   {

@@ -113,14 +113,14 @@ vtkSmartPointer<vtkPolyData> DeepCopy(vtkPolyData* mesh)
 // ---------------------------------------------------------------------------
 // Running the filter
 
-/// Run a filter on `input` (TimeStep `time`, then `configure`); expect success without errors.
+/// Run a filter on `input` (FlowTime `time`, then `configure`); expect success without errors.
 vtkSmartPointer<vtkPolyData> Sharpen(vtkPolyData* input, double time, const Configure& configure = {},
   std::string* warnings = nullptr)
 {
   vtkNew<Filter> filter;
   MessageLog log(filter);
   filter->SetInputData(input);
-  filter->SetTimeStep(time);
+  filter->SetFlowTime(time);
   if (configure)
   {
     configure(filter);
@@ -329,7 +329,7 @@ TEST(PolyDataShockSharpenFilter, RoundedCubeSharpensTowardsTheCube)
   vtkNew<Filter> filter;
   MessageLog log(filter);
   filter->SetInputData(box);
-  filter->SetTimeStep(2048.0); // everything else at its default (the paper's CG, 25 iterations)
+  filter->SetFlowTime(2048.0); // everything else at its default (the paper's CG, 25 iterations)
   ASSERT_TRUE(UpdateSucceeds(filter)) << log.Errors;
   EXPECT_TRUE(log.Errors.empty()) << log.Errors;
   vtkPolyData* out = filter->GetOutput();
@@ -451,7 +451,7 @@ TEST(PolyDataShockSharpenFilter, ScalingAndTranslatingTheMeshTransformsTheResult
   auto box = RoundedCube(12);
   const Configure setup = [](Filter* f) {
     f->SetSolverToExact();
-    f->SetTimeStep(512.0);
+    f->SetFlowTime(512.0);
   };
   auto reference = Sharpen(box, 512.0, setup);
 
@@ -628,7 +628,7 @@ TEST(PolyDataShockSharpenFilter, PointTypeIsKept)
   source->SetPhiResolution(48);
   vtkNew<Filter> filter;
   filter->SetInputConnection(source->GetOutputPort());
-  filter->SetTimeStep(256.0);
+  filter->SetFlowTime(256.0);
   filter->SetSolverToExact();
   MessageLog log(filter);
   ASSERT_TRUE(UpdateSucceeds(filter)) << log.Errors;
@@ -655,7 +655,7 @@ TEST(PolyDataShockSharpenFilter, SolversAndTheirMeasurements)
     vtkNew<Filter> filter;
     MessageLog log(filter);
     filter->SetInputData(box);
-    filter->SetTimeStep(1024.0);
+    filter->SetFlowTime(1024.0);
     configure(filter);
     EXPECT_TRUE(UpdateSucceeds(filter)) << log.Errors;
     EXPECT_EQ(FieldValue(filter->GetOutput(), "ShockSolverIterations"), filter->GetLastSolverIterations());
@@ -1114,12 +1114,12 @@ TEST(PolyDataShockSharpenFilter, BadInputsFailWithAClearError)
     MessageLog log(filter);
     filter->SetInputData(box);
     // A good run first: the measurements of a failed run must not be the old ones.
-    filter->SetTimeStep(64.0);
+    filter->SetFlowTime(64.0);
     ASSERT_TRUE(UpdateSucceeds(filter)) << log.Errors;
     ASSERT_EQ(filter->GetLastSolverIterations(), 25);
-    filter->SetTimeStep(c.time);
+    filter->SetFlowTime(c.time);
     EXPECT_FALSE(UpdateSucceeds(filter)) << c.what;
-    EXPECT_NE(log.Errors.find("TimeStep"), std::string::npos) << c.what << ": " << log.Errors;
+    EXPECT_NE(log.Errors.find("FlowTime"), std::string::npos) << c.what << ": " << log.Errors;
     EXPECT_EQ(filter->GetLastSolverIterations(), 0) << c.what;
     EXPECT_EQ(filter->GetLastMaxDisplacement(), 0.0) << c.what;
   }
@@ -1173,7 +1173,7 @@ TEST(PolyDataShockSharpenFilter, EmptyAndPolygonFreeInputsPassThroughWithAWarnin
     vtkNew<Filter> filter;
     MessageLog log(filter);
     filter->SetInputConnection(source->GetOutputPort());
-    filter->SetTimeStep(1000.0);
+    filter->SetFlowTime(1000.0);
     EXPECT_TRUE(UpdateSucceeds(filter)) << source->GetClassName();
     EXPECT_TRUE(log.Errors.empty()) << log.Errors;
     EXPECT_NE(log.Warnings.find("no polygons"), std::string::npos) << source->GetClassName() << log.Warnings;
@@ -1194,10 +1194,10 @@ TEST(PolyDataShockSharpenFilter, ChainedInAPipelineAndReExecutedOnChange)
   sphere->SetPhiResolution(40);
   vtkNew<Filter> first;
   first->SetInputConnection(sphere->GetOutputPort());
-  first->SetTimeStep(128.0);
+  first->SetFlowTime(128.0);
   vtkNew<Filter> second;
   second->SetInputConnection(first->GetOutputPort());
-  second->SetTimeStep(128.0);
+  second->SetFlowTime(128.0);
   second->SetSolverIterations(7);
   MessageLog log(second);
   ASSERT_TRUE(UpdateSucceeds(second)) << log.Errors;
@@ -1224,7 +1224,7 @@ TEST(PolyDataShockSharpenFilter, ReportsProgressAndHonoursAbort)
   auto box = RoundedCube(24);
   vtkNew<Filter> filter;
   filter->SetInputData(box);
-  filter->SetTimeStep(512.0);
+  filter->SetFlowTime(512.0);
   std::vector<double> progress;
   vtkNew<vtkCallbackCommand> onProgress;
   onProgress->SetClientData(&progress);
@@ -1247,7 +1247,7 @@ TEST(PolyDataShockSharpenFilter, ReportsProgressAndHonoursAbort)
   } state;
   vtkNew<Filter> aborting;
   aborting->SetInputData(box);
-  aborting->SetTimeStep(512.0);
+  aborting->SetFlowTime(512.0);
   vtkNew<vtkCallbackCommand> onAbort;
   onAbort->SetClientData(&state);
   onAbort->SetCallback([](vtkObject* caller, unsigned long, void* client, void* data) {
@@ -1314,10 +1314,10 @@ TEST(PolyDataShockSharpenFilter, DefaultsClampingAndPrintSelf)
   filter->SetSolverTolerance(1e-7);
   filter->MergeCoincidentPointsOff();
   filter->GenerateSharpenedNormalsOn();
-  filter->SetTimeStep(123.25);
+  filter->SetFlowTime(123.25);
   std::ostringstream os;
   filter->Print(os);
-  for (const char* key : { "vtkPolyDataShockSharpenFilter", "TimeStep: 123.25", "NormalSmoothingPasses: 3",
+  for (const char* key : { "vtkPolyDataShockSharpenFilter", "FlowTime: 123.25", "NormalSmoothingPasses: 3",
          "ScreeningWeight: 2.5", "Solver: ConjugateGradientTolerance", "SolverIterations: 40",
          "SolverTolerance: 1e-07", "MergeCoincidentPoints: Off", "GenerateSharpenedNormals: On",
          "LastSolverResidual", "LastMaxDisplacement" })

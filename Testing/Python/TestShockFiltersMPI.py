@@ -113,7 +113,7 @@ def piece_extents(path):
         return [list(map(int, e.split())) for e in re.findall(r'<Piece Extent="([^"]*)"', handle.read())]
 
 
-def image_case(label, extent, time_step, ghost_levels, band, bound, expression=None, cells=False):
+def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=None, cells=False):
     """Filter in parallel and serially; equality outside `band` samples of the
     piece boundaries, and at most `bound` of the samples differing."""
     name = "Step" if expression else "RTData"
@@ -127,14 +127,14 @@ def image_case(label, extent, time_step, ghost_levels, band, bound, expression=N
         to_cells.SetInputConnection(reference_input.GetOutputPort())
         keep.append(to_cells)
         last = to_cells
-    serial = serial_filter("ImageShockAdvection", last, InputArray=[association, name], TimeStep=time_step)
+    serial = serial_filter("ImageShockAdvection", last, InputArray=[association, name], FlowTime=flow_time)
     # Parallel run (fresh proxies: a source keeps the ghost layers of an earlier request).
     proxies = [Wavelet(WholeExtent=extent)]
     if expression:
         proxies.append(Calculator(Input=proxies[-1], Function=expression, ResultArrayName="Step"))
     if cells:
         proxies.append(PointDatatoCellData(Input=proxies[-1]))
-    filtered = ImageShockAdvection(Input=proxies[-1], InputArray=[association, name], TimeStep=time_step,
+    filtered = ImageShockAdvection(Input=proxies[-1], InputArray=[association, name], FlowTime=flow_time,
                                    GhostLevels=ghost_levels)
     path = os.path.join(OUTPUT, "image_%s.pvti" % label)
     SaveData(path, proxy=filtered)
@@ -182,7 +182,7 @@ def image_case(label, extent, time_step, ghost_levels, band, bound, expression=N
     widest = distance[differ].max() if differ.any() else 0
     print("MEASURE image %-24s T=%-6g GhostLevels=%-3d differing=%.4f%% max|diff|/range=%.2g "
           "farthest differing sample %s from a piece boundary" % (
-              label, time_step, ghost_levels, 100 * fraction, np.abs(parallel - expected).max() / scale, widest),
+              label, flow_time, ghost_levels, 100 * fraction, np.abs(parallel - expected).max() / scale, widest),
           flush=True)
     check(not outside.any(), "%s: %d samples differ farther than %d samples from a piece boundary"
           % (label, outside.sum(), band))
@@ -203,9 +203,9 @@ def unsplit_image_case():
     from vtkmodules.vtkIOLegacy import vtkStructuredPointsReader
     file_reader = vtkStructuredPointsReader()
     file_reader.SetFileName(path)
-    serial = serial_filter("ImageShockAdvection", file_reader, InputArray=["POINTS", "RTData"], TimeStep=64)
+    serial = serial_filter("ImageShockAdvection", file_reader, InputArray=["POINTS", "RTData"], FlowTime=64)
     reader_proxy = LegacyVTKReader(FileNames=[path])
-    filtered = ImageShockAdvection(Input=reader_proxy, InputArray=["POINTS", "RTData"], TimeStep=64)
+    filtered = ImageShockAdvection(Input=reader_proxy, InputArray=["POINTS", "RTData"], FlowTime=64)
     out = os.path.join(OUTPUT, "image_unsplit.pvti")
     SaveData(out, proxy=filtered)
     Delete(filtered)
@@ -239,19 +239,19 @@ def point_key(points):
     return [tuple(p) for p in np.round(np.asarray(points, dtype=float), 9)]
 
 
-def surface_case(label, resolution, time_step, ghost_levels, ghosts, max_bound, fraction_bound):
+def surface_case(label, resolution, flow_time, ghost_levels, ghosts, max_bound, fraction_bound):
     """Per-point agreement of Surface Shock Advection on sphere pieces."""
     expression = "tanh((coordsZ+0.3*coordsX)*12)"
     reference_input, keep = sphere_input(resolution, expression)
     serial = serial_filter("SurfaceShockAdvection", reference_input, InputArray=["POINTS", "Heat"],
-                           TimeStep=time_step)
+                           FlowTime=flow_time)
     expected = dict(zip(point_key(vtk_to_numpy(serial.GetPoints().GetData())),
                         vtk_to_numpy(serial.GetPointData().GetArray("Heat"))))
     proxies = [Sphere(ThetaResolution=resolution, PhiResolution=resolution)]
     proxies.append(Calculator(Input=proxies[-1], Function=expression, ResultArrayName="Heat"))
     if ghosts:
         proxies.append(GhostCellsGenerator(Input=proxies[-1]))
-    filtered = SurfaceShockAdvection(Input=proxies[-1], InputArray=["POINTS", "Heat"], TimeStep=time_step,
+    filtered = SurfaceShockAdvection(Input=proxies[-1], InputArray=["POINTS", "Heat"], FlowTime=flow_time,
                                      GhostLevels=ghost_levels)
     path = os.path.join(OUTPUT, "surface_%s.pvtp" % label)
     SaveData(path, proxy=filtered)
@@ -274,7 +274,7 @@ def surface_case(label, resolution, time_step, ghost_levels, ghosts, max_bound, 
     scale = np.ptp(np.array(list(expected.values())))
     print("MEASURE surface %-22s T=%-6g GhostLevels=%-3d ghost cells=%-3s points differing: %.2f%% (>1e-12), "
           "%.3f%% (>1e-3 of the range); max|diff|/range=%.2g" % (
-              label, time_step, ghost_levels, "yes" if ghosts else "no", 100 * np.mean(difference > 1e-12 * scale),
+              label, flow_time, ghost_levels, "yes" if ghosts else "no", 100 * np.mean(difference > 1e-12 * scale),
               100 * np.mean(difference > 1e-3 * scale), difference.max() / scale), flush=True)
     check(difference.max() <= max_bound * scale, "%s: max difference %.3g of the range (bound %g)"
           % (label, difference.max() / scale, max_bound))
@@ -287,7 +287,7 @@ def sharpen_cases():
     # Refused on pieces of a distributed mesh.
     del messages.errors[:]
     sphere = Sphere(ThetaResolution=32, PhiResolution=32)
-    sharpen = SurfaceShockSharpen(Input=sphere, TimeStep=256)
+    sharpen = SurfaceShockSharpen(Input=sphere, FlowTime=256)
     sharpen.UpdatePipeline()
     info = sharpen.GetDataInformation()
     check(info.GetNumberOfPoints() == 0, "sharpen on pieces: empty output (%d points)" % info.GetNumberOfPoints())
@@ -307,7 +307,7 @@ def sharpen_cases():
     # copies differ in the last bits: Clean merges them (MergeCoincidentPoints
     # only merges exact copies), else the seam would act as a boundary.
     clean = Clean(Input=aggregate, Tolerance=1e-6)
-    sharpen = SurfaceShockSharpen(Input=clean, TimeStep=256, Solver="Exact")
+    sharpen = SurfaceShockSharpen(Input=clean, FlowTime=256, Solver="Exact")
     path = os.path.join(OUTPUT, "sharpen_aggregated.pvtp")
     SaveData(path, proxy=sharpen)
     check(not messages.errors, "sharpen on an aggregated mesh: no error (%s)" % messages.errors)
@@ -321,7 +321,7 @@ def sharpen_cases():
     source = vtkSphereSource()
     source.SetThetaResolution(32)
     source.SetPhiResolution(32)
-    serial = serial_filter("SurfaceShockSharpen", source, TimeStep=256, Solver="Exact")
+    serial = serial_filter("SurfaceShockSharpen", source, FlowTime=256, Solver="Exact")
     expected = dict(zip(point_key(vtk_to_numpy(source.GetOutput().GetPoints().GetData())),
                         vtk_to_numpy(serial.GetPoints().GetData())))
     original = point_key(vtk_to_numpy(mesh.GetPointData().GetArray("Original")))
@@ -336,7 +336,7 @@ def sharpen_cases():
 
 
 cases = [
-    # label, extent, TimeStep, GhostLevels, band W, bound on the differing fraction
+    # label, extent, FlowTime, GhostLevels, band W, bound on the differing fraction
     lambda: image_case("wavelet2d", [0, 255, 0, 255, 0, 0], 64, 16, 16, 0.005),
     lambda: image_case("wavelet2d_g0", [0, 255, 0, 255, 0, 0], 64, 0, 8, 0.05),
     lambda: image_case("step2d_t4096_g4", [-128, 127, -128, 127, 0, 0], 4096, 4, 8, 0.01,

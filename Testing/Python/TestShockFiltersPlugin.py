@@ -127,7 +127,7 @@ for abstract in ["ShockFilterBase", "ShockAdvectionBase"]:
 
 EXPECTED_NAMES = {
     "ImageShockAdvection": {
-        "Input", "InputArray", "TimeStep", "SmoothingPasses", "FlowMode", "NumberOfFlowUpdates",
+        "Input", "InputArray", "FlowTime", "SmoothingPasses", "FlowMode", "NumberOfFlowUpdates",
         "TracingMode", "StepFraction", "Sampling", "GenerateFlowArrays", "NumberOfThreads",
         "LastSetupSeconds", "LastFlowSeconds", "LastAdvectionSeconds", "LastTraceSteps",
         "GhostLevels"},
@@ -236,7 +236,7 @@ for name in LABELS:
     order, keys = panel_order(wrapped)
     check(order == EXPECTED_PANEL[name], "%s: panel groups %s" % (name, order))
     if name != "SurfaceShockSharpen":
-        check(keys[:3] == ["Input", "SelectInputArray", "TimeStep"], name + ": Input Array first, %s" % keys[:3])
+        check(keys[:3] == ["Input", "SelectInputArray", "FlowTime"], name + ": Input Array first, %s" % keys[:3])
     for key in keys:
         prop = wrapped.GetProperty(key)
         doc = prop.GetDocumentation()
@@ -337,14 +337,14 @@ check(image.LastFlowSeconds >= 0 and image.LastAdvectionSeconds >= 0, "image: me
 check(image.LastTraceSteps > 0, "image: LastTraceSteps %s" % image.LastTraceSteps)
 check(image.LastSetupSeconds == 0.0, "image: no setup for images")
 
-image.TimeStep = 0.0
+image.FlowTime = 0.0
 image.UpdatePipeline()
 check(np.array_equal(point_array(fetch(image), "RTData"), rt), "image: time 0 returns the input")
 
 for flow_mode in ["Fixed", "Composed", "Naive"]:
     for sampling in ["Linear", "Nearest"]:
         for tracing in ["Face Crossing", "Stepped"]:
-            image.TimeStep = 300.0
+            image.FlowTime = 300.0
             image.SmoothingPasses = 2
             image.FlowMode = flow_mode
             image.NumberOfFlowUpdates = 3
@@ -366,7 +366,7 @@ for flow_mode in ["Fixed", "Composed", "Naive"]:
 
 # A blurred oblique step: the blurred band shrinks.
 step = Calculator(Input=wavelet, ResultArrayName="Step", Function="tanh((coordsX - 0.75*coordsY) / 2.5)")
-step_shock = ImageShockAdvection(Input=step, TimeStep=1024.0)
+step_shock = ImageShockAdvection(Input=step, FlowTime=1024.0)
 step_shock.InputArray = ["POINTS", "Step"]
 step_shock.UpdatePipeline()
 s_in = point_array(fetch(step), "Step")
@@ -388,7 +388,7 @@ check(np.array_equal(one_thread, point_array(fetch(image), "RTData")), "image: s
 
 # Method PDE: the Osher-Rudin baseline, with the same parameters.
 check(image.Method == "Advection", "image: Advection is the default method")
-pde = ImageShockAdvection(Input=step, TimeStep=1024.0, Method="PDE")
+pde = ImageShockAdvection(Input=step, FlowTime=1024.0, Method="PDE")
 pde.InputArray = ["POINTS", "Step"]
 pde.UpdatePipeline()
 pde.UpdatePropertyInformation()
@@ -409,7 +409,7 @@ Delete(pde)
 
 # Cell data on the grid of cell centres.
 cells = PointDatatoCellData(Input=wavelet)
-cell_shock = ImageShockAdvection(Input=cells, TimeStep=200.0, GenerateFlowArrays=1)
+cell_shock = ImageShockAdvection(Input=cells, FlowTime=200.0, GenerateFlowArrays=1)
 cell_shock.InputArray = ["CELLS", "RTData"]
 cell_shock.UpdatePipeline()
 out = fetch(cell_shock)
@@ -420,7 +420,7 @@ check(within(cout, cin.min(), cin.max(), 1e-3), "image cells: range kept")
 check(out.GetCellData().GetArray("ShockPotential") is not None, "image cells: ShockPotential on cells")
 
 # A 3D volume.
-volume = ImageShockAdvection(Input=Wavelet(WholeExtent=[0, 23, 0, 19, 0, 15]), TimeStep=100.0)
+volume = ImageShockAdvection(Input=Wavelet(WholeExtent=[0, 23, 0, 19, 0, 15]), FlowTime=100.0)
 volume.InputArray = ["POINTS", "RTData"]
 volume.UpdatePipeline()
 check(fetch(volume).GetNumberOfPoints() == 24 * 20 * 16, "volume: point count")
@@ -443,7 +443,7 @@ def blurred(values):
 
 surface = SurfaceShockAdvection(Input=colour)
 check(list(surface.InputArray) == ["POINTS", "Colour"], "surface: default input array, got %s" % surface.InputArray)
-surface.TimeStep = 2048.0
+surface.FlowTime = 2048.0
 surface.UpdatePipeline()
 out = fetch(surface)
 c_out = point_array(out, "Colour")
@@ -461,7 +461,7 @@ check(surface.LastSetupSeconds > 0 and surface.LastTraceSteps > 0, "surface: mea
 for flow_mode in ["Fixed", "Composed", "Naive"]:
     for sampling in ["Linear", "Nearest"]:
         for tracing in ["Face Crossing", "Stepped"]:
-            surface.TimeStep = 512.0
+            surface.FlowTime = 512.0
             surface.SmoothingPasses = 2
             surface.FlowMode = flow_mode
             surface.NumberOfFlowUpdates = 2
@@ -482,7 +482,7 @@ for flow_mode in ["Fixed", "Composed", "Naive"]:
 # Cell data (triangles) and a scalar point array.
 elevation = Elevation(Input=sphere, LowPoint=[0, 0, -0.5], HighPoint=[0, 0, 0.5])
 to_cells = PointDatatoCellData(Input=elevation)
-surface_cells = SurfaceShockAdvection(Input=to_cells, TimeStep=256.0, Sampling="Nearest")
+surface_cells = SurfaceShockAdvection(Input=to_cells, FlowTime=256.0, Sampling="Nearest")
 surface_cells.InputArray = ["CELLS", "Elevation"]
 surface_cells.UpdatePipeline()
 e_in = cell_array(fetch(to_cells), "Elevation")
@@ -528,7 +528,7 @@ check(abs(out.GetFieldData().GetArray("ShockMaxDisplacement").GetValue(0) - shar
 
 for solver in ["Conjugate Gradient", "Conjugate Gradient Tolerance", "Exact"]:
     for sampling in ["Linear", "Nearest"]:
-        sharpen.TimeStep = 128.0
+        sharpen.FlowTime = 128.0
         sharpen.SmoothingPasses = 2
         sharpen.FlowMode = "Composed"
         sharpen.NumberOfFlowUpdates = 2
@@ -563,12 +563,12 @@ for solver in ["Conjugate Gradient", "Conjugate Gradient Tolerance", "Exact"]:
         check(sharpen.LastFlippedTriangles == 0, label + ": no flipped triangles")
 
 # Time 0, Nearest sampling, Exact solver: the input comes back (class documentation).
-identity = SurfaceShockSharpen(Input=rounded, TimeStep=0.0, Sampling="Nearest", Solver="Exact")
+identity = SurfaceShockSharpen(Input=rounded, FlowTime=0.0, Sampling="Nearest", Solver="Exact")
 identity.UpdatePipeline()
 check(np.allclose(points(fetch(identity)), points(box_in), atol=1e-6), "sharpen: time 0 + nearest + exact = input")
 
 # The Box source has duplicate points on its seams: merged by default.
-seams = SurfaceShockSharpen(Input=Subdivide(Input=Triangulate(Input=box), NumberofSubdivisions=3), TimeStep=64.0)
+seams = SurfaceShockSharpen(Input=Subdivide(Input=Triangulate(Input=box), NumberofSubdivisions=3), FlowTime=64.0)
 seams.UpdatePipeline()
 seams_out = fetch(seams)
 check(seams_out.GetNumberOfPoints() == 6 * 81 and np.isfinite(points(seams_out)).all(), "sharpen: seams kept")
@@ -588,13 +588,13 @@ def expect_error(proxy, text, label):
     check(data.GetNumberOfPoints() == 0, label + ": empty output")
 
 
-image.TimeStep = -5.0
-expect_error(image, "TimeStep must be a finite number >= 0", "image negative time")
-image.TimeStep = float("nan")
-expect_error(image, "TimeStep must be a finite number >= 0", "image NaN time")
-image.TimeStep = float("inf")
-expect_error(image, "TimeStep must be a finite number >= 0", "image infinite time")
-image.TimeStep = 10.0
+image.FlowTime = -5.0
+expect_error(image, "FlowTime must be a finite number >= 0", "image negative time")
+image.FlowTime = float("nan")
+expect_error(image, "FlowTime must be a finite number >= 0", "image NaN time")
+image.FlowTime = float("inf")
+expect_error(image, "FlowTime must be a finite number >= 0", "image infinite time")
+image.FlowTime = 10.0
 image.InputArray = ["POINTS", "NoSuchArray"]
 expect_error(image, "NoSuchArray", "image missing array")
 image.InputArray = ["POINTS", "RTData"]
@@ -602,14 +602,14 @@ messages.clear()
 image.UpdatePipeline()
 check(fetch(image).GetNumberOfPoints() == 80 * 60 and not messages.errors, "image: recovers after errors")
 
-surface.TimeStep = -1.0
-expect_error(surface, "TimeStep must be a finite number >= 0", "surface negative time")
-surface.TimeStep = 16.0
+surface.FlowTime = -1.0
+expect_error(surface, "FlowTime must be a finite number >= 0", "surface negative time")
+surface.FlowTime = 16.0
 surface.InputArray = ["CELLS", "NoSuchArray"]
 expect_error(surface, "NoSuchArray", "surface missing array")
-sharpen.TimeStep = -2.0
-expect_error(sharpen, "TimeStep must be a finite number >= 0", "sharpen negative time")
-sharpen.TimeStep = 16.0
+sharpen.FlowTime = -2.0
+expect_error(sharpen, "FlowTime must be a finite number >= 0", "sharpen negative time")
+sharpen.FlowTime = 16.0
 messages.clear()
 sharpen.UpdatePipeline()
 check(fetch(sharpen).GetNumberOfPoints() > 0 and not messages.errors, "sharpen: recovers after errors")
@@ -620,7 +620,7 @@ quad_shock = SurfaceShockAdvection(Input=quads)
 quad_shock.InputArray = ["CELLS", "Elevation"]
 expect_error(quad_shock, "Triangulate the mesh first", "surface cell data on quads")
 # Point data on quads is fine (triangulated internally, cells kept).
-quad_points = SurfaceShockAdvection(Input=Elevation(Input=Plane(XResolution=8, YResolution=8)), TimeStep=32.0)
+quad_points = SurfaceShockAdvection(Input=Elevation(Input=Plane(XResolution=8, YResolution=8)), FlowTime=32.0)
 quad_points.InputArray = ["POINTS", "Elevation"]
 quad_points.UpdatePipeline()
 check(fetch(quad_points).GetNumberOfCells() == 64, "surface point data on quads: cells kept")
@@ -702,7 +702,7 @@ def in_input_domain(proxy, source):
 # Images: each block filtered as if alone (own data range).
 small = Wavelet(WholeExtent=[0, 39, 0, 29, 0, 0], Maximum=100.0)
 group_images = GroupDatasets(Input=[wavelet, small])
-composite_image = ImageShockAdvection(Input=group_images, TimeStep=200.0)
+composite_image = ImageShockAdvection(Input=group_images, FlowTime=200.0)
 composite_image.InputArray = ["POINTS", "RTData"]
 check(in_input_domain(composite_image, group_images), "composite images: accepted by the input domain")
 messages.clear()
@@ -710,7 +710,7 @@ composite_image.UpdatePipeline()
 parts = blocks(fetch(composite_image))
 check(fetch(composite_image).IsA("vtkMultiBlockDataSet") and len(parts) == 2, "composite images: 2 blocks")
 for part, alone_source in zip(parts, [wavelet, small]):
-    alone = ImageShockAdvection(Input=alone_source, TimeStep=200.0)
+    alone = ImageShockAdvection(Input=alone_source, FlowTime=200.0)
     alone.InputArray = ["POINTS", "RTData"]
     alone.UpdatePipeline()
     check(np.array_equal(point_array(part, "RTData"), point_array(fetch(alone), "RTData")),
@@ -722,14 +722,14 @@ sphere2 = Sphere(Center=[2, 0, 0], Radius=0.7, ThetaResolution=48, PhiResolution
 colour2 = Calculator(Input=sphere2, ResultArrayName="Colour",
                      Function="(0.5+0.5*tanh(20*(coordsX-2)))*iHat + 0.2*jHat + (0.5+0.5*tanh(20*coordsZ))*kHat")
 group_spheres = GroupDatasets(Input=[colour, colour2])
-composite_surface = SurfaceShockAdvection(Input=group_spheres, TimeStep=512.0, GenerateFlowArrays=1)
+composite_surface = SurfaceShockAdvection(Input=group_spheres, FlowTime=512.0, GenerateFlowArrays=1)
 composite_surface.InputArray = ["POINTS", "Colour"]
 check(in_input_domain(composite_surface, group_spheres), "composite surfaces: accepted by the input domain")
 composite_surface.UpdatePipeline()
 parts = blocks(fetch(composite_surface))
 check(len(parts) == 2, "composite surfaces: 2 blocks")
 for index, (part, alone_source) in enumerate(zip(parts, [colour, colour2])):
-    alone = SurfaceShockAdvection(Input=alone_source, TimeStep=512.0)
+    alone = SurfaceShockAdvection(Input=alone_source, FlowTime=512.0)
     alone.InputArray = ["POINTS", "Colour"]
     alone.UpdatePipeline()
     check(np.array_equal(point_array(part, "Colour"), point_array(fetch(alone), "Colour")),
@@ -740,10 +740,10 @@ for index, (part, alone_source) in enumerate(zip(parts, [colour, colour2])):
 moved = Transform(Input=rounded)
 moved.Transform.Translate = [3, 0, 0]
 group_boxes = GroupDatasets(Input=[rounded, moved])
-composite_sharpen = SurfaceShockSharpen(Input=group_boxes, TimeStep=64.0)
+composite_sharpen = SurfaceShockSharpen(Input=group_boxes, FlowTime=64.0)
 composite_sharpen.UpdatePipeline()
 parts = blocks(fetch(composite_sharpen))
-alone = SurfaceShockSharpen(Input=rounded, TimeStep=64.0)
+alone = SurfaceShockSharpen(Input=rounded, FlowTime=64.0)
 alone.UpdatePipeline()
 check(len(parts) == 2, "composite sharpen: 2 blocks")
 check(np.allclose(points(parts[0]), points(fetch(alone))), "composite sharpen: block 0 == alone")
@@ -753,7 +753,7 @@ check(parts[1].GetFieldData().GetArray("ShockSolverIterations") is not None, "co
 
 # Partitioned dataset collections (the newer composite type).
 partitioned = ConvertToPartitionedDataSetCollection(Input=group_spheres)
-composite_partitioned = SurfaceShockAdvection(Input=partitioned, TimeStep=512.0)
+composite_partitioned = SurfaceShockAdvection(Input=partitioned, FlowTime=512.0)
 composite_partitioned.InputArray = ["POINTS", "Colour"]
 composite_partitioned.UpdatePipeline()
 # servermanager.Fetch turns a partitioned collection into a broken multiblock in
