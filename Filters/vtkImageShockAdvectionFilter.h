@@ -136,7 +136,7 @@ public:
   ///@}
 
 protected:
-  vtkImageShockAdvectionFilter() = default;
+  vtkImageShockAdvectionFilter();
   ~vtkImageShockAdvectionFilter() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
@@ -145,15 +145,15 @@ protected:
   int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
-  /// The superclass's dispatch, then CropToUpdateExtent after a successful REQUEST_DATA.
-  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
-
   /// Crop the output (filtered on the grown input extent) to the output's UPDATE_EXTENT.
   void CropToUpdateExtent(vtkInformationVector* outputVector);
 
+  /// The data range over all pieces, FilterImage, then CropToUpdateExtent.
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
+
+  /// Filter the input image (with its ghost layers) into the output.
+  int FilterImage(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
   void ResetMeasurements() override;
 

@@ -69,8 +69,14 @@
 
 #include "vtkFiltersShockModule.h" // for export macro
 #include "vtkShockAdvectionFilter.h"
+#include "vtkSmartPointer.h" // for the returned output
 
+class vtkDataArray;
 class vtkPolyData;
+namespace vtkShockParallel
+{
+struct SurfacePiece;
+}
 
 class VTKFILTERSSHOCK_EXPORT vtkPolyDataShockAdvectionFilter : public vtkShockAdvectionFilter
 {
@@ -86,7 +92,7 @@ public:
   ///@}
 
 protected:
-  vtkPolyDataShockAdvectionFilter() = default;
+  vtkPolyDataShockAdvectionFilter();
   ~vtkPolyDataShockAdvectionFilter() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
@@ -98,8 +104,19 @@ protected:
   /// Point data: all points; cell data: the polygons and strips only (as the kernel).
   bool LocalValueRange(vtkInformationVector** inputVector, double range[2]) override;
 
-  /// The perimeters of the triangles of the cells this piece owns (not ghost cells).
-  bool LocalEdgeLengthSum(vtkInformationVector** inputVector, double& sum, double& count) override;
+  /// vtkPolyData output, also for an unstructured-grid input.
+  int RequestDataObject(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  /// Mean edge length over the cells all pieces own (collective; 0 without a controller).
+  double GlobalMeanEdgeLength(vtkMultiProcessController* controller, vtkPolyData* piece);
+
+  /// Filter `selected` (as chosen on the input) on `input` into `output`; false after vtkErrorMacro.
+  bool FilterSurface(vtkPolyData* input, vtkDataArray* selected, int association, vtkPolyData* output);
+
+  /// The output's cells: each owned cell once, unless ghost cells were asked for and provided.
+  vtkSmartPointer<vtkPolyData> OutputCells(vtkPolyData* filtered,
+    const vtkShockParallel::SurfacePiece& piece, vtkInformationVector* outputVector);
 
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;

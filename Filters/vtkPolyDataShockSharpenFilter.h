@@ -73,7 +73,20 @@
 #include "vtkFiltersShockModule.h" // for export macro
 #include "vtkShockAdvectionFilter.h"
 
+#include <vector> // for the kernels' buffers
+
 class vtkPolyData;
+namespace shock
+{
+class TriangleMesh;
+struct MeshPartition;
+struct SharpeningReport;
+struct MeshFlowFields;
+}
+namespace vtkShockPolyDataInternals
+{
+struct PreparedMesh;
+}
 
 class VTKFILTERSSHOCK_EXPORT vtkPolyDataShockSharpenFilter : public vtkShockAdvectionFilter
 {
@@ -185,11 +198,22 @@ protected:
   ~vtkPolyDataShockSharpenFilter() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  /// vtkPolyData output, also for an unstructured-grid input.
+  int RequestDataObject(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   void ResetMeasurements() override;
-  /// The fit normalises by unit normals, not by a data range: no range reduction.
-  bool UsesParallelValueScale() override { return false; }
+
+  /// Run the kernels (a piece of a distributed mesh with `partition`); false after vtkErrorMacro.
+  bool Sharpen(const shock::TriangleMesh& mesh, const shock::MeshPartition* partition,
+    double meanEdgeLength, std::vector<double>& positions, std::vector<double>& normals,
+    shock::SharpeningReport& report, shock::MeshFlowFields& fields);
+
+  /// `input` with the new positions, the field data of the run and the requested arrays.
+  void BuildOutput(vtkPolyData* input, const vtkShockPolyDataInternals::PreparedMesh& prepared,
+    std::vector<double>& positions, const std::vector<double>& normals,
+    const shock::MeshFlowFields& fields, const shock::SharpeningReport& report, vtkPolyData* output);
 
   int NormalSmoothingPasses = 0;
   double ScreeningWeight = 1.0;

@@ -90,13 +90,14 @@ void TriangleNormal(const TriangleMesh& mesh, const double* positions, std::int6
 }
 
 /// Flipped triangles and the largest displacement relative to the bounding-box diagonal.
-void Measure(const TriangleMesh& mesh, const double* positions, int threads, SharpeningReport& report)
+void Measure(const TriangleMesh& mesh, const double* positions, const MeshPartition* partition,
+  int threads, SharpeningReport& report)
 {
   std::int64_t flipped = 0;
 #pragma omp parallel for num_threads(threads) reduction(+ : flipped) schedule(static)
   for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
   {
-    if (mesh.Degenerate(f))
+    if (mesh.Degenerate(f) || (partition && !partition->ownedTriangles[static_cast<size_t>(f)]))
     {
       continue;
     }
@@ -126,6 +127,12 @@ void Measure(const TriangleMesh& mesh, const double* positions, int threads, Sha
   for (int k = 0; k < 3; ++k)
   {
     diagonal2 += mesh.NumberOfPoints() > 0 ? (high[k] - low[k]) * (high[k] - low[k]) : 0.0;
+  }
+  if (partition)
+  {
+    double count = static_cast<double>(flipped);
+    partition->globalSum(&count, 1); // the displacement stays the piece's own
+    flipped = static_cast<std::int64_t>(count);
   }
   report.flippedTriangles = flipped;
   report.maxDisplacement = diagonal2 > 0.0 ? std::sqrt(largest / diagonal2) : 0.0;
@@ -174,6 +181,7 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
   signal.components = 3;
   signal.values = input.data();
   signal.valueScale = 2.0; // unit normals: components span [-1, 1]
+  signal.lengthScale = parameters.lengthScale;
   signal.sampleAtTimeZero = true;
   std::vector<double> target(input.size());
   const Status advected =
@@ -208,7 +216,7 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
     std::copy(mesh.Point(0), mesh.Point(0) + 3 * mesh.NumberOfPoints(), positions);
     return fitted;
   }
-  Measure(mesh, positions, threads, r);
+  Measure(mesh, positions, fit.partition, threads, r);
   return {};
 }
 

@@ -39,6 +39,9 @@ struct SharpeningParameters
   AdvectionParameters advection; ///< advection of the normals (time, smoothing, sampling, ...)
   int normalSmoothingPasses = 0; ///< Laplacian smoothing passes of the face normals (>= 0)
   FitParameters fit;             ///< the screened Poisson fit
+  /// Length unit of the advection (0: the mesh's own mean edge length). A piece of a
+  /// distributed mesh (fit.partition) passes the whole mesh's mean edge length.
+  double lengthScale = 0.0;
 };
 
 /// What a sharpening run did.
