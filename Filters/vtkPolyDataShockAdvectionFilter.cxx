@@ -77,7 +77,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   bool unknown = false;
   vtkShockParallel::SurfacePiece piece;
   if (!vtkShockParallel::PrepareSurfacePiece(this->PieceController(outputVector, unknown), input,
-        error, this->GhostLevels, true, false, piece, error))
+        error, this->GhostLevels, true, true, piece, error))
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -106,6 +106,11 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     return 0;
   }
   output->ShallowCopy(this->OutputCells(filtered, piece, outputVector));
+  if (piece.generated && !input->GetPointData()->GetGlobalIds())
+  {
+    output->GetPointData()->SetGlobalIds(nullptr); // made here for the ghost cells only
+    output->GetCellData()->SetGlobalIds(nullptr);
+  }
   return 1;
 }
 

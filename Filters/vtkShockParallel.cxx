@@ -3,6 +3,7 @@
 #include "vtkAlgorithm.h"
 #include "vtkAlgorithmOutput.h"
 #include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
 #include "vtkCommunicator.h"
 #include "vtkCompositeDataSet.h"
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <unordered_map>
 
@@ -30,8 +32,6 @@ namespace vtkShockParallel
 {
 namespace
 {
-/// Local point ids carried through the ghost-cell generator (removed afterwards).
-constexpr const char* InputIdsName = "vtkShockInputPointIds";
 constexpr int ExchangeTag = 84651;
 
 /**
@@ -167,7 +167,11 @@ vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
   }
   auto owned = vtkSmartPointer<vtkPolyData>::New();
   owned->ShallowCopy(piece);
-  owned->RemoveGhostCells(); // keeps every point
+  owned->RemoveGhostCells(); // keeps every point, but not their ghost marks
+  if (vtkUnsignedCharArray* pointGhosts = piece->GetPointGhostArray())
+  {
+    owned->GetPointData()->AddArray(pointGhosts); // which copy of a shared point is the owner's
+  }
   std::vector<vtkIdType> newId(static_cast<size_t>(owned->GetNumberOfPoints()), -1);
   vtkIdType used = 0;
   vtkNew<vtkIdList> kept;
@@ -224,12 +228,6 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(vtkMultiProcessController* controlle
 {
   vtkNew<vtkPolyData> tagged;
   tagged->ShallowCopy(piece);
-  vtkNew<vtkIdTypeArray> inputIds;
-  inputIds->SetName(InputIdsName);
-  inputIds->SetNumberOfTuples(piece->GetNumberOfPoints());
-  std::iota(inputIds->GetPointer(0), inputIds->GetPointer(0) + piece->GetNumberOfPoints(), 0);
-  tagged->GetPointData()->AddArray(inputIds);
-
   vtkSmartPointer<vtkDataObject> source = tagged.GetPointer();
   vtkNew<vtkGenerateGlobalIds> ids;
   if (globalIds && !piece->GetPointData()->GetGlobalIds())
@@ -248,22 +246,106 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(vtkMultiProcessController* controlle
   auto result = vtkSmartPointer<vtkPolyData>::New();
   result->ShallowCopy(generator->GetOutputDataObject(0));
 
-  // The piece's own points must come first, in order: results map back by position.
-  vtkIdTypeArray* carried =
-    vtkIdTypeArray::SafeDownCast(result->GetPointData()->GetArray(InputIdsName));
-  bool inOrder = carried && result->GetNumberOfPoints() >= piece->GetNumberOfPoints() &&
-    result->GetNumberOfCells() >= piece->GetNumberOfCells();
-  for (vtkIdType p = 0; inOrder && p < piece->GetNumberOfPoints(); ++p)
+  if (result->GetNumberOfCells() < piece->GetNumberOfCells())
   {
-    inOrder = carried->GetValue(p) == p;
-  }
-  result->GetPointData()->RemoveArray(InputIdsName);
-  if (!inOrder)
-  {
-    error = "the ghost cells generator reordered the piece's points";
+    error = "the ghost cells generator lost cells of the piece";
     return nullptr;
   }
   return result;
+}
+
+namespace
+{
+/// Everyone's `mine`, concatenated in process order; counts and offsets per process.
+std::vector<vtkIdType> AllGather(vtkMultiProcessController* controller,
+  const std::vector<vtkIdType>& mine, std::vector<vtkIdType>& counts, std::vector<vtkIdType>& offsets)
+{
+  const int processes = controller->GetNumberOfProcesses();
+  vtkIdType count = static_cast<vtkIdType>(mine.size());
+  counts.assign(static_cast<size_t>(processes), 0);
+  offsets.assign(static_cast<size_t>(processes), 0);
+  controller->AllGather(&count, counts.data(), 1);
+  for (int r = 1; r < processes; ++r)
+  {
+    offsets[static_cast<size_t>(r)] = offsets[static_cast<size_t>(r - 1)] + counts[static_cast<size_t>(r - 1)];
+  }
+  std::vector<vtkIdType> all(static_cast<size_t>(offsets.back() + counts.back()) + 1);
+  controller->AllGatherV(mine.data(), all.data(), count, counts.data(), offsets.data());
+  all.pop_back();
+  return all;
+}
+}
+
+void MarkPointOwners(vtkMultiProcessController* controller, vtkPolyData* piece)
+{
+  const vtkIdType np = piece->GetNumberOfPoints();
+  vtkDataArray* ids = piece->GetPointData()->GetGlobalIds();
+  vtkUnsignedCharArray* cellGhosts = piece->GetCellGhostArray();
+  // Which points the piece's own cells use, and which its ghost cells use.
+  std::vector<char> inOwned(static_cast<size_t>(np), 0), inGhost(static_cast<size_t>(np), 0);
+  std::map<std::pair<vtkIdType, vtkIdType>, int> ownedEdges; // polygon edges of the own cells
+  vtkIdType cell = 0;
+  for (vtkCellArray* cells : { piece->GetVerts(), piece->GetLines(), piece->GetPolys(), piece->GetStrips() })
+  {
+    auto iterator = vtk::TakeSmartPointer(cells->NewIterator());
+    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
+    {
+      vtkIdType size;
+      const vtkIdType* points;
+      iterator->GetCurrentCell(size, points);
+      const bool ghost = cellGhosts && (cellGhosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL);
+      for (vtkIdType k = 0; k < size; ++k)
+      {
+        (ghost ? inGhost : inOwned)[static_cast<size_t>(points[k])] = 1;
+        if (!ghost && cells == piece->GetPolys() && size > 1)
+        {
+          const vtkIdType a = points[k], b = points[(k + 1) % size];
+          ++ownedEdges[{ std::min(a, b), std::max(a, b) }];
+        }
+      }
+    }
+  }
+  // A point on the border of several pieces' own cells belongs to the lowest process among them.
+  // The border: points next to ghost cells, and ends of edges only one own polygon has
+  // (pieces may touch at corners only, where no ghost cell was made).
+  for (const auto& edge : ownedEdges)
+  {
+    if (edge.second == 1)
+    {
+      inGhost[static_cast<size_t>(edge.first.first)] = inGhost[static_cast<size_t>(edge.first.second)] = 1;
+    }
+  }
+  std::vector<vtkIdType> border;
+  for (vtkIdType p = 0; ids && p < np; ++p)
+  {
+    if (inOwned[static_cast<size_t>(p)] && inGhost[static_cast<size_t>(p)])
+    {
+      border.push_back(static_cast<vtkIdType>(ids->GetTuple1(p)));
+    }
+  }
+  std::vector<vtkIdType> counts, offsets;
+  const std::vector<vtkIdType> all = AllGather(controller, border, counts, offsets);
+  const int me = controller->GetLocalProcessId();
+  std::unordered_map<vtkIdType, int> lowest;
+  for (int r = 0; r < me; ++r)
+  {
+    for (vtkIdType k = 0; k < counts[static_cast<size_t>(r)]; ++k)
+    {
+      lowest.emplace(all[static_cast<size_t>(offsets[static_cast<size_t>(r)] + k)], r);
+    }
+  }
+  vtkNew<vtkUnsignedCharArray> marks;
+  marks->SetName(vtkDataSetAttributes::GhostArrayName());
+  marks->SetNumberOfTuples(np);
+  vtkUnsignedCharArray* old = piece->GetPointGhostArray();
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    const bool owned = inOwned[static_cast<size_t>(p)] &&
+      !(ids && inGhost[static_cast<size_t>(p)] && lowest.count(static_cast<vtkIdType>(ids->GetTuple1(p))));
+    const unsigned char other = old ? (old->GetValue(p) & ~vtkDataSetAttributes::DUPLICATEPOINT) : 0;
+    marks->SetValue(p, static_cast<unsigned char>(other | (owned ? 0 : vtkDataSetAttributes::DUPLICATEPOINT)));
+  }
+  piece->GetPointData()->AddArray(marks); // replaces the generator's marks
 }
 
 bool AnyFailed(vtkMultiProcessController* controller, bool failed, std::string& error)
@@ -307,7 +389,12 @@ bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* inp
   piece.work = WithGhostCells(controller, input ? OwnedCells(input).GetPointer() : none.GetPointer(),
     layers, globalIds, error);
   piece.generated = true;
-  return !AnyFailed(controller, !piece.work, error);
+  if (AnyFailed(controller, !piece.work, error))
+  {
+    return false;
+  }
+  MarkPointOwners(controller, piece.work);
+  return true;
 }
 
 void PointExchange::Setup(vtkMultiProcessController* controller, const vtkIdType* globalIds,
@@ -326,15 +413,8 @@ void PointExchange::Setup(vtkMultiProcessController* controller, const vtkIdType
     }
   }
   // Everyone learns everyone's needs (the ghost points only).
-  vtkIdType count = static_cast<vtkIdType>(neededGlobal.size());
-  std::vector<vtkIdType> counts(static_cast<size_t>(processes)), offsets(static_cast<size_t>(processes), 0);
-  controller->AllGather(&count, counts.data(), 1);
-  for (int r = 1; r < processes; ++r)
-  {
-    offsets[static_cast<size_t>(r)] = offsets[static_cast<size_t>(r - 1)] + counts[static_cast<size_t>(r - 1)];
-  }
-  std::vector<vtkIdType> all(static_cast<size_t>(offsets.back() + counts.back()) + 1);
-  controller->AllGatherV(neededGlobal.data(), all.data(), count, counts.data(), offsets.data());
+  std::vector<vtkIdType> counts, offsets;
+  const std::vector<vtkIdType> all = AllGather(controller, neededGlobal, counts, offsets);
 
   // Answer the needs this process owns: which local points, at which slots of the asker's list.
   std::unordered_map<vtkIdType, vtkIdType> ownedByGlobal;

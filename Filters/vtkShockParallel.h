@@ -66,9 +66,8 @@ vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece);
  * appended by vtkGhostCellsGenerator (marked DUPLICATECELL, their points
  * DUPLICATEPOINT; each point of the whole mesh is non-ghost on exactly one
  * process). With `globalIds`, the points first get global ids
- * (vtkGenerateGlobalIds) unless they have some: the key of the exchanges. The
- * first points and cells of the result are the piece's own, in order; nullptr
- * (with `error`) if the generator did not keep them so.
+ * (vtkGenerateGlobalIds) unless they have some: the key of the exchanges.
+ * The generator may renumber the piece's own points and cells.
  */
 vtkSmartPointer<vtkPolyData> WithGhostCells(vtkMultiProcessController* controller,
   vtkPolyData* piece, int layers, bool globalIds, std::string& error);
@@ -100,6 +99,15 @@ struct SurfacePiece
 bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* input,
   const std::string& localError, int layers, bool reuseUpstream, bool globalIds,
   SurfacePiece& piece, std::string& error);
+
+/**
+ * Rewrite the DUPLICATEPOINT marks of a piece with ghost cells and global
+ * point ids (collective): a point is the piece's own when its own cells use
+ * it and no lower process's own cells do. So every point of the whole mesh is
+ * unmarked on exactly one process (the generator's own marks miss points
+ * where pieces touch at a corner only).
+ */
+void MarkPointOwners(vtkMultiProcessController* controller, vtkPolyData* piece);
 
 /// Whether any process has `failed` (collective); `error` names another process when this one did not fail.
 bool AnyFailed(vtkMultiProcessController* controller, bool failed, std::string& error);
