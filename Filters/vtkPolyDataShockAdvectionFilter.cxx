@@ -77,7 +77,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   bool unknown = false;
   vtkShockParallel::SurfacePiece piece;
   if (!vtkShockParallel::PrepareSurfacePiece(this->PieceController(outputVector, unknown), input,
-        error, this->GhostLevels, true, true, piece, error))
+        error, this->GhostLevels, piece, error))
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -99,35 +99,15 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     }
     return 1;
   }
-  // Filter the piece with its ghost cells, then keep the cells the output is asked for.
+  // Filter the piece with its ghost cells; the output holds each owned cell once.
   vtkNew<vtkPolyData> filtered;
   if (!this->FilterSurface(piece.work, array, association, filtered))
   {
     return 0;
   }
-  output->ShallowCopy(this->OutputCells(filtered, piece, outputVector));
-  if (piece.generated && !input->GetPointData()->GetGlobalIds())
-  {
-    output->GetPointData()->SetGlobalIds(nullptr); // made here for the ghost cells only
-    output->GetCellData()->SetGlobalIds(nullptr);
-  }
+  output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(filtered, input).GetPointer()
+                                       : filtered.GetPointer());
   return 1;
-}
-
-vtkSmartPointer<vtkPolyData> vtkPolyDataShockAdvectionFilter::OutputCells(
-  vtkPolyData* filtered, const vtkShockParallel::SurfacePiece& piece, vtkInformationVector* outputVector)
-{
-  using SDDP = vtkStreamingDemandDrivenPipeline;
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int requested = outInfo->Has(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
-    ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
-    : 0;
-  if (!piece.controller || (requested > 0 && !piece.generated))
-  {
-    return filtered; // serial, or ghost cells asked for downstream and provided upstream
-  }
-  // Each owned cell once: the ghost cells made or received for the flow lines go.
-  return vtkShockParallel::OwnedCells(filtered);
 }
 
 double vtkPolyDataShockAdvectionFilter::GlobalMeanEdgeLength(
@@ -256,29 +236,6 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
     vtkShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, fields);
   }
   return true;
-}
-
-int vtkPolyDataShockAdvectionFilter::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
-  using SDDP = vtkStreamingDemandDrivenPipeline;
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (!inInfo || !outInfo || vtkShockParallel::UpstreamIsComposite(this))
-  {
-    return 1; // a block of a composite input: the request was made for the whole input
-  }
-  const int pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES())
-    ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES())
-    : 1;
-  if (pieces > 1)
-  {
-    const int requested = outInfo->Has(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
-      ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
-      : 0;
-    inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), requested + this->GhostLevels);
-  }
-  return 1;
 }
 
 bool vtkPolyDataShockAdvectionFilter::LocalValueRange(

@@ -69,14 +69,9 @@
 
 #include "vtkFiltersShockModule.h" // for export macro
 #include "vtkShockAdvectionFilter.h"
-#include "vtkSmartPointer.h" // for the returned output
 
 class vtkDataArray;
 class vtkPolyData;
-namespace vtkShockParallel
-{
-struct SurfacePiece;
-}
 
 class VTKFILTERSSHOCK_EXPORT vtkPolyDataShockAdvectionFilter : public vtkShockAdvectionFilter
 {
@@ -97,10 +92,6 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
-  /// For a piece of a parallel run, ask for GhostLevels more ghost levels than the output's.
-  int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
-
   /// Point data: all points; cell data: the polygons and strips only (as the kernel).
   bool LocalValueRange(vtkInformationVector** inputVector, double range[2]) override;
 
@@ -113,10 +104,6 @@ protected:
 
   /// Filter `selected` (as chosen on the input) on `input` into `output`; false after vtkErrorMacro.
   bool FilterSurface(vtkPolyData* input, vtkDataArray* selected, int association, vtkPolyData* output);
-
-  /// The output's cells: each owned cell once, unless ghost cells were asked for and provided.
-  vtkSmartPointer<vtkPolyData> OutputCells(vtkPolyData* filtered,
-    const vtkShockParallel::SurfacePiece& piece, vtkInformationVector* outputVector);
 
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;

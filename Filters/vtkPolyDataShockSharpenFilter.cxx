@@ -86,7 +86,7 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
   const shock::TriangleMesh& mesh = prepared.mesh;
   const std::int64_t np = mesh.NumberOfPoints();
   const std::int64_t nt = mesh.NumberOfTriangles();
-  vtkUnsignedCharArray* pointGhosts = piece->GetPointGhostArray();
+  vtkUnsignedCharArray* pointGhosts = vtkShockParallel::PointGhosts(piece);
   vtkUnsignedCharArray* cellGhosts = piece->GetCellGhostArray();
   shock::MeshPartition& partition = out.partition;
   partition.ownedPoints.assign(static_cast<size_t>(np), 1);
@@ -158,7 +158,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   }
   vtkShockParallel::SurfacePiece piece;
   if (!vtkShockParallel::PrepareSurfacePiece(
-        controller, input, error, this->GhostLevels, false, true, piece, error))
+        controller, input, error, this->GhostLevels, piece, error))
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -217,13 +217,8 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   // The output: the piece's own cells with the new positions and the requested arrays.
   vtkNew<vtkPolyData> sharpened;
   this->BuildOutput(piece.work, prepared, positions, normals, fields, report, sharpened);
-  output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedCells(sharpened).GetPointer()
+  output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(sharpened, input).GetPointer()
                                        : sharpened.GetPointer());
-  if (piece.generated && !input->GetPointData()->GetGlobalIds())
-  {
-    output->GetPointData()->SetGlobalIds(nullptr); // made here for the exchange only
-    output->GetCellData()->SetGlobalIds(nullptr);
-  }
   return 1;
 }
 

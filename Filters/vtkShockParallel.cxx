@@ -8,6 +8,7 @@
 #include "vtkCommunicator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkFieldData.h"
 #include "vtkGenerateGlobalIds.h"
 #include "vtkGhostCellsGenerator.h"
 #include "vtkIdList.h"
@@ -60,6 +61,12 @@ void OrderedPairs(vtkMultiProcessController* controller, const std::vector<vtkId
     }
   }
 }
+}
+
+vtkUnsignedCharArray* PointGhosts(vtkDataSet* data)
+{
+  return vtkUnsignedCharArray::SafeDownCast(
+    data->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
 }
 
 bool UpstreamIsComposite(vtkAlgorithm* filter)
@@ -165,72 +172,101 @@ vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
   {
     return piece;
   }
-  auto owned = vtkSmartPointer<vtkPolyData>::New();
-  owned->ShallowCopy(piece);
-  owned->RemoveGhostCells(); // keeps every point, but not their ghost marks
-  if (vtkUnsignedCharArray* pointGhosts = piece->GetPointGhostArray())
+  // The own cells, type by type (vtkPolyData numbers verts, lines, polygons, strips in turn).
+  vtkCellArray* inputCells[4] = { piece->GetVerts(), piece->GetLines(), piece->GetPolys(), piece->GetStrips() };
+  vtkNew<vtkCellArray> verts, lines, polys, strips;
+  vtkCellArray* kept[4] = { verts, lines, polys, strips };
+  vtkNew<vtkIdList> keptCells;
+  std::vector<vtkIdType> newId(static_cast<size_t>(piece->GetNumberOfPoints()), -1);
+  vtkIdType cell = 0;
+  for (int kind = 0; kind < 4; ++kind)
   {
-    owned->GetPointData()->AddArray(pointGhosts); // which copy of a shared point is the owner's
-  }
-  std::vector<vtkIdType> newId(static_cast<size_t>(owned->GetNumberOfPoints()), -1);
-  vtkIdType used = 0;
-  vtkNew<vtkIdList> kept;
-  for (vtkCellArray* cells : { owned->GetVerts(), owned->GetLines(), owned->GetPolys(), owned->GetStrips() })
-  {
-    for (vtkIdType k = 0; k < cells->GetConnectivityArray()->GetNumberOfTuples(); ++k)
+    auto iterator = vtk::TakeSmartPointer(inputCells[kind]->NewIterator());
+    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
     {
-      const vtkIdType p = cells->GetConnectivityArray()->GetTuple1(k);
-      if (newId[static_cast<size_t>(p)] < 0)
+      if (ghosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL)
       {
-        newId[static_cast<size_t>(p)] = used++;
-        kept->InsertNextId(p);
+        continue;
+      }
+      vtkIdType size;
+      const vtkIdType* points;
+      iterator->GetCurrentCell(size, points);
+      kept[kind]->InsertNextCell(size, points);
+      keptCells->InsertNextId(cell);
+      for (vtkIdType k = 0; k < size; ++k)
+      {
+        newId[static_cast<size_t>(points[k])] = 0; // used
       }
     }
   }
-  if (used == owned->GetNumberOfPoints())
+  // The used points keep their order; their data (with the owners' marks) comes along.
+  vtkNew<vtkIdList> keptPoints;
+  for (size_t p = 0; p < newId.size(); ++p)
   {
-    return owned;
+    if (newId[p] == 0)
+    {
+      newId[p] = keptPoints->GetNumberOfIds();
+      keptPoints->InsertNextId(static_cast<vtkIdType>(p));
+    }
   }
-  // Renumber the used points in their original order.
-  std::vector<vtkIdType> order(kept->begin(), kept->end());
-  std::sort(order.begin(), order.end());
-  for (size_t k = 0; k < order.size(); ++k)
+  for (vtkCellArray* cells : kept)
   {
-    newId[static_cast<size_t>(order[k])] = static_cast<vtkIdType>(k);
-  }
-  vtkNew<vtkIdList> ids;
-  ids->SetNumberOfIds(used);
-  std::copy(order.begin(), order.end(), ids->begin());
-  vtkNew<vtkPoints> points;
-  points->SetDataType(owned->GetPoints()->GetDataType());
-  owned->GetPoints()->GetPoints(ids, points);
-  vtkNew<vtkPointData> pointData;
-  pointData->CopyAllocate(owned->GetPointData(), used);
-  pointData->CopyData(owned->GetPointData(), ids, nullptr);
-  for (vtkCellArray* cells : { owned->GetVerts(), owned->GetLines(), owned->GetPolys(), owned->GetStrips() })
-  {
-    vtkNew<vtkCellArray> renumbered;
-    renumbered->DeepCopy(cells);
-    vtkDataArray* connectivity = renumbered->GetConnectivityArray();
+    vtkDataArray* connectivity = cells->GetConnectivityArray();
     for (vtkIdType k = 0; k < connectivity->GetNumberOfTuples(); ++k)
     {
       connectivity->SetTuple1(k, static_cast<double>(newId[static_cast<size_t>(connectivity->GetTuple1(k))]));
     }
-    cells->ShallowCopy(renumbered);
   }
+  auto owned = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataType(piece->GetPoints()->GetDataType());
+  piece->GetPoints()->GetPoints(keptPoints, points);
   owned->SetPoints(points);
-  owned->GetPointData()->ShallowCopy(pointData);
+  owned->SetVerts(verts);
+  owned->SetLines(lines);
+  owned->SetPolys(polys);
+  owned->SetStrips(strips);
+  owned->GetFieldData()->ShallowCopy(piece->GetFieldData());
+  owned->GetPointData()->CopyAllocate(piece->GetPointData(), keptPoints->GetNumberOfIds());
+  for (vtkIdType k = 0; k < keptPoints->GetNumberOfIds(); ++k)
+  {
+    owned->GetPointData()->CopyData(piece->GetPointData(), keptPoints->GetId(k), k);
+  }
+  owned->GetCellData()->CopyAllocate(piece->GetCellData(), keptCells->GetNumberOfIds());
+  for (vtkIdType k = 0; k < keptCells->GetNumberOfIds(); ++k)
+  {
+    owned->GetCellData()->CopyData(piece->GetCellData(), keptCells->GetId(k), k);
+  }
+  owned->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName()); // no ghost cell left
   return owned;
 }
 
-vtkSmartPointer<vtkPolyData> WithGhostCells(vtkMultiProcessController* controller,
-  vtkPolyData* piece, int layers, bool globalIds, std::string& error)
+vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* input)
+{
+  vtkSmartPointer<vtkPolyData> owned = OwnedCells(filtered);
+  for (vtkDataSetAttributes* attributes :
+    { static_cast<vtkDataSetAttributes*>(owned->GetPointData()), static_cast<vtkDataSetAttributes*>(owned->GetCellData()) })
+  {
+    vtkDataArray* made = attributes->GetGlobalIds();
+    vtkDataSetAttributes* given = attributes == owned->GetPointData()
+      ? static_cast<vtkDataSetAttributes*>(input->GetPointData())
+      : static_cast<vtkDataSetAttributes*>(input->GetCellData());
+    if (made && made->GetName() && !given->GetGlobalIds())
+    {
+      attributes->RemoveArray(made->GetName());
+    }
+  }
+  return owned;
+}
+
+vtkSmartPointer<vtkPolyData> WithGhostCells(
+  vtkMultiProcessController* controller, vtkPolyData* piece, int layers, std::string& error)
 {
   vtkNew<vtkPolyData> tagged;
   tagged->ShallowCopy(piece);
   vtkSmartPointer<vtkDataObject> source = tagged.GetPointer();
   vtkNew<vtkGenerateGlobalIds> ids;
-  if (globalIds && !piece->GetPointData()->GetGlobalIds())
+  if (!piece->GetPointData()->GetGlobalIds())
   {
     ids->SetController(controller);
     ids->SetInputData(tagged);
@@ -337,7 +373,7 @@ void MarkPointOwners(vtkMultiProcessController* controller, vtkPolyData* piece)
   vtkNew<vtkUnsignedCharArray> marks;
   marks->SetName(vtkDataSetAttributes::GhostArrayName());
   marks->SetNumberOfTuples(np);
-  vtkUnsignedCharArray* old = piece->GetPointGhostArray();
+  vtkUnsignedCharArray* old = PointGhosts(piece);
   for (vtkIdType p = 0; p < np; ++p)
   {
     const bool owned = inOwned[static_cast<size_t>(p)] &&
@@ -359,8 +395,7 @@ bool AnyFailed(vtkMultiProcessController* controller, bool failed, std::string& 
 }
 
 bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* input,
-  const std::string& localError, int layers, bool reuseUpstream, bool globalIds,
-  SurfacePiece& piece, std::string& error)
+  const std::string& localError, int layers, SurfacePiece& piece, std::string& error)
 {
   piece = SurfacePiece();
   piece.work = input;
@@ -379,16 +414,9 @@ bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* inp
     return true; // process 0 filters the whole data set as in serial
   }
   piece.controller = controller;
-  const bool empty = !input || input->GetNumberOfCells() == 0;
-  const int withGhosts = Count(controller, !empty && input->GetCellGhostArray());
-  if (reuseUpstream && withGhosts > 0 && withGhosts == Count(controller, !empty))
-  {
-    return true; // upstream provided ghost cells
-  }
   vtkNew<vtkPolyData> none;
   piece.work = WithGhostCells(controller, input ? OwnedCells(input).GetPointer() : none.GetPointer(),
-    layers, globalIds, error);
-  piece.generated = true;
+    layers, error);
   if (AnyFailed(controller, !piece.work, error))
   {
     return false;

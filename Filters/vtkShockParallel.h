@@ -22,6 +22,7 @@ class vtkDataSet;
 class vtkInformation;
 class vtkMultiProcessController;
 class vtkPolyData;
+class vtkUnsignedCharArray;
 
 namespace vtkShockParallel
 {
@@ -35,6 +36,12 @@ namespace vtkShockParallel
  */
 vtkMultiProcessController* PieceController(
   vtkAlgorithm* filter, vtkMultiProcessController* controller, vtkInformation* outInfo, bool& unknown);
+
+/**
+ * The point ghost marks as the point data holds them now (vtkDataSet caches
+ * GetPointGhostArray, which goes stale when MarkPointOwners replaces them).
+ */
+vtkUnsignedCharArray* PointGhosts(vtkDataSet* data);
 
 /// Whether the filter's upstream produces composite data (the pipeline then runs it block by block).
 bool UpstreamIsComposite(vtkAlgorithm* filter);
@@ -62,15 +69,21 @@ bool Replicated(vtkMultiProcessController* controller, vtkDataSet* input);
 vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece);
 
 /**
+ * The output of a surface filter's piece: OwnedCells of the filtered piece,
+ * without the global ids made for it (those `input` did not have).
+ */
+vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* input);
+
+/**
  * `piece` (without ghost cells) with `layers` layers of its neighbours' cells
  * appended by vtkGhostCellsGenerator (marked DUPLICATECELL, their points
  * DUPLICATEPOINT; each point of the whole mesh is non-ghost on exactly one
- * process). With `globalIds`, the points first get global ids
- * (vtkGenerateGlobalIds) unless they have some: the key of the exchanges.
+ * process). The points first get global ids (vtkGenerateGlobalIds) unless
+ * they have some: the key of the exchanges and of the owners' marks.
  * The generator may renumber the piece's own points and cells.
  */
-vtkSmartPointer<vtkPolyData> WithGhostCells(vtkMultiProcessController* controller,
-  vtkPolyData* piece, int layers, bool globalIds, std::string& error);
+vtkSmartPointer<vtkPolyData> WithGhostCells(
+  vtkMultiProcessController* controller, vtkPolyData* piece, int layers, std::string& error);
 
 /**
  * What one process filters of a surface: the serial input, or its piece with
@@ -84,30 +97,20 @@ struct SurfacePiece
   bool skip = false;
   /// What to filter: `input`, or the owned piece with ghost cells appended.
   vtkSmartPointer<vtkPolyData> work;
-  /// Whether work's ghost cells were made here (and must not reach the output).
-  bool generated = false;
 };
 
 /**
  * Collective start of a surface filter's execution. All processes agree on
  * failure: when any has `localError` (e.g. an unusable input), every one
  * returns false, with its own message or one naming the process that failed.
- * Then a replicated input is recognised; otherwise the piece gets ghost cells:
- * those upstream provided (when every non-empty piece has some and
- * `reuseUpstream`), or `layers` layers made with WithGhostCells.
+ * Then a replicated input is recognised; otherwise the piece (without the
+ * ghost cells it may have come with: their depth cannot be checked, as the
+ * pipeline stamps DATA_NUMBER_OF_GHOST_LEVELS with the request whatever the
+ * source made) gets `layers` layers of ghost cells from WithGhostCells, and
+ * its points the owners' marks of MarkPointOwners.
  */
 bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* input,
-  const std::string& localError, int layers, bool reuseUpstream, bool globalIds,
-  SurfacePiece& piece, std::string& error);
-
-/**
- * Rewrite the DUPLICATEPOINT marks of a piece with ghost cells and global
- * point ids (collective): a point is the piece's own when its own cells use
- * it and no lower process's own cells do. So every point of the whole mesh is
- * unmarked on exactly one process (the generator's own marks miss points
- * where pieces touch at a corner only).
- */
-void MarkPointOwners(vtkMultiProcessController* controller, vtkPolyData* piece);
+  const std::string& localError, int layers, SurfacePiece& piece, std::string& error);
 
 /// Whether any process has `failed` (collective); `error` names another process when this one did not fail.
 bool AnyFailed(vtkMultiProcessController* controller, bool failed, std::string& error);

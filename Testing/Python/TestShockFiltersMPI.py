@@ -235,6 +235,7 @@ def whole_mesh(resolution=96):
     source = vtkSphereSource()
     source.SetThetaResolution(resolution)
     source.SetPhiResolution(resolution)
+    source.SetOutputPointsPrecision(1)  # double: RedistributeDataSet makes double points anyway
     source.Update()
     mesh = source.GetOutput()
     points = vtk_to_numpy(mesh.GetPoints().GetData()).astype(float)
@@ -275,7 +276,7 @@ def partitioned_file(mesh, pieces):
         clean = vtkCleanPolyData()  # drop the points the piece does not use, merge nothing
         clean.PointMergingOff()
         clean.SetInputData(piece)
-        name = "piece%d.vtp" % k
+        name = "split%d_%d.vtp" % (pieces, k)
         writer = vtkXMLPolyDataWriter()
         writer.SetInputConnection(clean.GetOutputPort())
         writer.SetFileName(os.path.join(OUTPUT, name))
@@ -286,7 +287,7 @@ def partitioned_file(mesh, pieces):
         handle.write('<?xml version="1.0"?>\n<VTKFile type="PPolyData" version="0.1" byte_order="LittleEndian">\n'
                      '<PPolyData GhostLevel="0">\n<PPointData Scalars="Heat">\n'
                      '<PDataArray type="Float64" Name="Heat"/>\n<PDataArray type="Int64" Name="PointIds"/>\n'
-                     '</PPointData>\n<PPoints><PDataArray type="Float32" NumberOfComponents="3"/></PPoints>\n'
+                     '</PPointData>\n<PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>\n'
                      + "".join('<Piece Source="%s"/>\n' % n for n in names) + '</PPolyData>\n</VTKFile>\n')
     return path
 
@@ -313,13 +314,7 @@ def compare(label, mesh, serial, values, tolerance, what):
     check(mesh.GetNumberOfCells() == serial.GetNumberOfCells(),
           "%s: %d cells written, serial has %d (no duplicates)" % (label, mesh.GetNumberOfCells(),
                                                                   serial.GetNumberOfCells()))
-    once = sorted(ids[owned]) == sorted(serial_ids)
-    if "redistribute" in label:
-        # Known limit: on RedistributeDataSet pieces that touch at corners only,
-        # some shared points stay marked as owned on two processes.
-        print("MEASURE %s: owned points %d, whole mesh %d" % (label, int(owned.sum()), len(serial_ids)), flush=True)
-    else:
-        check(once, "%s: each point owned once" % label)
+    check(sorted(ids[owned]) == sorted(serial_ids), "%s: each point owned once" % label)
     expected = values(serial)[np.argsort(serial_ids)][ids]
     got = values(mesh)
     difference = np.abs(got - expected).reshape(len(ids), -1).max(axis=1)
@@ -341,30 +336,64 @@ def split_input(how, whole_path, split_path):
     if how == "redistribute":
         reader = XMLPolyDataReader(FileName=[whole_path])
         return [reader, RedistributeDataSet(Input=reader)]
+    if how == "ghost cells generator":
+        reader = XMLPolyDataReader(FileName=[whole_path])
+        split = RedistributeDataSet(Input=reader)
+        return [reader, split, GhostCellsGenerator(Input=split)]
     return [XMLPartitionedPolydataReader(FileName=[split_path])]
 
 
-def surface_split_case(how, whole_path, split_path, serial_advection, serial_sharpen):
-    # Surface Shock Advection, default array (the active scalars "Heat"), nothing else set.
+# The fixed 25 conjugate-gradient iterations are not converged: their result
+# depends on the order of the sums (a renumbered mesh gives a different one in
+# serial too, measured below). The bound is the issue's, 1e-6 of the diagonal.
+DIAGONAL = np.sqrt(3.0)
+FIXED_CG_BOUND = 1e-6 * DIAGONAL
+CONVERGED = dict(Solver="Conjugate Gradient Tolerance", SolverTolerance=1e-13, SolverIterations=5000)
+
+
+def surface_split_case(how, whole_path, split_path, references):
+    label = "%s np=%d" % (how, PROCESSES)
     proxies = split_input(how, whole_path, split_path)
     del messages.errors[:]
     filtered = SurfaceShockAdvection(Input=proxies[-1], InputArray=["POINTS", "Heat"], FlowTime=256)
-    path = os.path.join(OUTPUT, "advection_%s.pvtp" % how)
+    path = os.path.join(OUTPUT, "advection.pvtp")
     SaveData(path, proxy=filtered)
-    check(not messages.errors, "advection on %s pieces: no error (%s)" % (how, messages.errors))
+    check(not messages.errors, "advection on %s: no error (%s)" % (label, messages.errors))
     Delete(filtered)
-    compare("advection %s np=%d" % (how, PROCESSES), read_pieces(path), serial_advection, heat,
-            1e-9 * np.ptp(heat(serial_advection)), "Heat")
+    compare("advection " + label, read_pieces(path), references["advection"], heat,
+            1e-12 * np.ptp(heat(references["advection"])), "Heat")
     # Surface Shock Sharpen: the fit solved across the processes.
-    sharpen = SurfaceShockSharpen(Input=proxies[-1], FlowTime=256)
-    path = os.path.join(OUTPUT, "sharpen_%s.pvtp" % how)
-    SaveData(path, proxy=sharpen)
-    check(not messages.errors, "sharpen on %s pieces: no error (%s)" % (how, messages.errors))
-    Delete(sharpen)
-    compare("sharpen %s np=%d" % (how, PROCESSES), read_pieces(path), serial_sharpen, positions,
-            1e-6 * 2.0 * np.sqrt(3) * 0.5, "position")
+    for name, properties, bound in (("sharpen", {}, FIXED_CG_BOUND), ("sharpen converged", CONVERGED, 1e-11)):
+        sharpen = SurfaceShockSharpen(Input=proxies[-1], FlowTime=256, **properties)
+        SaveData(path, proxy=sharpen)
+        check(not messages.errors, "%s on %s: no error (%s)" % (name, label, messages.errors))
+        Delete(sharpen)
+        compare("%s %s" % (name, label), read_pieces(path), references[name], positions, bound, "position")
     for proxy in proxies[::-1]:
         Delete(proxy)
+
+
+def renumbered(mesh):
+    """The same surface with its points in a random order (PointIds follow them)."""
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    order = np.random.RandomState(7).permutation(mesh.GetNumberOfPoints())
+    new_id = np.argsort(order)
+    result = vtkPolyData()
+    points = mesh.GetPoints().NewInstance()
+    points.SetDataType(mesh.GetPoints().GetDataType())
+    points.SetNumberOfPoints(len(order))
+    for k, old in enumerate(order):
+        points.SetPoint(k, mesh.GetPoint(int(old)))
+    result.SetPoints(points)
+    result.GetPointData().CopyAllocate(mesh.GetPointData(), len(order))
+    for k, old in enumerate(order):
+        result.GetPointData().CopyData(mesh.GetPointData(), int(old), k)
+    polys = vtkCellArray()
+    for c in range(mesh.GetNumberOfCells()):
+        ids = mesh.GetCell(c).GetPointIds()
+        polys.InsertNextCell(ids.GetNumberOfIds(), [int(new_id[ids.GetId(k)]) for k in range(ids.GetNumberOfIds())])
+    result.SetPolys(polys)
+    return result
 
 
 def replicated_case(whole_path, serial_sharpen):
@@ -398,17 +427,29 @@ def volume_refused_case():
 
 
 def surface_cases():
-    whole_path, mesh = whole_mesh()
+    from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
     from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+    whole_path, mesh = whole_mesh()
     whole_reader = vtkXMLPolyDataReader()
     whole_reader.SetFileName(whole_path)
-    serial_advection = serial_filter("SurfaceShockAdvection", whole_reader, InputArray=["POINTS", "Heat"],
-                                     FlowTime=256)
-    serial_sharpen = serial_filter("SurfaceShockSharpen", whole_reader, FlowTime=256)
-    split_path = partitioned_file(mesh, PROCESSES)
-    for how in ("redistribute", "pvtp"):
-        surface_split_case(how, whole_path, split_path, serial_advection, serial_sharpen)
-    replicated_case(whole_path, serial_sharpen)
+    references = {
+        "advection": serial_filter("SurfaceShockAdvection", whole_reader, InputArray=["POINTS", "Heat"],
+                                   FlowTime=256),
+        "sharpen": serial_filter("SurfaceShockSharpen", whole_reader, FlowTime=256),
+        "sharpen converged": serial_filter("SurfaceShockSharpen", whole_reader, FlowTime=256, **CONVERGED),
+    }
+    # How much the fixed iterations move in serial when only the order of the sums changes.
+    producer = vtkTrivialProducer()
+    producer.SetOutput(renumbered(mesh))
+    compare("serial renumbered (summation order)", serial_filter("SurfaceShockSharpen", producer, FlowTime=256),
+            references["sharpen"], positions, FIXED_CG_BOUND, "position")
+    ways = [("redistribute", partitioned_file(mesh, PROCESSES)), ("pvtp", partitioned_file(mesh, PROCESSES)),
+            ("ghost cells generator", None)]
+    if PROCESSES > 2:
+        ways.append(("pvtp of 2 pieces (an empty process)", partitioned_file(mesh, 2)))
+    for how, split_path in ways:
+        surface_split_case(how, whole_path, split_path, references)
+    replicated_case(whole_path, references["sharpen"])
     volume_refused_case()
 
 
