@@ -467,6 +467,109 @@ std::array<double, D> FaceGradient(
 }
 
 /**
+ * Section 3.3: |grad I|^2 per face, summed over the C channels (the channels are
+ * coupled through one flow); 0 on invalid faces (`validFace` null: all valid).
+ */
+template <int D>
+void FaceEnergy(const Lattice<D>& L, int C, const double* values, const unsigned char* validFace,
+  double* energy, int threads)
+{
+  const RowBlocks<D> blocks(L.m);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
+  {
+    std::array<std::int64_t, D> c;
+    const std::int64_t length = blocks.Get(k, c);
+    const std::int64_t f0 = L.FaceIndex(c);
+    const std::int64_t base0 = L.SampleIndex(c);
+    for (std::int64_t j = 0; j < length; ++j)
+    {
+      double e = 0.0;
+      if (!validFace || validFace[f0 + j])
+      {
+        for (int channel = 0; channel < C; ++channel)
+        {
+          const auto g = FaceGradient<D>(L, values, C, channel, base0 + j);
+          for (int d = 0; d < D; ++d)
+          {
+            e += g[d] * g[d];
+          }
+        }
+      }
+      energy[f0 + j] = e;
+    }
+  }
+}
+
+/**
+ * Appendix A potential before smoothing: the face energy averaged over each
+ * sample's valid adjacent faces, weighted by area (all faces of a grid have
+ * the same area, so the weights are equal).
+ */
+template <int D>
+void FacesToSamples(const Lattice<D>& L, const double* energy, const unsigned char* validFace,
+  double* potential, int threads)
+{
+  const RowBlocks<D> blocks(L.n);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
+  {
+    std::array<std::int64_t, D> i;
+    const std::int64_t length = blocks.Get(k, i);
+    const std::int64_t s0 = L.SampleIndex(i);
+    const AdjacentFaces<D> faces(L, i);
+    for (std::int64_t j = 0; j < length; ++j)
+    {
+      double sum = 0.0;
+      int count = 0;
+      for (int b = 0; b < Lattice<D>::Corners; ++b)
+      {
+        const std::int64_t f = faces.Face(i[0] + j, b);
+        if (f >= 0 && (!validFace || validFace[f]))
+        {
+          sum += energy[f];
+          ++count;
+        }
+      }
+      potential[s0 + j] = count > 0 ? sum / count : 0.0;
+    }
+  }
+}
+
+/**
+ * Section 3.2 flow u = 1/2 grad P per face, returned as the back-trace velocity
+ * -u in index units (-u / h per axis), D floats per face; 0 on invalid faces.
+ */
+template <int D>
+void BackTraceVelocity(const Lattice<D>& L, const double* potential,
+  const unsigned char* validFace, float* velocity, int threads)
+{
+  const RowBlocks<D> blocks(L.m);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
+  {
+    std::array<std::int64_t, D> c;
+    const std::int64_t length = blocks.Get(k, c);
+    const std::int64_t f0 = L.FaceIndex(c);
+    const std::int64_t base0 = L.SampleIndex(c);
+    for (std::int64_t j = 0; j < length; ++j)
+    {
+      float* v = velocity + (f0 + j) * D;
+      if (validFace && !validFace[f0 + j])
+      {
+        std::fill(v, v + D, 0.0f);
+        continue;
+      }
+      const auto g = FaceGradient<D>(L, potential, 1, 0, base0 + j);
+      for (int d = 0; d < D; ++d)
+      {
+        v[d] = static_cast<float>(-0.5 * g[d] / L.h[d]);
+      }
+    }
+  }
+}
+
+/**
  * The flow of a signal (sections 3.2-3.3): smoothing, face gradients, potential,
  * smoothing of the potential, back-trace velocity. Holds the buffers, which the
  * flow updates of a run reuse.
@@ -504,12 +607,13 @@ public:
     // buffer, and the raw potential to the smoothed signal's, each once its
     // previous content has been used.
     double* energy = this->PotentialField.get();
-    this->ComputeEnergy(energy);
+    FaceEnergy<D>(L, C, this->Smoothed.get(), this->ValidFace, energy, this->Threads);
     double* rawPotential = this->Smoothed.get();
-    this->ComputePotential(energy, rawPotential);
+    FacesToSamples<D>(L, energy, this->ValidFace, rawPotential, this->Threads);
     UmbrellaSmooth<D>(L, 1, rawPotential, 1.0, this->PotentialField.get(), this->Scratch.get(),
       this->ValidSample, this->Passes, this->Threads);
-    this->ComputeVelocity();
+    BackTraceVelocity<D>(L, this->PotentialField.get(), this->ValidFace, this->VelocityField.get(),
+      this->Threads);
   }
 
   /// Potential P per sample, normalised units.
@@ -518,95 +622,6 @@ public:
   const float* Velocity() const { return this->VelocityField.get(); }
 
 private:
-  bool FaceIsValid(std::int64_t f) const { return !this->ValidFace || this->ValidFace[f]; }
-
-  /// |grad I|^2 per face summed over channels (section 3.3 coupling); 0 on invalid faces.
-  void ComputeEnergy(double* energy) const
-  {
-    const RowBlocks<D> blocks(L.m);
-#pragma omp parallel for schedule(static) num_threads(this->Threads)
-    for (std::int64_t k = 0; k < blocks.Count(); ++k)
-    {
-      std::array<std::int64_t, D> c;
-      const std::int64_t length = blocks.Get(k, c);
-      const std::int64_t f0 = L.FaceIndex(c);
-      const std::int64_t base0 = L.SampleIndex(c);
-      for (std::int64_t j = 0; j < length; ++j)
-      {
-        double e = 0.0;
-        if (this->FaceIsValid(f0 + j))
-        {
-          for (int channel = 0; channel < C; ++channel)
-          {
-            const auto g = FaceGradient<D>(L, this->Smoothed.get(), C, channel, base0 + j);
-            for (int d = 0; d < D; ++d)
-            {
-              e += g[d] * g[d];
-            }
-          }
-        }
-        energy[f0 + j] = e;
-      }
-    }
-  }
-
-  /// Potential before smoothing: the face energy averaged over each sample's valid
-  /// adjacent faces (all faces have equal area).
-  void ComputePotential(const double* energy, double* potential) const
-  {
-    const RowBlocks<D> blocks(L.n);
-#pragma omp parallel for schedule(static) num_threads(this->Threads)
-    for (std::int64_t k = 0; k < blocks.Count(); ++k)
-    {
-      std::array<std::int64_t, D> i;
-      const std::int64_t length = blocks.Get(k, i);
-      const std::int64_t s0 = L.SampleIndex(i);
-      const AdjacentFaces<D> faces(L, i);
-      for (std::int64_t j = 0; j < length; ++j)
-      {
-        double sum = 0.0;
-        int count = 0;
-        for (int b = 0; b < Lattice<D>::Corners; ++b)
-        {
-          const std::int64_t f = faces.Face(i[0] + j, b);
-          if (f >= 0 && this->FaceIsValid(f))
-          {
-            sum += energy[f];
-            ++count;
-          }
-        }
-        potential[s0 + j] = count > 0 ? sum / count : 0.0;
-      }
-    }
-  }
-
-  void ComputeVelocity()
-  {
-    const RowBlocks<D> blocks(L.m);
-#pragma omp parallel for schedule(static) num_threads(this->Threads)
-    for (std::int64_t k = 0; k < blocks.Count(); ++k)
-    {
-      std::array<std::int64_t, D> c;
-      const std::int64_t length = blocks.Get(k, c);
-      const std::int64_t f0 = L.FaceIndex(c);
-      const std::int64_t base0 = L.SampleIndex(c);
-      for (std::int64_t j = 0; j < length; ++j)
-      {
-        float* v = this->VelocityField.get() + (f0 + j) * D;
-        if (!this->FaceIsValid(f0 + j))
-        {
-          std::fill(v, v + D, 0.0f);
-          continue;
-        }
-        const auto g = FaceGradient<D>(L, this->PotentialField.get(), 1, 0, base0 + j);
-        for (int d = 0; d < D; ++d)
-        {
-          v[d] = static_cast<float>(-0.5 * g[d] / L.h[d]);
-        }
-      }
-    }
-  }
-
   const Lattice<D>& L;
   const int C;
   const int Passes;

@@ -1,5 +1,6 @@
 #include "GridShockAdvection.h"
 #include "GridFlow.h"
+#include "Timer.h"
 
 #include <omp.h>
 
@@ -148,12 +149,6 @@ double GridShape::MeanEdgeLength() const
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // Offset of a back-trace start from its sample towards the adjacent face centre,
 // in units of the sample-to-centre distance (the paper's epsilon).
