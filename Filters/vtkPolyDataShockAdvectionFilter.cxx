@@ -242,8 +242,7 @@ bool vtkPolyDataShockAdvectionFilter::LocalValueRange(
   vtkInformationVector** inputVector, double range[2])
 {
   int association = -1;
-  vtkDataArray* array =
-    vtkDataArray::SafeDownCast(this->GetInputAbstractArrayToProcess(0, inputVector, association));
+  vtkDataArray* array = this->FindArrayToFilter(inputVector, association);
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   if (!array || !input || association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
   {

@@ -355,7 +355,7 @@ def surface_split_case(how, whole_path, split_path, references):
     label = "%s np=%d" % (how, PROCESSES)
     proxies = split_input(how, whole_path, split_path)
     del messages.errors[:]
-    filtered = SurfaceShockAdvection(Input=proxies[-1], InputArray=["POINTS", "Heat"], FlowTime=256)
+    filtered = SurfaceShockAdvection(Input=proxies[-1], FlowTime=256)  # default array: the active scalars
     path = os.path.join(OUTPUT, "advection.pvtp")
     SaveData(path, proxy=filtered)
     check(not messages.errors, "advection on %s: no error (%s)" % (label, messages.errors))
