@@ -129,6 +129,21 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
     globalIds[static_cast<size_t>(p)] = static_cast<vtkIdType>(ids->GetTuple1(p));
   }
   out.exchange.Setup(controller, globalIds.data(), partition.ownedPoints, needed);
+  // What a piece costs: its ghost layers, and the traffic of one CG iteration
+  // (one exchange of 3 doubles per point, two global sums of 3 and 6 doubles).
+  std::int64_t ownedPoints = 0;
+  for (char owned : partition.ownedPoints)
+  {
+    ownedPoints += owned;
+  }
+  vtkLogF(INFO,
+    "vtkPolyDataShockSharpenFilter piece %d of %d: %lld points (%lld owned, %lld in ghost "
+    "layers), %lld triangles; per CG iteration %lld bytes sent and %lld received point to "
+    "point, 72 bytes reduced",
+    controller->GetLocalProcessId(), controller->GetNumberOfProcesses(), static_cast<long long>(np),
+    static_cast<long long>(ownedPoints), static_cast<long long>(np - ownedPoints),
+    static_cast<long long>(nt), static_cast<long long>(24 * out.exchange.SentPoints()),
+    static_cast<long long>(24 * out.exchange.ReceivedPoints()));
   partition.globalSum = [controller](double* values, int count) {
     vtkShockParallel::Sum(controller, values, count);
   };
@@ -148,7 +163,8 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   std::string error;
   vtkSmartPointer<vtkPolyData> input =
     vtkShockPolyDataInternals::AsSurface(vtkDataSet::GetData(inputVector[0]), error);
-  // In parallel: all agree, replicated data is recognised, pieces get ghost layers (collective).
+  // In parallel: all agree, replicated data is recognised, pieces get ghost layers
+  // (collective; at least one: the fit's rows need the one-rings of their points).
   bool unknown = false;
   vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);
   if (unknown && input && input->GetNumberOfPoints() > 0)
@@ -158,7 +174,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   }
   vtkShockParallel::SurfacePiece piece;
   if (!vtkShockParallel::PrepareSurfacePiece(
-        controller, input, error, this->GhostLevels, piece, error))
+        controller, input, error, std::max(1, this->GhostLevels), piece, error))
   {
     vtkErrorMacro(<< error);
     return 0;

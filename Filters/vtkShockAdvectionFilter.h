@@ -193,11 +193,13 @@ public:
    * sample (clamped to the whole extent). The output is cropped back to what
    * was requested, so pieces tile the image exactly. Cell arrays are grown by
    * the same number of layers.
-   * Surfaces: UPDATE_NUMBER_OF_GHOST_LEVELS is raised by GhostLevels; the
-   * ghost cells provided upstream (e.g. by ParaView's Ghost Cells Generator)
-   * are filtered with the piece and kept in the output with their ghost
-   * arrays. Serial runs (one piece) are not affected.
-   * vtkPolyDataShockSharpenFilter ignores it: it refuses pieces.
+   * Surfaces: the piece's own cells get GhostLevels layers of their
+   * neighbours' cells from vtkGhostCellsGenerator (over the Controller), are
+   * filtered with them, and the output holds each owned cell once, shared
+   * points marked in vtkGhostType (DUPLICATEPOINT on all copies but the
+   * owner's). Ghost cells arriving from upstream are replaced: their depth
+   * cannot be checked. vtkPolyDataShockSharpenFilter traces its normals in
+   * the same layers. Serial runs (one piece) are not affected.
    */
   vtkSetClampMacro(GhostLevels, int, 0, 64);
   vtkGetMacro(GhostLevels, int);

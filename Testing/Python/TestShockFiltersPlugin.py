@@ -134,8 +134,7 @@ EXPECTED_NAMES = {
         "GhostLevels"},
 }
 EXPECTED_NAMES["SurfaceShockAdvection"] = set(EXPECTED_NAMES["ImageShockAdvection"])
-# GhostLevels: the sharpen filter refuses pieces, so its proxy does not show it.
-EXPECTED_NAMES["SurfaceShockSharpen"] = (EXPECTED_NAMES["ImageShockAdvection"] - {"InputArray", "GhostLevels"}) | {
+EXPECTED_NAMES["SurfaceShockSharpen"] = (EXPECTED_NAMES["ImageShockAdvection"] - {"InputArray"}) | {
     "NormalSmoothingPasses", "ScreeningWeight", "Solver", "SolverIterations", "SolverTolerance",
     "MergeCoincidentPoints", "GenerateSharpenedNormals", "LastFitSetupSeconds",
     "LastFitSolveSeconds", "LastSolverIterations", "LastSolverResidual", "LastFlippedTriangles",
