@@ -155,7 +155,10 @@ int vtkImageShockAdvectionFilter::RequestData(
   if (input->GetNumberOfPoints() == 0)
   {
     output->ShallowCopy(input);
-    vtkWarningMacro("The input image is empty: nothing to filter.");
+    if (this->ParallelPiecesWithData == NOT_A_PIECE) // an empty piece of a parallel run is normal
+    {
+      vtkWarningMacro("The input image is empty: nothing to filter.");
+    }
     return 1;
   }
 
