@@ -60,15 +60,20 @@ std::vector<OptionSpec> ImageOptionSpecs(ImageSettings& settings)
     [&method](const std::string& v) { method.method = ParseChoice("--method", v, MethodChoices()); } });
   const std::vector<OptionSpec> shared = ShockOptionSpecs(settings.shock, ShockOptionSet::All, defaults);
   specs.insert(specs.end(), shared.begin(), shared.end());
+  const double courantLow = defaults->GetCourantNumberMinValue();
+  const double courantHigh = defaults->GetCourantNumberMaxValue();
   specs.push_back({ "--courant", "C",
-    "pde: Courant number of the explicit step, 0.01..1" +
+    "pde: Courant number of the explicit step, " + RangeText(courantLow, courantHigh) +
       DefaultText(NumberText(defaults->GetCourantNumber())),
-    [&method](const std::string& v) { method.courantNumber = ParseInRange("--courant", v, 0.01, 1.0); } });
+    [&method, courantLow, courantHigh](const std::string& v)
+    { method.courantNumber = ParseInRange("--courant", v, courantLow, courantHigh); } });
+  const int stepsLow = defaults->GetMaximumIterationsMinValue();
+  const int stepsHigh = defaults->GetMaximumIterationsMaxValue();
   specs.push_back({ "--max-iterations", "N",
-    "pde: most explicit steps, 1..100000000" +
+    "pde: most explicit steps, " + RangeText(stepsLow, stepsHigh) +
       DefaultText(std::to_string(defaults->GetMaximumIterations())),
-    [&method](const std::string& v)
-    { method.maximumIterations = ParseInRange("--max-iterations", v, 1, 100000000); } });
+    [&method, stepsLow, stepsHigh](const std::string& v)
+    { method.maximumIterations = ParseInRange("--max-iterations", v, stepsLow, stepsHigh); } });
   specs.push_back(
     ArrayOptionSpec(settings.arrayName, "point array to filter (default: active point scalars)"));
   specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));
