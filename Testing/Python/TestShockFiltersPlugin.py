@@ -315,9 +315,17 @@ if HELP_DIR:
             with open(page) as handle:
                 text = html.unescape(re.sub(r"<[^>]+>", " ", handle.read()))
             proxy = servermanager._getPyProxy(pxm.SMProxyManager.NewProxy("filters", name))
+            flat = " ".join(text.split())
+            stale = []
             for key in panel_order(proxy)[1]:
                 label = proxy.SMProxy.GetProperty(key).GetXMLLabel()
                 check(label in text, "%s help lists %s" % (name, label))
+                doc = proxy.SMProxy.GetProperty(key).GetDocumentation()
+                if doc is not None and " ".join(doc.GetDescription().split())[:60] not in flat:
+                    stale.append(key)
+            # ParaView 5.11 does not rebuild the help pages when the XML changes.
+            check(not stale, "%s help pages older than the XML (%s): rm %s/* and build again"
+                  % (name, ", ".join(stale), HELP_DIR))
             check("docs/" not in text and ".md" not in text, "%s help names no repository file" % name)
             if name == "ImageShockAdvection":
                 check("Default: 'Fixed'" in text and "Default: 'Face Crossing'" in text,
