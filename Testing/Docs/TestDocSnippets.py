@@ -111,7 +111,8 @@ def command(args, language, code, folder):
         if RENDERS.search(code):
             if not shutil.which("xvfb-run"):
                 return None, "renders, and xvfb-run is not installed"
-            return ["xvfb-run", "-a", args.pvpython, "snippet.py"], None
+            # -noreset: pvpython opens a test window first; a reset would drop the next.
+            return ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24 -noreset", args.pvpython, "snippet.py"], None
         return [args.pvpython, "--force-offscreen-rendering", "snippet.py"], None
     if language == "sh":
         for tool in ("xvfb-run", "mpirun", "pvpython", "pvbatch"):
