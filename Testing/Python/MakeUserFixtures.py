@@ -5,7 +5,7 @@ scan.ply (a sphere with soft colour bands, per-vertex RGB) and script.py (a
 pvbatch script). Used by the documentation snippets and the first-contact
 tests. Needs ParaView's vtkmodules (pvpython or the python3 ParaView uses).
 """
-import math, sys
+import math
 from vtkmodules.vtkCommonCore import vtkFloatArray, vtkUnsignedCharArray
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkFiltersSources import vtkSphereSource
