@@ -1,6 +1,7 @@
 #include "ShockImageChecks.h"
 
 #include "ShockIOFiles.h"
+#include "ShockMeshChecks.h"
 
 #include <algorithm>
 #include <cctype>
@@ -146,6 +147,11 @@ bool BmpHeader(const std::string& path, ImageHeader& header, std::string& proble
   const auto width = static_cast<std::int32_t>(Unsigned(bytes, 18, core ? 2 : 4, true));
   const auto height = static_cast<std::int32_t>(Unsigned(bytes, core ? 20 : 22, core ? 2 : 4, true));
   const std::uint64_t bits = Unsigned(bytes, core ? 24 : 28, 2, true);
+  if (bits != 8 && bits != 24)
+  {
+    problem = "a BMP of " + std::to_string(bits) + " bits per pixel (VTK reads 8 and 24)";
+    return false;
+  }
   if (width <= 0 || height == 0 || height == std::numeric_limits<std::int32_t>::min())
   {
     problem = "the BMP header declares " + std::to_string(width) + "x" + std::to_string(height) +
@@ -325,7 +331,7 @@ bool ReadHeader(const std::string& path, const ImageFormat& format, std::uint64_
     case ImageFormat::VTI:
       return VtkHeader(path, true, header, problem);
     case ImageFormat::LegacyVTK:
-      return VtkHeader(path, false, header, problem);
+      return CheckLegacyCounts(path, maxSamples, problem) && VtkHeader(path, false, header, problem);
   }
   return true;
 }

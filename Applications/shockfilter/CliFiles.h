@@ -20,7 +20,7 @@
 namespace shockcli
 {
 
-/// --max-samples N: the most samples (pixels, voxels) an input image may declare.
+/// --max-samples N: the most samples (pixels, voxels; mesh points, cells) an input may declare.
 OptionSpec MaxSamplesOptionSpec(std::uint64_t& target);
 
 /// The image format of `path` by its extension; throws if unsupported.
@@ -35,8 +35,8 @@ vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& path, std::uint64
 /// Writes an image (raster formats: the point array `arrayName`); throws on failure, prints conversions.
 void WriteImageFile(vtkImageData* image, const std::string& path, const std::string& arrayName);
 
-/// Reads a mesh file; throws the IO library's message.
-vtkSmartPointer<vtkPolyData> ReadMeshFile(const std::string& path);
+/// Reads a mesh file of at most `maxSamples` points and cells; throws the IO library's message.
+vtkSmartPointer<vtkPolyData> ReadMeshFile(const std::string& path, std::uint64_t maxSamples);
 /// Writes a mesh file; throws the IO library's message.
 void WriteMeshFile(vtkPolyData* mesh, const std::string& path);
 

@@ -6,6 +6,10 @@
 #include "vtkDataArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
+
+#include <algorithm>
+#include <cmath>
 
 #include <chrono>
 
@@ -227,6 +231,52 @@ SelectedArray SelectArray(vtkDataSet* data, const std::string& requested, std::o
   }
   const std::string what = association ? kind(*association) + " array" : "point or cell array";
   throw CliError("the input has no " + what + " '" + requested + "' (" + available + ")");
+}
+
+vtkSmartPointer<vtkPolyData> InUnitFrame(vtkPolyData* mesh, MeshFrame& frame)
+{
+  double bounds[6];
+  mesh->GetBounds(bounds);
+  frame.scale = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    frame.centre[a] = 0.5 * bounds[2 * a] + 0.5 * bounds[2 * a + 1];
+    frame.scale = std::max(frame.scale, bounds[2 * a + 1] - bounds[2 * a]);
+  }
+  if (!std::isfinite(frame.scale) || !std::isfinite(frame.centre[0] + frame.centre[1] + frame.centre[2]))
+  {
+    throw CliError("the mesh spans more than the double range (its size is not a finite number)");
+  }
+  frame.scale = frame.scale > 0.0 ? frame.scale : 1.0; // a single point: the filter tells
+  auto unit = vtkSmartPointer<vtkPolyData>::New();
+  unit->ShallowCopy(mesh);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(mesh->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    mesh->GetPoint(p, x);
+    points->SetPoint(p, (x[0] - frame.centre[0]) / frame.scale, (x[1] - frame.centre[1]) / frame.scale,
+      (x[2] - frame.centre[2]) / frame.scale);
+  }
+  unit->SetPoints(points);
+  return unit;
+}
+
+void BackFromUnitFrame(vtkPolyData* mesh, const MeshFrame& frame)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(mesh->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    mesh->GetPoint(p, x);
+    points->SetPoint(p, x[0] * frame.scale + frame.centre[0], x[1] * frame.scale + frame.centre[1],
+      x[2] * frame.scale + frame.centre[2]);
+  }
+  mesh->SetPoints(points);
 }
 
 /// Filters the point array 'arrayName' of 'input'; throws "shock filter failed: ..." on error.

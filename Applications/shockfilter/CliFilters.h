@@ -12,6 +12,7 @@
 #include "vtkDataObject.h"
 #include "vtkImageData.h"
 #include "vtkImageShockAdvectionFilter.h"
+#include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
 #include <optional>
@@ -89,6 +90,24 @@ struct SelectedArray
  */
 SelectedArray SelectArray(vtkDataSet* data, const std::string& requested, std::optional<int> association,
   const char* unnamedName);
+
+/**
+ * Where a mesh lies: the mesh filters run on a copy centred at the origin and
+ * scaled to unit size, so that their results scale with the mesh at any
+ * scale a double holds (lengths to the fourth power would leave the double
+ * range beyond about 1e+-75) and the output is put back in place.
+ */
+struct MeshFrame
+{
+  double centre[3] = { 0.0, 0.0, 0.0 };
+  double scale = 1.0; ///< the largest side of the bounding box
+};
+
+/// A copy of `mesh` (sharing all but its points) in unit size (see MeshFrame); throws if its size is not finite.
+vtkSmartPointer<vtkPolyData> InUnitFrame(vtkPolyData* mesh, MeshFrame& frame);
+
+/// Moves the points of `mesh` (a filter's output of an InUnitFrame() copy) back into `frame`.
+void BackFromUnitFrame(vtkPolyData* mesh, const MeshFrame& frame);
 
 /// The result and measurements of one image filter execution.
 struct FilterRun

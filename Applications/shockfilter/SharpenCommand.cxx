@@ -35,6 +35,7 @@ struct SharpenSettings
   std::optional<int> iterations;
   std::optional<double> tolerance;
   bool timings = false;
+  std::uint64_t maxSamples = shockio::DefaultMaxSamples;
 };
 
 std::vector<OptionSpec> SharpenOptionSpecs(SharpenSettings& settings)
@@ -61,6 +62,7 @@ std::vector<OptionSpec> SharpenOptionSpecs(SharpenSettings& settings)
     "stop residual of cg-tolerance (implied), 0..1" +
       DefaultText(NumberText(defaults->GetSolverTolerance())),
     [&settings](const std::string& v) { settings.tolerance = ParseInRange("--tolerance", v, 0.0, 1.0); } });
+  specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));
   specs.push_back(TimingsOptionSpec(settings.timings));
   return specs;
 }
@@ -105,7 +107,7 @@ int RunSharpenCommand(const std::vector<std::string>& args)
   MeshFormatOfPath(inputPath);
   MeshFormatOfPath(outputPath); // before the work
   RequireWritable(outputPath);
-  vtkSmartPointer<vtkPolyData> input = ReadMeshFile(inputPath);
+  vtkSmartPointer<vtkPolyData> input = ReadMeshFile(inputPath, settings.maxSamples);
 
   vtkNew<vtkPolyDataShockSharpenFilter> filter;
   ConfigureFilter(filter, settings.shock);
@@ -129,8 +131,10 @@ int RunSharpenCommand(const std::vector<std::string>& args)
   {
     filter->SetSolverTolerance(*settings.tolerance);
   }
-  filter->SetInputData(input);
+  MeshFrame frame;
+  filter->SetInputData(InUnitFrame(input, frame));
   const double seconds = TimedUpdate(filter);
+  BackFromUnitFrame(filter->GetOutput(), frame);
   WriteMeshFile(filter->GetOutput(), outputPath);
 
   if (settings.timings)

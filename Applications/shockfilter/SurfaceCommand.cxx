@@ -25,6 +25,7 @@ struct SurfaceSettings
   std::string arrayName;
   std::optional<int> association;
   bool timings = false;
+  std::uint64_t maxSamples = shockio::DefaultMaxSamples;
 };
 
 std::vector<OptionSpec> SurfaceOptionSpecs(SurfaceSettings& settings)
@@ -36,6 +37,7 @@ std::vector<OptionSpec> SurfaceOptionSpecs(SurfaceSettings& settings)
     "point|cell data only, for --array and the default scalars",
     [&settings](const std::string& v)
     { settings.association = ParseChoice("--association", v, AssociationChoices()); } });
+  specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));
   specs.push_back(TimingsOptionSpec(settings.timings));
   return specs;
 }
@@ -111,17 +113,19 @@ int RunSurfaceCommand(const std::vector<std::string>& args)
   const shockio::MeshFormat& outputFormat = MeshFormatOfPath(outputPath); // before the work
   RequireWritable(outputPath);
 
-  vtkSmartPointer<vtkPolyData> input = ReadMeshFile(inputPath);
+  vtkSmartPointer<vtkPolyData> input = ReadMeshFile(inputPath, settings.maxSamples);
   const SelectedArray selected = SelectArray(input, settings.arrayName, settings.association, "Scalars");
   RequireMeshStorable(outputFormat, selected, outputPath);
 
   vtkNew<vtkPolyDataShockAdvectionFilter> filter;
   ConfigureFilter(filter, settings.shock);
   filter->SetInputArrayToProcess(0, 0, 0, selected.association, selected.name.c_str());
-  filter->SetInputData(input);
+  MeshFrame frame;
+  filter->SetInputData(InUnitFrame(input, frame));
   const double seconds = TimedUpdate(filter);
 
   vtkPolyData* output = filter->GetOutput();
+  output->SetPoints(input->GetPoints()); // the filter changes the array only
   // The mesh writers store the active scalars as colours: make them the filtered array.
   vtkDataSetAttributes* attributes = selected.association == vtkDataObject::FIELD_ASSOCIATION_CELLS
     ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
