@@ -41,31 +41,38 @@ bool CheckLegacyCounts(const std::string& path, std::uint64_t maxElements, std::
   {
     return false;
   }
-  // Keyword, the words after it that count values.
-  static const std::pair<std::string_view, std::vector<size_t>> keywords[] = { { "POINTS", { 1 } },
-    { "VERTICES", { 1, 2 } }, { "LINES", { 1, 2 } }, { "POLYGONS", { 1, 2 } },
-    { "TRIANGLE_STRIPS", { 1, 2 } }, { "CELLS", { 1, 2 } }, { "CELL_TYPES", { 1 } },
-    { "POINT_DATA", { 1 } }, { "CELL_DATA", { 1 } } };
+  // A keyword, the word after it that counts elements (points, cells, tuples:
+  // limited), their least bytes in the file, and the word that counts values.
+  struct Count
+  {
+    std::string_view keyword, what;
+    size_t elements, bytes, values;
+  };
+  static const Count counts[] = { { "POINTS", "points", 1, 3, 0 }, { "VERTICES", "cells", 1, 1, 2 },
+    { "LINES", "cells", 1, 1, 2 }, { "POLYGONS", "cells", 1, 1, 2 }, { "TRIANGLE_STRIPS", "cells", 1, 1, 2 },
+    { "CELLS", "cells", 1, 1, 2 }, { "CELL_TYPES", "cell types", 1, 1, 0 },
+    { "POINT_DATA", "point data tuples", 1, 1, 0 }, { "CELL_DATA", "cell data tuples", 1, 1, 0 } };
   for (size_t at = 0; at < text.size();)
   {
     const size_t end = std::min(text.find('\n', at), text.size());
-    const std::vector<std::string_view> words = Words(std::string_view(text).substr(at, std::min<size_t>(end - at, 200)));
+    const std::vector<std::string_view> words =
+      Words(std::string_view(text).substr(at, std::min<size_t>(end - at, 200)));
     at = end + 1;
-    for (const auto& [keyword, counts] : keywords)
+    for (const Count& count : counts)
     {
-      if (words.empty() || words[0] != keyword)
+      std::int64_t elements = 0, values = 0;
+      if (words.empty() || words[0] != count.keyword || words.size() <= count.elements ||
+        !ParseCount(words[count.elements], elements))
       {
         continue;
       }
-      for (const size_t w : counts)
+      const auto n = static_cast<std::uint64_t>(elements);
+      if (!CountFits(path, count.what, n, text.size() / count.bytes, maxElements, error) ||
+        (count.values > 0 && count.values < words.size() && ParseCount(words[count.values], values) &&
+          !CountFits(path, "values after " + std::string(count.keyword), static_cast<std::uint64_t>(values),
+            text.size(), ~std::uint64_t{ 0 }, error)))
       {
-        std::int64_t count = 0;
-        if (w < words.size() && ParseCount(words[w], count) &&
-          !CountFits(path, "values after " + std::string(keyword), static_cast<std::uint64_t>(count) *
-              (keyword == "POINTS" ? 3 : 1), text.size(), maxElements * (keyword == "POINTS" ? 3 : 1), error))
-        {
-          return false;
-        }
+        return false;
       }
     }
   }
