@@ -254,20 +254,6 @@ bool WriteStl(vtkPolyData* mesh, const std::string& path, MessageTrap* trap, std
   return RunWriter(writer.GetPointer(), path, trap, error, check);
 }
 
-/// Triangles of the polygons and strips of `mesh` (n - 2 per cell of n points).
-vtkIdType CountTriangles(vtkPolyData* mesh)
-{
-  vtkIdType triangles = 0;
-  for (vtkCellArray* cells : { mesh->GetPolys(), mesh->GetStrips() })
-  {
-    for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
-    {
-      triangles += std::max<vtkIdType>(0, cells->GetCellSize(c) - 2);
-    }
-  }
-  return triangles;
-}
-
 /**
  * Whether a file just written reads back as `mesh` written in `format`: as
  * many points (but STL, whose reader merges them) and triangles. VTK's PLY,

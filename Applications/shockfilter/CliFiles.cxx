@@ -88,19 +88,6 @@ void WriteMeshFile(vtkPolyData* mesh, const std::string& path)
   Require(shockio::WriteMesh(mesh, path, error), error.empty() ? path + ": cannot be written" : error);
 }
 
-vtkIdType CountTriangles(vtkPolyData* mesh)
-{
-  vtkIdType triangles = 0;
-  for (vtkCellArray* cells : { mesh->GetPolys(), mesh->GetStrips() })
-  {
-    for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
-    {
-      triangles += std::max<vtkIdType>(0, cells->GetCellSize(c) - 2);
-    }
-  }
-  return triangles;
-}
-
 std::string MeshExtensionsKeeping(shockio::MeshArrays arrays)
 {
   std::vector<std::string> extensions;

@@ -40,8 +40,7 @@ vtkSmartPointer<vtkPolyData> ReadMeshFile(const std::string& path, std::uint64_t
 /// Writes a mesh file; throws the IO library's message.
 void WriteMeshFile(vtkPolyData* mesh, const std::string& path);
 
-/// Number of triangles the filters make of the polygons and strips (n - 2 per cell of n points).
-vtkIdType CountTriangles(vtkPolyData* mesh);
+using shockio::CountTriangles;
 
 /// ".ply, .off, .vtp or .vtk": the extensions of the formats keeping at least `arrays`.
 std::string MeshExtensionsKeeping(shockio::MeshArrays arrays);
