@@ -1,6 +1,7 @@
 #include "CliFilters.h"
 
 #include "ShockIOMessages.h"
+#include "ShockImageChecks.h"
 
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -12,6 +13,7 @@
 #include <cmath>
 
 #include <chrono>
+#include <new>
 
 namespace shockcli
 {
@@ -134,10 +136,28 @@ void UpdateOrThrow(vtkAlgorithm* algorithm, const std::string& context)
   Require(trap->Finish(context, error, shockio::Strictness::Lenient), error);
 }
 
-double TimedUpdate(vtkAlgorithm* filter)
+std::uint64_t ImageFilterBytes(vtkIdType samples, int components)
+{
+  return static_cast<std::uint64_t>(samples) * (40 + 20 * static_cast<std::uint64_t>(components));
+}
+
+std::uint64_t MeshFilterBytes(vtkIdType points)
+{
+  return static_cast<std::uint64_t>(points) * 1200;
+}
+
+double TimedUpdate(vtkAlgorithm* filter, std::uint64_t bytesNeeded)
 {
   const auto start = std::chrono::steady_clock::now();
-  UpdateOrThrow(filter, "shock filter failed");
+  try
+  {
+    UpdateOrThrow(filter, "shock filter failed");
+  }
+  catch (const std::bad_alloc&)
+  {
+    throw CliError("out of memory: the filter needs about " + shockio::BytesText(bytesNeeded) +
+      " for this input (see the memory notes of '" + ProgramName + " COMMAND --help')");
+  }
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
   return elapsed.count();
 }
@@ -302,7 +322,9 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   filter->SetInputData(input);
 
   FilterRun run;
-  run.totalSeconds = TimedUpdate(filter);
+  vtkDataArray* values = input->GetPointData()->GetArray(arrayName.c_str());
+  run.totalSeconds = TimedUpdate(
+    filter, ImageFilterBytes(input->GetNumberOfPoints(), values ? values->GetNumberOfComponents() : 1));
   run.output = vtkSmartPointer<vtkImageData>::New();
   run.output->ShallowCopy(filter->GetOutput());
   run.time = filter->GetFlowTime();

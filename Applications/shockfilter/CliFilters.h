@@ -15,6 +15,7 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -67,11 +68,22 @@ void ConfigureFilter(vtkShockAdvectionFilter* filter, const ShockOptions& option
 void UpdateOrThrow(vtkAlgorithm* algorithm, const std::string& context);
 
 /**
+ * What a filter needs, measured as peak memory above the program's own (about
+ * 50 MiB), on images of 4 megapixels and meshes of 60,000 points: an image or
+ * volume about 40 bytes per sample plus 20 per sample and component (90 for
+ * RGB), a mesh about 1200 bytes per point (the surface and the sharpen
+ * commands alike), the input and the output included.
+ */
+std::uint64_t ImageFilterBytes(vtkIdType samples, int components);
+std::uint64_t MeshFilterBytes(vtkIdType points);
+
+/**
  * Runs the pipeline of a shock filter whose input is set: returns the wall time
  * of the update in seconds; its warnings are printed; throws "shock filter
- * failed: <VTK error>" when it fails.
+ * failed: <VTK error>" when it fails, and "out of memory: ... needs about
+ * <bytesNeeded>" when an allocation fails.
  */
-double TimedUpdate(vtkAlgorithm* filter);
+double TimedUpdate(vtkAlgorithm* filter, std::uint64_t bytesNeeded);
 
 /// The array a command filters.
 struct SelectedArray

@@ -78,6 +78,8 @@ std::string SharpenHelp()
           "  then the points are fitted to them (screened Poisson equation). Creases\n"
           "  and corners become sharp; flat and smooth parts stay. Arrays pass through.\n"
        << MeshFormatsHelp()
+       << "  Memory: about 1200 bytes per point; a file declaring more points or cells\n"
+          "  than --max-samples is refused before it is read.\n"
        << TimingsHelp({ "command", "points", "triangles", "time", "smoothing", "normal_smoothing",
                         "flow_mode", "solver", "threads", "preprocessing", "setup", "fit_setup",
                         "flow", "advection", "fitting", "total", "trace_steps", "solver_iterations",
@@ -133,7 +135,7 @@ int RunSharpenCommand(const std::vector<std::string>& args)
   }
   MeshFrame frame;
   filter->SetInputData(InUnitFrame(input, frame));
-  const double seconds = TimedUpdate(filter);
+  const double seconds = TimedUpdate(filter, MeshFilterBytes(input->GetNumberOfPoints()));
   BackFromUnitFrame(filter->GetOutput(), frame);
   WriteMeshFile(filter->GetOutput(), outputPath);
 

@@ -52,6 +52,8 @@ std::string SurfaceHelp()
           "  Sharpens a point or cell array of a surface mesh (e.g. its vertex colours)\n"
           "  by advection over the surface and writes the mesh with the filtered array.\n"
        << MeshFormatsHelp()
+       << "  Memory: about 1200 bytes per point; a file declaring more points or cells\n"
+          "  than --max-samples is refused before it is read.\n"
        << "  The array: --array NAME is looked for in the point data, then in the cell\n"
           "  data (only in those of --association when given); by default, the active\n"
           "  scalars of the point data (of the cell data with --association cell), e.g.\n"
@@ -122,7 +124,7 @@ int RunSurfaceCommand(const std::vector<std::string>& args)
   filter->SetInputArrayToProcess(0, 0, 0, selected.association, selected.name.c_str());
   MeshFrame frame;
   filter->SetInputData(InUnitFrame(input, frame));
-  const double seconds = TimedUpdate(filter);
+  const double seconds = TimedUpdate(filter, MeshFilterBytes(input->GetNumberOfPoints()));
 
   vtkPolyData* output = filter->GetOutput();
   output->SetPoints(input->GetPoints()); // the filter changes the array only

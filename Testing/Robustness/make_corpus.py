@@ -103,6 +103,8 @@ def png_kinds():
     add("png_no_ihdr.png", SIG + chunk(b"IDAT", zlib.compress(rows())) + chunk(b"IEND", b""), "image", "refuse")
     add("png_two_ihdr.png", png(extra=chunk(b"IHDR", ihdr())), "image", "refuse")
     add("png_palette_without_plte.png", png(ihdr(colour=3), zlib.compress(rows(channels=1))), "image", "refuse")
+    big = bytes([0]) + bytes((x * 7) % 256 for x in range(1500 * 3))
+    add("png_large_for_memory.png", png(ihdr(1500, 1500), zlib.compress(big * 1500, 9)), "image", "memory")
     add("png_huge_declared.png", png(ihdr(20000, 20000, colour=0), zlib.compress(b"\0" * 20001 * 4)), "image", "refuse")
     add("png_chunk_length_huge.png", SIG + struct.pack(">I", 0x7FFFFFF0) + b"IHDR" + ihdr() + b"\0" * 4, "image", "refuse")
     add("png_chunk_length_negative.png", SIG + struct.pack(">I", 0xFFFFFFFF) + b"IHDR" + ihdr(), "image", "refuse")

@@ -10,7 +10,8 @@ refusal (2) prints exactly one line "shockfilter: ..." on stderr and leaves
 the file byte for byte as it was, and no temporary file behind. The kinds
 marked "refuse" must be refused, "ok" accepted; "scaled" meshes (a unit mesh
 times 1e-300 .. 1e300) must give the unit mesh's result times the scale, or be
-refused. Then writes are made to fail (a file size limit, as a full disk
+refused; a large image under a memory limit (RLIMIT_AS, not under
+AddressSanitizer) must be refused as out of memory. Then writes are made to fail (a file size limit, as a full disk
 would: RLIMIT_FSIZE) for every output format: the existing target must stay.
 Prints the counts; exit status 1 if anything went wrong.
 """
@@ -28,10 +29,12 @@ ARGS = {"image": ["--time", "16"], "surface": ["--time", "64"], "sharpen": ["--t
 ENV = dict(os.environ, OMP_NUM_THREADS="1")
 
 
-def run(command, file_limit=None):
+def run(command, file_limit=None, memory_limit=None):
     def limit():
         if file_limit is not None:
             resource.setrlimit(resource.RLIMIT_FSIZE, (file_limit, file_limit))
+        if memory_limit is not None:
+            resource.setrlimit(resource.RLIMIT_AS, (memory_limit, memory_limit))
     try:
         done = subprocess.run(command, capture_output=True, text=True, errors="replace", timeout=TIMEOUT,
                               env=ENV, preexec_fn=limit)
@@ -92,9 +95,27 @@ def check_scaled(kind, directory, problems):
     return "ok", err
 
 
+SANITIZED = b"__asan_init" in read(PROGRAM)  # AddressSanitizer reserves terabytes of address space
+
+
+def check_memory(kind, problems):
+    """Too little memory for the filter: one line that names what it needs, the input untouched."""
+    if SANITIZED:
+        return "skipped", problems
+    source = os.path.join(CORPUS, kind["name"])
+    code, _, err = run([PROGRAM, "image", source, source, "--time", "16"], memory_limit=200 * 2**20)
+    if code != 2 or "out of memory" not in err:
+        problems.append("%s: expected an out-of-memory refusal, got exit %s: %s" % (kind["name"], code, err))
+        return "crash" if code not in (0, 2, "hang") else str(code), problems
+    check_refusal(kind["name"], code, err, read(source), source, problems)
+    return "refused", problems
+
+
 def one(kind):
     """Runs one kind; returns (outcome, problems)."""
     problems = []
+    if kind["expect"] == "memory":
+        return check_memory(kind, problems)
     directory = os.path.join(WORK, kind["name"] + ".d")
     shutil.rmtree(directory, ignore_errors=True)
     os.makedirs(directory)
