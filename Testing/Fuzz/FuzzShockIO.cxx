@@ -1,9 +1,10 @@
-// libFuzzer target of the file checks and readers of VTK::IOShock: each fuzzed
-// input is written as a file with the extension SHOCK_FUZZ_EXTENSION and read
-// the way shockfilter reads it (the checks, then VTK's reader when they pass).
-// Built once per format (Testing/Fuzz/CMakeLists.txt); run by scripts/test.sh
-// from the seeds in Testing/Fuzz/seeds/<format>, where every input that ever
-// crashed a target stays as a regression test (files named crash-*).
+// The file checks and readers of VTK::IOShock on one input: it is written as a
+// file with the given extension and read the way shockfilter reads it (the
+// checks, then VTK's reader when they pass). With SHOCK_FUZZ_EXTENSION, a
+// libFuzzer target for that format (Testing/Fuzz/CMakeLists.txt; run by
+// scripts/test.sh from the seeds in Testing/Fuzz/seeds/<format>, where every
+// input that ever crashed a target stays, named crash-*); without, the
+// function ReplaySeeds.cxx calls on every seed in the regular test suite.
 #include "ShockIOFiles.h"
 #include "ShockImageChecks.h"
 #include "ShockImageIO.h"
@@ -12,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <unistd.h>
@@ -21,25 +23,24 @@ namespace
 /// A small limit keeps each run fast; the limit itself is checked like any other.
 constexpr std::uint64_t FuzzMaxSamples = 1 << 20;
 
-const std::string& InputPath()
+/// The scratch file of this process for inputs of `extension`.
+std::string InputPath(const std::string& extension)
 {
-  static const std::string path = [] {
-    const char* directory = std::getenv("TMPDIR");
-    return std::string(directory ? directory : "/tmp") + "/shockfuzz-" + std::to_string(::getpid()) +
-      "." SHOCK_FUZZ_EXTENSION;
-  }();
-  return path;
+  const char* directory = std::getenv("TMPDIR");
+  return std::string(directory ? directory : "/tmp") + "/shockfuzz-" + std::to_string(::getpid()) + "." +
+    extension;
 }
 } // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+/// Reads `data` as a file of `extension` (png, off, ...) with the checks and readers of VTK::IOShock.
+void ReadAsFile(const std::string& extension, const std::uint8_t* data, std::size_t size)
 {
+  const std::string path = InputPath(extension);
   {
-    std::ofstream file(InputPath(), std::ios::binary | std::ios::trunc);
+    std::ofstream file(path, std::ios::binary | std::ios::trunc);
     file.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   }
   std::string error;
-  const std::string extension = SHOCK_FUZZ_EXTENSION;
   bool image = false;
   for (const shockio::ImageFormat& format : shockio::ImageFormats())
   {
@@ -56,11 +57,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       shockio::ImageHeader header;
       shockio::CheckPng(std::string(reinterpret_cast<const char*>(data), size), header, FuzzMaxSamples, error);
     }
-    shockio::ReadImage(InputPath(), FuzzMaxSamples, error);
+    shockio::ReadImage(path, FuzzMaxSamples, error);
   }
   else
   {
-    shockio::ReadMesh(InputPath(), error, FuzzMaxSamples);
+    shockio::ReadMesh(path, error, FuzzMaxSamples);
   }
+  std::remove(path.c_str());
+}
+
+#ifdef SHOCK_FUZZ_EXTENSION
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  ReadAsFile(SHOCK_FUZZ_EXTENSION, data, size);
   return 0;
 }
+#endif
