@@ -416,7 +416,7 @@ bool ReadPlyHeader(std::string_view text, PlyHeader& header, std::string& proble
       problem = at + (readable ? "a blank line in the header" : problem);
       return false;
     }
-    if (!ReadPlyHeaderLine(words, at, header, encoding, problem))
+    if (header.lines > 1 && !ReadPlyHeaderLine(words, at, header, encoding, problem))
     {
       return false;
     }
