@@ -233,10 +233,17 @@ bool TiffHeader(const std::string& path, ImageHeader& header, std::string& probl
   std::uint64_t offset = Unsigned(bytes, 4, 4, little);
   std::set<std::uint64_t> seen;
   header = { 0, 0, 0, 1, 1, true };
-  while (offset != 0 && seen.insert(offset).second && seen.size() <= 100000)
+  std::uint64_t budget = 64 << 20; // bytes of directories read: a chain of them cannot make this slow
+  while (offset != 0 && seen.insert(offset).second)
   {
     bytes = ReadBytes(path, offset, 2);
     const std::uint64_t entries = bytes.size() == 2 ? Unsigned(bytes, 0, 2, little) : 0;
+    if (entries * 12 + 4 > budget)
+    {
+      problem = "the TIFF directories are too many or too large";
+      return false;
+    }
+    budget -= entries * 12 + 4;
     bytes = ReadBytes(path, offset + 2, static_cast<std::size_t>(entries * 12 + 4));
     if (entries == 0 || bytes.size() < entries * 12 + 4)
     {

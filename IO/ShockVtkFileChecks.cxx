@@ -4,7 +4,8 @@
 #include "ShockTextWords.h"
 
 #include <algorithm>
-#include <regex>
+#include <cctype>
+#include <iterator>
 #include <string_view>
 #include <vector>
 
@@ -90,19 +91,49 @@ bool CheckXmlCounts(const std::string& path, std::uint64_t maxElements, std::str
   const std::string header = text.substr(0, std::min(appended, text.size()));
   // Compressed data may be far smaller than what it holds: then only the limit applies.
   const bool compressed = header.find("compressor=") != std::string::npos;
-  static const std::regex count(R"(Number(Of(Points|Verts|Lines|Strips|Polys|Cells))\s*=\s*\"\s*(-?\d+))");
-  for (auto match = std::sregex_iterator(header.begin(), header.end(), count);
-       match != std::sregex_iterator(); ++match)
+  // NumberOfPoints="n" and the like, scanned by hand: no regular expression
+  // (whose recursion a long run of blanks could overflow).
+  static const std::string_view kinds[] = { "Points", "Verts", "Lines", "Strips", "Polys", "Cells" };
+  for (size_t at = header.find("NumberOf"); at != std::string::npos; at = header.find("NumberOf", at + 1))
   {
-    const std::string digits = (*match)[3].str();
-    if (digits[0] == '-')
+    size_t end = at + 8;
+    while (end < header.size() && std::isalpha(static_cast<unsigned char>(header[end])))
     {
-      error = path + ": a negative count " + (*match)[0].str() + "\"";
+      ++end;
+    }
+    const std::string_view kind = std::string_view(header).substr(at + 8, end - at - 8);
+    if (std::find(std::begin(kinds), std::end(kinds), kind) == std::end(kinds))
+    {
+      continue;
+    }
+    const auto skipBlanks = [&header](size_t i) {
+      while (i < header.size() && std::isspace(static_cast<unsigned char>(header[i])))
+      {
+        ++i;
+      }
+      return i;
+    };
+    end = skipBlanks(end);
+    if (end >= header.size() || header[end] != '=' || (end = skipBlanks(end + 1)) >= header.size() ||
+      header[end] != '"')
+    {
+      continue;
+    }
+    end = skipBlanks(end + 1);
+    const size_t digits = header.find_first_not_of("-0123456789", end);
+    const std::string_view number = std::string_view(header).substr(end, digits - end);
+    if (number.empty())
+    {
+      continue;
+    }
+    if (number[0] == '-')
+    {
+      error = path + ": a negative count NumberOf" + std::string(kind) + "=\"" + std::string(number) + "\"";
       return false;
     }
     std::int64_t value = 0;
-    const std::uint64_t declared = ParseCount(digits, value) ? static_cast<std::uint64_t>(value) : ~0ull;
-    if (!CountFits(path, (*match)[2].str(), declared, compressed ? ~0ull : text.size(), maxElements, error))
+    const std::uint64_t declared = ParseCount(number, value) ? static_cast<std::uint64_t>(value) : ~0ull;
+    if (!CountFits(path, kind, declared, compressed ? ~0ull : text.size(), maxElements, error))
     {
       return false;
     }

@@ -382,9 +382,11 @@ def mesh_kinds():
                                ("ascii_letters", stl_ascii(P, T, value="x"), "refuse"), ("empty_solid", b"solid s\nendsolid s\n", "refuse")]:
         add("stl_%s.stl" % name, data, "sharpen", expect)
     add("vtp_valid.vtp", vtp(P, T), "sharpen", "ok")
+    add("vtp_blanks_around_count.vtp", vtp(P, T).replace(b'NumberOfPoints="', b'NumberOfPoints=' + b" " * 2000000 + b'"'),
+        "sharpen", "ok")  # valid XML; the count check reads it without recursion
     for name, data in [("points_lie", vtp(P, T, npoints=len(P) + 10)), ("points_huge", vtp(P, T, npoints=2000000000)),
                        ("points_negative", vtp(P, T).replace(b'NumberOfPoints="', b'NumberOfPoints="-')),
-                       ("polys_huge", vtp(P, T).replace(b'NumberOfPolys="%d"' % len(T), b'NumberOfPolys="2000000000"')), ("truncated", vtp(P, T)[:300]), ("nan", vtp(P, T, coordinate="nan")),
+                                              ("polys_huge", vtp(P, T).replace(b'NumberOfPolys="%d"' % len(T), b'NumberOfPolys="2000000000"')), ("truncated", vtp(P, T)[:300]), ("nan", vtp(P, T, coordinate="nan")),
                        ("not_xml", b"not xml\n"), ("bad_tag", vtp(P, T).replace(b"</PolyData>", b"</Poly>"))]:
         add("vtp_%s.vtp" % name, data, "sharpen", "refuse")
     add("vtk_mesh_valid.vtk", legacy_mesh(P, T), "sharpen", "ok")
