@@ -250,9 +250,16 @@ bool TiffHeader(const std::string& path, ImageHeader& header, std::string& probl
       problem = "a TIFF directory is empty or truncated";
       return false;
     }
+    std::set<std::uint64_t> tags;
     for (std::size_t e = 0; e < entries && header.depth == 0; ++e)
     {
       const std::uint64_t tag = Unsigned(bytes, e * 12, 2, little);
+      if (!tags.insert(tag).second)
+      {
+        // libtiff takes the first, a reader of the last would check another size.
+        problem = "a TIFF directory lists tag " + std::to_string(tag) + " twice";
+        return false;
+      }
       const bool isShort = Unsigned(bytes, e * 12 + 2, 2, little) == 3;
       const std::uint64_t value = Unsigned(bytes, e * 12 + 8, isShort ? 2 : 4, little);
       header.width = tag == 256 ? value : header.width;

@@ -177,6 +177,8 @@ def tiff_kinds():
                                ("strip_bytes_huge", tiff(strip_bytes=2**31), "any"), ("truncated_half", tiff()[: len(tiff()) // 2], "refuse"),
                                ("truncated_header", tiff()[:6], "refuse"), ("bits_0", tiff(bits=0, data=b"\0" * 64), "any"),
                                ("spp_0", tiff(spp=0, data=b"\0" * 64), "any"), ("spp_100", tiff(spp=100, data=b"\0" * 64), "any"),
+                               ("width_twice", tiff(entries=[(256, 4, 1, 2**24), (257, 4, 1, 255), (258, 3, 1, 8),
+                                   (273, 4, 1, 8), (277, 3, 1, 1), (279, 4, 1, 64), (256, 4, 1, W)]), "refuse"),
                                ("no_entries", b"II*\0" + struct.pack("<I", 8) + struct.pack("<HI", 0, 0), "refuse"),
                                ("bigtiff", b"II+\0" + b"\0" * 32, "refuse"), ("compression_unknown", tiff(entries=[
                                    (256, 4, 1, W), (257, 4, 1, H), (258, 3, 1, 8), (259, 3, 1, 60000), (273, 4, 1, 8),
