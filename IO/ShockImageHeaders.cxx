@@ -260,7 +260,14 @@ bool TiffHeader(const std::string& path, ImageHeader& header, std::string& probl
         problem = "a TIFF directory lists tag " + std::to_string(tag) + " twice";
         return false;
       }
-      const bool isShort = Unsigned(bytes, e * 12 + 2, 2, little) == 3;
+      const std::uint64_t type = Unsigned(bytes, e * 12 + 2, 2, little);
+      const bool isShort = type == 3;
+      if ((tag == 256 || tag == 257 || tag == 277) &&
+        ((type != 3 && type != 4) || Unsigned(bytes, e * 12 + 4, 4, little) != 1))
+      {
+        problem = "the TIFF tag " + std::to_string(tag) + " is not one SHORT or LONG value";
+        return false;
+      }
       const std::uint64_t value = Unsigned(bytes, e * 12 + 8, isShort ? 2 : 4, little);
       header.width = tag == 256 ? value : header.width;
       header.height = tag == 257 ? value : header.height;
