@@ -100,8 +100,8 @@ std::string ImageHelp()
           "    jpg bmp pnm  unsigned char, 1 or 3 components, 2D\n"
           "  For png/jpg/bmp/pnm other types are rounded and clamped to 0..255 (a note\n"
           "  on stderr says so); other component counts and volumes are refused.\n"
-          "  Memory: the filter needs about 90 bytes per sample of an RGB image (12 per\n"
-          "  sample and component in float, plus the flow field); an input declaring\n"
+          "  Memory: about 40 bytes per sample plus 20 per sample and component (90 per\n"
+          "  pixel of an RGB image, 60 per voxel of a scalar volume); an input declaring\n"
           "  more samples than --max-samples is refused before it is read.\n"
        << TimingsHelp({ "command", "dimensions", "samples", "components", "time", "flow_mode",
                         "threads", "flow", "advection", "total", "trace_steps", "method",
