@@ -1,5 +1,6 @@
 #include "GridShockAdvection.h"
 #include "GridFlow.h"
+#include "GridHierarchy.h"
 
 #include <omp.h>
 
@@ -740,8 +741,11 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
   {
     naiveBuffer = AllocateLargeArray<double>(count);
   }
+  // Stored trace positions: the Composed flow's, and the coarse-to-fine traces'.
+  const std::vector<GridShape> levels = PyramidShapes(shape, p.hierarchyLevels);
+  report.hierarchyLevels = static_cast<int>(levels.size());
   LargeArray<float> positions;
-  if (advect && p.flowMode == FlowMode::Composed)
+  if (advect && (p.flowMode == FlowMode::Composed || levels.size() > 1))
   {
     positions = InitialTracePositions<D>(L, threads);
   }
@@ -778,6 +782,21 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
     const bool naive = p.flowMode == FlowMode::Naive;
     const double* source = naive ? signal : input;
     double* target = naive && (updates - 1 - k) % 2 == 1 ? naiveBuffer.get() : output;
+    if (levels.size() > 1)
+    {
+      // Coarse-to-fine (GridHierarchy.h): the traces cross the coarser levels first;
+      // a Naive step starts them afresh, as it does without levels.
+      if (naive && k > 0)
+      {
+        positions = InitialTracePositions<D>(L, threads);
+      }
+      if (!TraceThroughCoarseLevels<D>(levels, C, signal, range, validSample, p, stepTime,
+            positions.get(), report, progress, progressStart))
+      {
+        report.aborted = true;
+        break;
+      }
+    }
     const bool completed = AdvectVertices<D>(
       ctx, tracer, stepTime, source, target, positions.get(), progressStart, 0.9 / updates);
     report.advectionSeconds += SecondsSince(advectStart);
@@ -797,6 +816,51 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
 }
 
 } // namespace
+
+namespace grid
+{
+template <int D>
+void TraceStoredPositions(const Lattice<D>& L, const float* velocity,
+  const AdvectionParameters& p, double time, const std::array<double, D>& toLevel,
+  float* positions, std::int64_t count, int threads, AdvectionReport& report)
+{
+  const GridTracer<D> tracer(L, velocity, p);
+  std::uint64_t steps = 0;
+  std::uint64_t truncated = 0;
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) reduction(+ : steps, truncated)
+  for (std::int64_t r = 0; r < count; ++r)
+  {
+    float* stored = positions + r * D;
+    std::array<double, D> q;
+    for (int d = 0; d < D; ++d)
+    {
+      q[d] = std::min(std::max(stored[d] * toLevel[d], 0.0), static_cast<double>(L.m[d]));
+    }
+    const std::array<double, D> start = q;
+    std::array<std::int64_t, D> c;
+    const std::int64_t f = tracer.FaceOf(q, c);
+    bool cut = false;
+    steps += static_cast<std::uint64_t>(tracer.Trace(q, c, f, time, cut));
+    truncated += cut ? 1 : 0;
+    for (int d = 0; d < D; ++d)
+    {
+      if (q[d] != start[d]) // an unmoved trace keeps its stored position exactly
+      {
+        stored[d] = static_cast<float>(q[d] / toLevel[d]);
+      }
+    }
+  }
+  report.traceSteps += steps;
+  report.truncatedTraces += truncated;
+}
+
+template void TraceStoredPositions<1>(const Lattice<1>&, const float*, const AdvectionParameters&,
+  double, const std::array<double, 1>&, float*, std::int64_t, int, AdvectionReport&);
+template void TraceStoredPositions<2>(const Lattice<2>&, const float*, const AdvectionParameters&,
+  double, const std::array<double, 2>&, float*, std::int64_t, int, AdvectionReport&);
+template void TraceStoredPositions<3>(const Lattice<3>&, const float*, const AdvectionParameters&,
+  double, const std::array<double, 3>&, float*, std::int64_t, int, AdvectionReport&);
+} // namespace grid
 
 Status AdvectGridSignal(const GridShape& shape, int components, const double* input,
   double* output, const AdvectionParameters& parameters, AdvectionReport* report,
