@@ -1,8 +1,13 @@
 #include "GridHierarchy.h"
+#include "GridFlow.h"
+#include "GridLattice.h"
+#include "GridTrace.h"
+#include "Timer.h"
 
 #include <algorithm>
-#include <chrono>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace shock
@@ -42,12 +47,6 @@ std::vector<GridShape> PyramidShapes(const GridShape& fine, int requested)
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /**
  * Umbrella-smoothing passes of the anti-aliasing before halving: a pass of the
@@ -173,6 +172,47 @@ std::vector<std::vector<double>> BuildPyramid(const std::vector<GridShape>& shap
     valid = levelValid.empty() ? nullptr : levelValid.data();
   }
   return levels;
+}
+
+/**
+ * Trace `count` stored positions (D floats each, index coordinates of the finest
+ * grid) along the back-trace velocity of lattice L for `time` (L's units): each
+ * is mapped to L's index coordinates by `toLevel` (per axis), traced with the
+ * grid kernel's tracer (p.tracing, p.stepFraction) and mapped back.
+ */
+template <int D>
+void TraceStoredPositions(const Lattice<D>& L, const float* velocity,
+  const AdvectionParameters& p, double time, const std::array<double, D>& toLevel,
+  float* positions, std::int64_t count, int threads, AdvectionReport& report)
+{
+  const GridTracer<D> tracer(L, velocity, p);
+  std::uint64_t steps = 0;
+  std::uint64_t truncated = 0;
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) reduction(+ : steps, truncated)
+  for (std::int64_t r = 0; r < count; ++r)
+  {
+    float* stored = positions + r * D;
+    std::array<double, D> q;
+    for (int d = 0; d < D; ++d)
+    {
+      q[d] = std::min(std::max(stored[d] * toLevel[d], 0.0), static_cast<double>(L.m[d]));
+    }
+    const std::array<double, D> start = q;
+    std::array<std::int64_t, D> c;
+    const std::int64_t f = tracer.FaceOf(q, c);
+    bool cut = false;
+    steps += static_cast<std::uint64_t>(tracer.Trace(q, c, f, time, cut));
+    truncated += cut ? 1 : 0;
+    for (int d = 0; d < D; ++d)
+    {
+      if (q[d] != start[d]) // an unmoved trace keeps its stored position exactly
+      {
+        stored[d] = static_cast<float>(q[d] / toLevel[d]);
+      }
+    }
+  }
+  report.traceSteps += steps;
+  report.truncatedTraces += truncated;
 }
 
 } // namespace

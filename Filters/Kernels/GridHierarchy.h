@@ -33,10 +33,9 @@
 #ifndef GridHierarchy_h
 #define GridHierarchy_h
 
-#include "GridFlow.h"
+#include "GridShockAdvection.h"
+#include "ShockTypes.h"
 
-#include <array>
-#include <cstdint>
 #include <vector>
 
 namespace shock
@@ -49,22 +48,11 @@ namespace grid
 std::vector<GridShape> PyramidShapes(const GridShape& fine, int requested);
 
 /**
- * Trace `count` stored positions (D floats each, index coordinates of a finer
- * grid) along the back-trace velocity of lattice L for `time` (L's units):
- * each position is mapped to L's index coordinates by `toLevel` (per axis),
- * traced by the grid kernel's tracer (p.tracing, p.stepFraction) and mapped
- * back. Adds its steps to `report`. Defined in GridShockAdvection.cxx, beside
- * the tracer.
- */
-template <int D>
-void TraceStoredPositions(const Lattice<D>& L, const float* velocity,
-  const AdvectionParameters& p, double time, const std::array<double, D>& toLevel,
-  float* positions, std::int64_t count, int threads, AdvectionReport& report);
-
-/**
- * Steps 1-3 above for every level coarser than `fine`: trace the stored
- * positions of `fine` (InitialTracePositions layout) through `shapes[levels-1]`
- * to `shapes[1]` for flow time `time` (input units), coarsest first. `signal` is
+ * Steps 1-3 above for the levels coarser than shapes[0] (from PyramidShapes):
+ * trace the stored positions of shapes[0] (D floats per sample and corner, in
+ * its index coordinates: the layout of InitialTracePositions, GridAdvect.h)
+ * through the levels shapes.size() - 1 down to 1, for flow time `time` (input
+ * units) each. Only the finest level samples (AdvectVertices from the positions). `signal` is
  * the signal whose flow is wanted, `range` its intensity scale, `validSample`
  * null when every sample is finite. Returns false when `progress` asks to stop.
  */
