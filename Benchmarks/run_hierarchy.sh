@@ -30,3 +30,4 @@ done
 mkdir -p "$pictures"
 "$build/bin/hierbench" --threads 1 --pictures "$pictures" "$picos" \
   "$dir/seeding_by_Clements_Engelhardt.jpg"
+"$build/bin/hierbench" --cost --threads 1 --photo-width 1368 "$picos"
