@@ -264,8 +264,8 @@ void WritePicture(const std::string& path, const std::vector<const std::vector<d
     {
       for (int i = 0; i < like.nx; ++i)
       {
-        // VTK's rows go upwards: flip so that the picture is upright.
-        const vtkIdType id = static_cast<vtkIdType>(like.ny - 1 - j) * width + p * (like.nx + gap) + i;
+        // Rows in VTK's order, as the photographs were read (PNG shows them upright).
+        const vtkIdType id = static_cast<vtkIdType>(j) * width + p * (like.nx + gap) + i;
         for (int k = 0; k < 3; ++k)
         {
           const double x = (*panels[p])[(static_cast<size_t>(j) * like.nx + i) * like.c + std::min(k, like.c - 1)];
