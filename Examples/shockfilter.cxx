@@ -1360,6 +1360,7 @@ struct FilterRun
   vtkTypeUInt64 traceSteps = 0;
   int method = vtkImageShockAdvectionFilter::ADVECTION; ///< image filter only
   vtkTypeInt64 iterations = 0;                           ///< PDE steps (image filter only)
+  int levels = 1;                                        ///< HierarchyLevels (image filter only)
 };
 
 /// The image filter's own parameters (the PDE baseline); unset ones keep the defaults.
@@ -1368,6 +1369,7 @@ struct ImageMethodOptions
   std::optional<int> method;
   std::optional<double> courantNumber;
   std::optional<int> maximumIterations;
+  std::optional<int> hierarchyLevels;
 };
 
 /// Filters the point array 'arrayName' of 'input'; throws "shock filter failed: ..." on error.
@@ -1388,6 +1390,10 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   {
     filter->SetMaximumIterations(*methodOptions.maximumIterations);
   }
+  if (methodOptions.hierarchyLevels)
+  {
+    filter->SetHierarchyLevels(*methodOptions.hierarchyLevels);
+  }
   filter->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrayName.c_str());
   filter->SetInputData(input);
@@ -1406,6 +1412,7 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   run.traceSteps = filter->GetLastTraceSteps();
   run.method = filter->GetMethod();
   run.iterations = filter->GetLastIterations();
+  run.levels = filter->GetHierarchyLevels();
   return run;
 }
 
@@ -1428,7 +1435,8 @@ std::string TimingsJson(const std::string& command, vtkImageData* image, const F
     .Add("total", run.totalSeconds)
     .Add("trace_steps", run.traceSteps)
     .Add("method", ChoiceName(run.method, MethodChoices()))
-    .Add("iterations", run.iterations);
+    .Add("iterations", run.iterations)
+    .Add("levels", run.levels);
   return json.Text();
 }
 
@@ -1499,6 +1507,10 @@ std::vector<OptionSpec> ImageOptionSpecs(ImageSettings& settings)
     [&method](const std::string& v) { method.method = ParseChoice("--method", v, MethodChoices()); } });
   const std::vector<OptionSpec> shared = ShockOptionSpecs(settings.shock, ShockOptionSet::All, defaults);
   specs.insert(specs.end(), shared.begin(), shared.end());
+  specs.push_back({ "--levels", "N",
+    "advection: coarse-to-fine resolution levels, 1..16, 1 = the paper's single level "
+    "(docs/hierarchy.md)" + DefaultText(std::to_string(defaults->GetHierarchyLevels())),
+    [&method](const std::string& v) { method.hierarchyLevels = ParseInRange("--levels", v, 1, 16); } });
   specs.push_back({ "--courant", "C",
     "pde: Courant number of the explicit step, 0.01..1" +
       DefaultText(NumberText(defaults->GetCourantNumber())),
@@ -1533,9 +1545,10 @@ std::string ImageHelp()
           "  on stderr says so); other component counts and volumes are refused.\n"
        << TimingsHelp({ "command", "dimensions", "samples", "components", "time", "flow_mode",
                         "threads", "flow", "advection", "total", "trace_steps", "method",
-                        "iterations" },
+                        "iterations", "levels" },
             "  times in seconds, total = wall time of the filter only (no reading/writing);\n"
-            "  for --method pde, advection = the explicit updates, iterations = their number.\n")
+            "  for --method pde, advection = the explicit updates, iterations = their number;\n"
+            "  levels = --levels.\n")
        << "  Options:\n"
        << FormatOptions(ImageOptionSpecs(unused));
   return text.str();

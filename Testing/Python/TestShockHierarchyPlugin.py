@@ -37,7 +37,7 @@ def values(proxy):
 
 
 wavelet = Wavelet(WholeExtent=[-40, 40, -40, 40, 0, 0])
-default = ImageShockAdvection(Input=wavelet, FlowTime=1e4)
+default = ImageShockAdvection(Input=wavelet, FlowTime=1e4, InputArray=["POINTS", "RTData"])
 check(default.HierarchyLevels == 1, "HierarchyLevels defaults to 1")
 prop = default.GetProperty("HierarchyLevels")
 check(default.SMProxy.GetProperty("HierarchyLevels").GetXMLLabel() == "Hierarchy Levels",
@@ -49,13 +49,16 @@ check(prop.SMProperty.GetDocumentation() is not None, "the property is documente
 
 inputs = values(wavelet)
 reference = values(default)
-one = ImageShockAdvection(Input=wavelet, FlowTime=1e4, HierarchyLevels=1)
+one = ImageShockAdvection(Input=wavelet, FlowTime=1e4, InputArray=["POINTS", "RTData"],
+                          HierarchyLevels=1)
 check(np.array_equal(values(one), reference), "1 level gives the default output exactly")
-two = ImageShockAdvection(Input=wavelet, FlowTime=1e4, HierarchyLevels=2)
+two = ImageShockAdvection(Input=wavelet, FlowTime=1e4, InputArray=["POINTS", "RTData"],
+                          HierarchyLevels=2)
 out = values(two)
 check(np.abs(out - reference).max() > 1e-3 * np.ptp(inputs), "2 levels change the output")
 check(out.min() >= inputs.min() and out.max() <= inputs.max(), "2 levels keep the input range")
-many = ImageShockAdvection(Input=wavelet, FlowTime=1e4, HierarchyLevels=16)
+many = ImageShockAdvection(Input=wavelet, FlowTime=1e4, InputArray=["POINTS", "RTData"],
+                          HierarchyLevels=16)
 out = values(many)
 check(np.all(np.isfinite(out)) and out.min() >= inputs.min() and out.max() <= inputs.max(),
       "16 levels (more than the image holds) run, finite and in range")
