@@ -329,6 +329,10 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   {
     filter->SetMaximumIterations(*methodOptions.maximumIterations);
   }
+  if (methodOptions.hierarchyLevels)
+  {
+    filter->SetHierarchyLevels(*methodOptions.hierarchyLevels);
+  }
   filter->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrayName.c_str());
   filter->SetInputData(input);
@@ -349,6 +353,7 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   run.traceSteps = filter->GetLastTraceSteps();
   run.method = filter->GetMethod();
   run.iterations = filter->GetLastIterations();
+  run.levels = filter->GetHierarchyLevels();
   return run;
 }
 
