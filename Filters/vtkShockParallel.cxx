@@ -12,7 +12,6 @@
 #include "vtkGenerateGlobalIds.h"
 #include "vtkGhostCellsGenerator.h"
 #include "vtkIdList.h"
-#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
