@@ -168,7 +168,7 @@ public:
    * Ghost layers requested around each piece in parallel (pvbatch/pvserver
    * with MPI, or any request for one of several pieces), in samples of the
    * grid (images: point samples, which are also cell layers) or in cell
-   * layers (meshes). Range [0, 256], default 16.
+   * layers (meshes). Range [0, 64], default 16.
    *
    * What it changes: a piece is filtered together with GhostLevels layers of
    * its neighbours' data, so that flow lines starting in the piece can be
