@@ -151,10 +151,10 @@ int vtkImageShockAdvectionFilter::RequestData(
 {
   // Pieces are normalised by the range over all pieces (collective: before anything can fail).
   bool unknown = false;
-  this->ParallelValueScale =
-    this->GlobalValueScale(this->PieceController(outputVector, unknown), inputVector);
+  vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);
+  this->ParallelValueScale = this->GlobalValueScale(controller, inputVector);
   // Filter the piece with its ghost layers, then hand back what was asked for.
-  const int done = this->FilterImage(inputVector, outputVector);
+  const int done = this->FilterImage(inputVector, outputVector, controller || unknown);
   if (done)
   {
     this->CropToUpdateExtent(outputVector);
@@ -163,7 +163,7 @@ int vtkImageShockAdvectionFilter::RequestData(
 }
 
 int vtkImageShockAdvectionFilter::FilterImage(
-  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool piece)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
@@ -179,7 +179,7 @@ int vtkImageShockAdvectionFilter::FilterImage(
   if (input->GetNumberOfPoints() == 0)
   {
     output->ShallowCopy(input);
-    if (this->ParallelPiecesWithData == NOT_A_PIECE) // an empty piece of a parallel run is normal
+    if (!piece) // an empty piece of a parallel run is normal
     {
       vtkWarningMacro("The input image is empty: nothing to filter.");
     }

@@ -168,8 +168,8 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
-  /// Filter the input image (with its ghost layers) into the output.
-  int FilterImage(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  /// Filter the input image (with its ghost layers) into the output; `piece`: one of several.
+  int FilterImage(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool piece);
 
   void ResetMeasurements() override;
 
