@@ -151,7 +151,7 @@ EXPECTED_PANEL = {
                             "Measurements"],
     "SurfaceShockAdvection": ["Input", "Flow", "Tracing", "Output", "Performance", "Parallel",
                               "Measurements"],
-    "SurfaceShockSharpen": ["Input", "Flow", "Tracing", "Fitting", "Output", "Performance",
+    "SurfaceShockSharpen": ["Input", "Flow", "Tracing", "Fitting", "Output", "Performance", "Parallel",
                             "Measurements"],
 }
 
@@ -270,7 +270,7 @@ if SOURCE_XML:
     check(set(definitions) == set(LABELS), "source XML: one flat definition per filter, %s" % sorted(definitions))
     # Deliberately different texts (what is sharpened, what is measured).
     OWN_TEXT = {"Sampling", "GenerateFlowArrays", "LastSetupSeconds", "LastFlowSeconds",
-                "LastAdvectionSeconds", "LastTraceSteps"}
+                "LastAdvectionSeconds", "LastTraceSteps", "GhostLevels"}
 
     def shape(prop, with_text):
         rows = [(prop.tag, tuple(sorted(prop.attrib.items())))]
