@@ -45,7 +45,8 @@ if [[ " $stages " == *" sanitize "* ]]; then
     -DCMAKE_CXX_FLAGS="$sanitizers -fno-sanitize-recover=all" -DCMAKE_C_FLAGS="$sanitizers" \
     -DCMAKE_EXE_LINKER_FLAGS="$sanitizers" -DCMAKE_SHARED_LINKER_FLAGS="$sanitizers"
   cmake --build "$root/build-asan" --parallel "$jobs"
-  ctest --test-dir "$root/build-asan" --output-on-failure --timeout 1800 -L 'kernels|filters|io|cli|robustness'
+  # Two tests at a time: the sanitized tests wait on memory more than on the cores.
+  ctest --test-dir "$root/build-asan" --output-on-failure --timeout 1800 --parallel "$jobs" -L 'kernels|filters|io|cli|robustness'
 fi
 
 if [[ " $stages " == *" fuzz "* ]]; then
