@@ -47,13 +47,22 @@ const std::vector<Choice>& TracingChoices()
 }
 
 /**
- * The options setting ShockOptions. Ranges are those of vtkShockAdvectionFilter
- * (whose setters would clamp silently); the defaults shown are those of
+ * The options setting ShockOptions. Ranges are the clamps of vtkShockAdvectionFilter
+ * (whose setters would clamp silently: out of range is refused here); the defaults shown are those of
  * 'defaults', a new filter of the kind the command runs.
  */
 std::vector<OptionSpec> ShockOptionSpecs(
   ShockOptions& target, ShockOptionSet set, vtkShockAdvectionFilter* defaults)
 {
+  // The filter's clamps (vtkSetClampMacro's Min/MaxValue), refused beyond.
+  const int passesLow = defaults->GetSmoothingPassesMinValue();
+  const int passesHigh = defaults->GetSmoothingPassesMaxValue();
+  const int updatesLow = defaults->GetNumberOfFlowUpdatesMinValue();
+  const int updatesHigh = defaults->GetNumberOfFlowUpdatesMaxValue();
+  const double stepLow = defaults->GetStepFractionMinValue();
+  const double stepHigh = defaults->GetStepFractionMaxValue();
+  const int threadsLow = defaults->GetNumberOfThreadsMinValue();
+  const int threadsHigh = defaults->GetNumberOfThreadsMaxValue();
   std::vector<OptionSpec> specs;
   if (set == ShockOptionSet::All)
   {
@@ -62,16 +71,18 @@ std::vector<OptionSpec> ShockOptionSpecs(
       [&target](const std::string& v)
       { target.time = ParseInRange("--time", v, 0.0, std::numeric_limits<double>::max()); } });
     specs.push_back({ "--smoothing", "N",
-      "smoothing passes, 0..10000" +
+      "smoothing passes, " + RangeText(passesLow, passesHigh) +
         DefaultText(std::to_string(defaults->GetSmoothingPasses())),
-      [&target](const std::string& v) { target.smoothingPasses = ParseInRange("--smoothing", v, 0, 10000); } });
+      [&target, passesLow, passesHigh](const std::string& v)
+      { target.smoothingPasses = ParseInRange("--smoothing", v, passesLow, passesHigh); } });
     specs.push_back({ "--flow", "MODE",
       "fixed|composed|naive" + DefaultText(ChoiceName(defaults->GetFlowMode(), FlowModeChoices())),
       [&target](const std::string& v) { target.flowMode = ParseChoice("--flow", v, FlowModeChoices()); } });
     specs.push_back({ "--updates", "K",
-      "flow updates of composed/naive, 1..100000" +
+      "flow updates of composed/naive, " + RangeText(updatesLow, updatesHigh) +
         DefaultText(std::to_string(defaults->GetNumberOfFlowUpdates())),
-      [&target](const std::string& v) { target.flowUpdates = ParseInRange("--updates", v, 1, 100000); } });
+      [&target, updatesLow, updatesHigh](const std::string& v)
+      { target.flowUpdates = ParseInRange("--updates", v, updatesLow, updatesHigh); } });
     specs.push_back({ "--sampling", "MODE",
       "linear|nearest" + DefaultText(ChoiceName(defaults->GetSampling(), SamplingChoices())),
       [&target](const std::string& v) { target.sampling = ParseChoice("--sampling", v, SamplingChoices()); } });
@@ -79,14 +90,15 @@ std::vector<OptionSpec> ShockOptionSpecs(
       "exact (face crossing)|stepped" + DefaultText(ChoiceName(defaults->GetTracingMode(), TracingChoices())),
       [&target](const std::string& v) { target.tracingMode = ParseChoice("--tracing", v, TracingChoices()); } });
     specs.push_back({ "--step-fraction", "F",
-      "step of stepped tracing (edges), 0.001..1" +
+      "step of stepped tracing (edges), " + RangeText(stepLow, stepHigh) +
         DefaultText(NumberText(defaults->GetStepFraction())),
-      [&target](const std::string& v)
-      { target.stepFraction = ParseInRange("--step-fraction", v, 0.001, 1.0); } });
+      [&target, stepLow, stepHigh](const std::string& v)
+      { target.stepFraction = ParseInRange("--step-fraction", v, stepLow, stepHigh); } });
   }
-  specs.push_back({ "--threads", "N", "OpenMP threads, 0..4096, 0 = all cores" +
-      DefaultText(std::to_string(defaults->GetNumberOfThreads())),
-    [&target](const std::string& v) { target.threads = ParseInRange("--threads", v, 0, 4096); } });
+  specs.push_back({ "--threads", "N", "OpenMP threads, " + RangeText(threadsLow, threadsHigh) +
+      ", 0 = all cores" + DefaultText(std::to_string(defaults->GetNumberOfThreads())),
+    [&target, threadsLow, threadsHigh](const std::string& v)
+    { target.threads = ParseInRange("--threads", v, threadsLow, threadsHigh); } });
   return specs;
 }
 
@@ -317,6 +329,10 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   {
     filter->SetMaximumIterations(*methodOptions.maximumIterations);
   }
+  if (methodOptions.hierarchyLevels)
+  {
+    filter->SetHierarchyLevels(*methodOptions.hierarchyLevels);
+  }
   filter->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrayName.c_str());
   filter->SetInputData(input);
@@ -337,6 +353,7 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   run.traceSteps = filter->GetLastTraceSteps();
   run.method = filter->GetMethod();
   run.iterations = filter->GetLastIterations();
+  run.levels = filter->GetHierarchyLevels();
   return run;
 }
 

@@ -135,6 +135,7 @@ struct FilterRun
   vtkTypeUInt64 traceSteps = 0;
   int method = vtkImageShockAdvectionFilter::ADVECTION; ///< image filter only
   vtkTypeInt64 iterations = 0;                           ///< PDE steps (image filter only)
+  int levels = 1;                                        ///< HierarchyLevels (image filter only)
 };
 
 /// The image filter's own parameters (the PDE baseline); unset ones keep the defaults.
@@ -143,6 +144,7 @@ struct ImageMethodOptions
   std::optional<int> method;
   std::optional<double> courantNumber;
   std::optional<int> maximumIterations;
+  std::optional<int> hierarchyLevels;
 };
 
 /// Filters the point array 'arrayName' of 'input'; throws "shock filter failed: ..." on error.
