@@ -1,0 +1,149 @@
+#!/usr/bin/python3
+"""Mutation testing of the shock-filter kernels (see docs/testing.md).
+
+Each mutant in mutants.py is (file, exact original snippet, replacement): a
+small semantic bug of one of the paper's steps. For every mutant the script
+copies the source tree (the working tree, tracked files only) into
+WORK/src once, applies the mutant there, rebuilds with ccache into WORK/build,
+runs the kernel, filter and command-line tests (CTest labels) with a time
+limit, and restores the file. A mutant is
+
+  killed    a test failed (or the run exceeded the time limit),
+  survived  every test passed,
+  stale     its snippet is not in the file exactly once (the code moved on),
+  invalid   the mutated code does not compile.
+
+The kill rate is killed / (killed + survived). Usage:
+
+  /usr/bin/python3 Testing/Mutation/run.py [--work DIR] [--only ID,...]
+         [--labels REGEX] [--timeout SECONDS] [--jobs N] [--list]
+"""
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+os.environ.setdefault("CCACHE_BASEDIR", os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, HERE)
+from mutants import MUTANTS  # noqa: E402
+
+# Everything the kernel, filter and command-line tests run.
+TARGETS = ["TestShockKernels", "TestShockFit", "TestShockFilters", "TestShockPolyDataFilters",
+           "TestShockSharpenFilter", "shockfilter", "ShockCliTestMeshes"]
+
+
+def run(command, cwd, timeout=None, log=None):
+    """Run a command; returns (exit code or None on timeout, seconds)."""
+    start = time.time()
+    try:
+        result = subprocess.run(command, cwd=cwd, stdout=log or subprocess.DEVNULL,
+                                stderr=subprocess.STDOUT, timeout=timeout)
+        return result.returncode, time.time() - start
+    except subprocess.TimeoutExpired:
+        return None, time.time() - start
+
+
+def copy_tree(work):
+    """Copy the tracked files of the working tree (as they are now) into WORK/src."""
+    src = os.path.join(work, "src")
+    files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, check=True,
+                           stdout=subprocess.PIPE).stdout.decode().split("\0")
+    for name in filter(None, files):
+        target = os.path.join(src, name)
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        source = os.path.join(ROOT, name)
+        if os.path.isfile(source):
+            if not os.path.exists(target) or open(source, "rb").read() != open(target, "rb").read():
+                shutil.copy2(source, target)
+    return src
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--work", default=os.path.join(ROOT, "build-mutation"))
+    parser.add_argument("--only", default="", help="comma-separated mutant ids")
+    parser.add_argument("--labels", default="kernels|filters|cli")
+    parser.add_argument("--timeout", type=float, default=900.0, help="seconds per mutant's tests")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--list", action="store_true", help="list the mutants and exit")
+    args = parser.parse_args()
+
+    mutants = MUTANTS
+    if args.only:
+        wanted = set(args.only.split(","))
+        mutants = [m for m in MUTANTS if m["id"] in wanted]
+    if args.list:
+        for m in mutants:
+            print(f"{m['id']:28s} {m['file']}: {m['bug']}")
+        return 0
+
+    work = os.path.abspath(args.work)
+    os.makedirs(work, exist_ok=True)
+    src = copy_tree(work)
+    # The build inside the copy, as build/ inside the worktree: the same relative
+    # paths, so that ccache (with CCACHE_BASEDIR) reuses the worktree's objects.
+    build = os.path.join(src, "build")
+    env_launcher = ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache", "-DCMAKE_C_COMPILER_LAUNCHER=ccache"]
+    code, _ = run(["cmake", "-S", src, "-B", build, "-DCMAKE_BUILD_TYPE=Release"] + env_launcher,
+                  cwd=work)
+    build_command = ["cmake", "--build", build, "-j", str(args.jobs), "--target"] + TARGETS
+    code, seconds = run(build_command, cwd=work)
+    if code != 0:
+        print("mutate: the unmutated tree does not build", file=sys.stderr)
+        return 2
+    test_command = ["ctest", "--test-dir", build, "-L", args.labels, "-j", str(args.jobs),
+                    "--stop-on-failure", "--timeout", "300"]
+    code, seconds = run(test_command, cwd=work, timeout=args.timeout)
+    if code != 0:
+        print("mutate: the unmutated tree fails its tests", file=sys.stderr)
+        return 2
+    print(f"baseline: tests pass in {seconds:.0f} s", flush=True)
+
+    results = {"killed": [], "survived": [], "stale": [], "invalid": []}
+    logs = os.path.join(work, "logs")
+    os.makedirs(logs, exist_ok=True)
+    for m in mutants:
+        path = os.path.join(src, m["file"])
+        original = open(path).read() if os.path.exists(path) else ""
+        if original.count(m["original"]) != 1:
+            results["stale"].append(m["id"])
+            print(f"{m['id']:28s} stale (snippet found {original.count(m['original'])} times)",
+                  flush=True)
+            continue
+        try:
+            with open(path, "w") as f:
+                f.write(original.replace(m["original"], m["replacement"]))
+            with open(os.path.join(logs, m["id"] + ".log"), "w") as log:
+                code, build_seconds = run(build_command, cwd=work, log=log)
+                if code != 0:
+                    outcome = "invalid"
+                    test_seconds = 0.0
+                else:
+                    code, test_seconds = run(test_command, cwd=work, timeout=args.timeout, log=log)
+                    outcome = "survived" if code == 0 else "killed"
+        finally:
+            with open(path, "w") as f:
+                f.write(original)
+        results[outcome].append(m["id"])
+        print(f"{m['id']:28s} {outcome:8s} build {build_seconds:4.0f} s, tests {test_seconds:4.0f} s",
+              flush=True)
+    # Leave the build matching the unmutated sources.
+    run(build_command, cwd=work)
+
+    decided = len(results["killed"]) + len(results["survived"])
+    rate = 100.0 * len(results["killed"]) / decided if decided else 0.0
+    print(f"\nmutants: {len(mutants)}; killed {len(results['killed'])}, survived "
+          f"{len(results['survived'])}, stale {len(results['stale'])}, invalid "
+          f"{len(results['invalid'])}; kill rate {rate:.1f} %")
+    for outcome in ("survived", "stale", "invalid"):
+        if results[outcome]:
+            print(f"{outcome}: {', '.join(results[outcome])}")
+    return 0 if not results["survived"] else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
