@@ -5,8 +5,9 @@ Each mutant in mutants.py is (file, exact original snippet, replacement): a
 small semantic bug of one of the paper's steps. For every mutant the script
 copies the source tree (the working tree, tracked files only) into
 WORK/src once, applies the mutant there, rebuilds with ccache into WORK/build,
-runs the kernel, filter and command-line tests (CTest labels) with a time
-limit, and restores the file. A mutant is
+runs the kernel test programs and, if they all pass, the kernel, filter and
+command-line tests through CTest (labels), with a time limit per mutant, and
+restores the file. A mutant is
 
   killed    a test failed (or the run exceeded the time limit),
   survived  every test passed,
@@ -31,9 +32,12 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 from mutants import MUTANTS  # noqa: E402
 
-# Everything the kernel, filter and command-line tests run.
-TARGETS = ["TestShockKernels", "TestShockFit", "TestShockFilters", "TestShockPolyDataFilters",
-           "TestShockSharpenFilter", "shockfilter", "ShockCliTestMeshes"]
+# Stage 1: the kernel test programs, run directly (one process each: seconds).
+KERNEL_TARGETS = ["TestShockKernels", "TestShockFit"]
+# Stage 2, for a mutant that survives stage 1: everything the filter and
+# command-line tests run, through CTest.
+ALL_TARGETS = KERNEL_TARGETS + ["TestShockFilters", "TestShockPolyDataFilters",
+                                "TestShockSharpenFilter", "shockfilter", "ShockCliTestMeshes"]
 
 
 def run(command, cwd, timeout=None, log=None):
@@ -90,13 +94,27 @@ def main():
     env_launcher = ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache", "-DCMAKE_C_COMPILER_LAUNCHER=ccache"]
     code, _ = run(["cmake", "-S", src, "-B", build, "-DCMAKE_BUILD_TYPE=Release"] + env_launcher,
                   cwd=work)
-    build_command = ["cmake", "--build", build, "-j", str(args.jobs), "--target"] + TARGETS
-    code, seconds = run(build_command, cwd=work)
+    def build_command(targets):
+        return ["cmake", "--build", build, "-j", str(args.jobs), "--target"] + targets
+
+    def kernel_tests(log, deadline):
+        """Stage 1: the kernel test programs; exit code 0 when all pass."""
+        for program in KERNEL_TARGETS:
+            left = deadline - time.time()
+            if left <= 0:
+                return None
+            code, _ = run([os.path.join(build, "bin", program), "--gtest_brief=1"], cwd=work,
+                          timeout=left, log=log)
+            if code != 0:
+                return code
+        return 0
+
+    test_command = ["ctest", "--test-dir", build, "-L", args.labels, "-j", str(args.jobs),
+                    "--stop-on-failure", "--timeout", "300"]
+    code, seconds = run(build_command(ALL_TARGETS), cwd=work)
     if code != 0:
         print("mutate: the unmutated tree does not build", file=sys.stderr)
         return 2
-    test_command = ["ctest", "--test-dir", build, "-L", args.labels, "-j", str(args.jobs),
-                    "--stop-on-failure", "--timeout", "300"]
     code, seconds = run(test_command, cwd=work, timeout=args.timeout)
     if code != 0:
         print("mutate: the unmutated tree fails its tests", file=sys.stderr)
@@ -111,28 +129,38 @@ def main():
         original = open(path).read() if os.path.exists(path) else ""
         if original.count(m["original"]) != 1:
             results["stale"].append(m["id"])
-            print(f"{m['id']:28s} stale (snippet found {original.count(m['original'])} times)",
+            print(f"{m['id']:36s} stale (snippet found {original.count(m['original'])} times)",
                   flush=True)
             continue
+        start = time.time()
+        stage = "kernels"
         try:
             with open(path, "w") as f:
                 f.write(original.replace(m["original"], m["replacement"]))
             with open(os.path.join(logs, m["id"] + ".log"), "w") as log:
-                code, build_seconds = run(build_command, cwd=work, log=log)
+                code, _ = run(build_command(KERNEL_TARGETS), cwd=work, log=log)
                 if code != 0:
                     outcome = "invalid"
-                    test_seconds = 0.0
                 else:
-                    code, test_seconds = run(test_command, cwd=work, timeout=args.timeout, log=log)
-                    outcome = "survived" if code == 0 else "killed"
+                    code = kernel_tests(log, start + args.timeout)
+                    if code == 0:
+                        stage = "all"
+                        code, _ = run(build_command(ALL_TARGETS), cwd=work, log=log)
+                        if code == 0:
+                            left = max(1.0, start + args.timeout - time.time())
+                            code, _ = run(test_command, cwd=work, timeout=left, log=log)
+                        else:
+                            code = "build"
+                    outcome = ("invalid" if code == "build" else
+                               "survived" if code == 0 else "killed")
         finally:
             with open(path, "w") as f:
                 f.write(original)
         results[outcome].append(m["id"])
-        print(f"{m['id']:28s} {outcome:8s} build {build_seconds:4.0f} s, tests {test_seconds:4.0f} s",
+        print(f"{m['id']:36s} {outcome:8s} ({stage} tests, {time.time() - start:4.0f} s)",
               flush=True)
     # Leave the build matching the unmutated sources.
-    run(build_command, cwd=work)
+    run(build_command(ALL_TARGETS), cwd=work)
 
     decided = len(results["killed"]) + len(results["survived"])
     rate = 100.0 * len(results["killed"]) / decided if decided else 0.0
