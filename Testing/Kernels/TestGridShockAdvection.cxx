@@ -61,6 +61,13 @@ TEST(GridShockAdvection, OutputStaysWithinTheInputRange)
           const auto [outLow, outHigh] = std::minmax_element(out.begin(), out.end());
           EXPECT_GE(*outLow, *low - eps);
           EXPECT_LE(*outHigh, *high + eps);
+          // The identity keeps the range too: the filter must also have changed the
+          // signal (Nearest sampling reads the samples themselves until traces
+          // move half a sample).
+          if (sampling == Sampling::Linear || t > 1000.0)
+          {
+            EXPECT_GT(MeanAbsDifference(out, input), 1e-5) << "t = " << t;
+          }
         }
       }
     }
@@ -84,6 +91,8 @@ TEST(GridShockAdvection, SmoothExtremumKeepsItsValue)
     const auto out = Filter(shape, 1, input, WithTime(t));
     EXPECT_NEAR(out[30 * 61 + 30], 1.0, 0.005) << "t = " << t;
     EXPECT_NEAR(*std::max_element(out.begin(), out.end()), 1.0, 0.005);
+    // ...while the flanks of the bump do move (the identity would keep the top too).
+    EXPECT_GT(MaxAbsDifference(out, input), t > 100.0 ? 0.01 : 1e-3) << "t = " << t;
   }
 }
 
@@ -138,6 +147,8 @@ TEST(GridShockAdvection, PreservesTotalVariationIn1D)
   {
     const auto out = Filter(shape, 1, input, WithTime(t));
     EXPECT_NEAR(TotalVariation(out), tv, 0.005 * tv) << "t = " << t;
+    // The identity keeps the total variation too: the steps must have sharpened.
+    EXPECT_LT(RiseWidth(out.data() + 60, 40), RiseWidth(input.data() + 60, 40)) << "t = " << t;
   }
 }
 
@@ -214,6 +225,16 @@ TEST(GridShockAdvection, ColouredEdgeHasNoFringes)
     }
   }
   const auto out = Filter(shape, 3, input, WithTime(256.0));
+  // The identity has no fringes either: the edge must have sharpened.
+  {
+    std::vector<double> before(50), after(50);
+    for (int i = 0; i < 50; ++i)
+    {
+      before[i] = input[3 * (20 * 50 + i)];
+      after[i] = out[3 * (20 * 50 + i)];
+    }
+    EXPECT_LT(RiseWidth(after.data(), 50), 0.8 * RiseWidth(before.data(), 50));
+  }
   for (size_t s = 0; s < out.size() / 3; ++s)
   {
     const double u = (out[3 * s] - A[0]) / (B[0] - A[0]);

@@ -62,7 +62,7 @@ def copy_tree(work):
         source = os.path.join(ROOT, name)
         if os.path.isfile(source):
             if not os.path.exists(target) or open(source, "rb").read() != open(target, "rb").read():
-                shutil.copy2(source, target)
+                shutil.copyfile(source, target)  # a new mtime: make rebuilds
     return src
 
 
