@@ -88,6 +88,10 @@ def main():
     work = os.path.abspath(args.work)
     os.makedirs(work, exist_ok=True)
     src = copy_tree(work)
+    # An interrupted run may have built a mutant: rebuild every mutated file.
+    for name in {m["file"] for m in MUTANTS}:
+        if os.path.exists(os.path.join(src, name)):
+            os.utime(os.path.join(src, name))
     # The build inside the copy, as build/ inside the worktree: the same relative
     # paths, so that ccache (with CCACHE_BASEDIR) reuses the worktree's objects.
     build = os.path.join(src, "build")
