@@ -2255,7 +2255,8 @@ std::string RunTimesText(const FilterRun& run)
 }
 
 /// The 2D part of the demo: picture, sharpened pictures for several t, before/after.
-void RunPictureDemo(const std::filesystem::path& directory, const ShockOptions& common)
+/// Returns whether its check holds: the sharpness increases with t.
+bool RunPictureDemo(const std::filesystem::path& directory, const ShockOptions& common)
 {
   const std::string arrayName = "Picture";
   const int width = 512;
@@ -2300,6 +2301,7 @@ void RunPictureDemo(const std::filesystem::path& directory, const ShockOptions& 
             << " with t\n";
   WriteDemoFile(SideBySide(picture, shown, 8), directory, "before_after.png", arrayName,
     "input | t=" + NumberText(PictureDemoShownTime));
+  return increasing;
 }
 
 /// Value of the synthetic volume at voxel (x, y, z): spheres and a box, 0..1.
@@ -2544,9 +2546,14 @@ int RunDemoCommand(const std::vector<std::string>& args)
   const std::filesystem::path directory =
     ParseCommandLine("demo", args, DemoOptionSpecs(settings), { "OUTDIR" })[0];
   CreateDirectory(directory);
-  RunPictureDemo(directory, settings.shock);
+  const bool sharper = RunPictureDemo(directory, settings.shock);
   RunVolumeDemo(directory, settings.shock);
   RunMeshDemo(directory, settings.shock);
+  if (!sharper)
+  {
+    std::cerr << "demo: FAILED: the pictures do not get sharper with t\n";
+    return 1;
+  }
   return 0;
 }
 
