@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
@@ -295,6 +296,50 @@ TEST(FitOperators, TheExactFitSolvesTheScreenedPoissonSystem)
     }
   EXPECT_LT(worst, 1e-9 * scale);
   EXPECT_GT(moved, 1e-3); // the fit moved the points
+}
+
+TEST(FitOperators, OnlyTheJacobianReadingOfTheTargetCanBendAFlatMesh)
+{
+  // The paper's w = v - N <N, v> read two ways on a flat mesh (z = 0) with
+  // tilted targets. Per coordinate gradient, w_k = v_k - <v_k, N> N: v_z = 0
+  // gives w_z = 0, so D w_z = 0 and the z equation (eps M + S) c_z = 0 keeps
+  // the mesh flat. As the Jacobian, w_k = v_k - N_k <N, v>: w_z = -N_z <N, v>
+  // is not zero, so the mesh can bend.
+  Case c = Sheet();
+  for (int p = 0; p < c.Points(); ++p)
+    c.points[3 * p + 2] = 0.0;
+  TriangleMeshView view{ c.Points(), c.points.data(), c.Triangles(), c.triangles.data() };
+  ASSERT_TRUE(c.mesh.Build(view, 1).Ok());
+  std::vector<double> perCoordinate(9 * c.Triangles()), jacobian(9 * c.Triangles());
+  for (int t = 0; t < c.Triangles(); ++t)
+  {
+    const auto v = c.T(t);
+    V3 n = { 0.4 * std::cos(t), 0.3, 1.0 };
+    n = Mul(1.0 / Norm3(n), n);
+    V3 grad[3];
+    for (int k = 0; k < 3; ++k)
+      grad[k] = Gradient(c.P(v[0]), c.P(v[1]), c.P(v[2]), c.P(v[0])[k], c.P(v[1])[k], c.P(v[2])[k]);
+    V3 nv{ 0.0, 0.0, 0.0 };
+    for (int j = 0; j < 3; ++j)
+      nv = Add(nv, Mul(n[j], grad[j]));
+    for (int k = 0; k < 3; ++k)
+    {
+      const V3 a = Sub(grad[k], Mul(Dot3(grad[k], n), n));
+      const V3 b = Sub(grad[k], Mul(n[k], nv));
+      std::copy(a.begin(), a.end(), perCoordinate.begin() + 9 * t + 3 * k);
+      std::copy(b.begin(), b.end(), jacobian.begin() + 9 * t + 3 * k);
+    }
+  }
+  const auto flat = Divergence(c.mesh, perCoordinate.data());
+  const auto bent = Divergence(c.mesh, jacobian.data());
+  double largestFlat = 0.0, largestBent = 0.0;
+  for (int p = 0; p < c.Points(); ++p)
+  {
+    largestFlat = std::max(largestFlat, std::abs(flat[3 * p + 2]));
+    largestBent = std::max(largestBent, std::abs(bent[3 * p + 2]));
+  }
+  EXPECT_LT(largestFlat, 1e-15);
+  EXPECT_GT(largestBent, 0.05);
 }
 
 } // namespace
