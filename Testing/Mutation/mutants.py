@@ -54,8 +54,8 @@ MUTANTS = [
          bug="the potential is not smoothed before its gradient"),
     # --- grid: trace, sample, advect ---------------------------------------
     dict(id="grid-trace-no-reversal-stop", file=K + "GridTrace.h",
-         original="        if (!(this->Dot(w, v) > 0.0))\n        {\n          break; // the flow reverses: a ridge of the potential",
-         replacement="        if (false)\n        {\n          break; // the flow reverses: a ridge of the potential",
+         original="      if (!(this->Dot(w, v) > 0.0))\n      {\n        return false; // the flow reverses: a ridge of the potential",
+         replacement="      if (false)\n      {\n        return false; // the flow reverses: a ridge of the potential",
          bug="face-crossing trace does not stop where the flow reverses"),
     dict(id="grid-trace-index-metric", file=K + "GridTrace.h",
          original="dot += L.h2[d] * a[d] * b[d];",
