@@ -22,6 +22,8 @@ PACKAGES=(
   libswscale-dev libgdal-dev libproj-dev
   # plots of the paper evidence (Benchmarks/reproduce_paper.sh)
   python3-numpy python3-matplotlib python3-pil
+  # the photograph of the Figure 3 test (Testing/Cxx/TestFigure3.cxx)
+  python-matplotlib-data
   # headless display for rendering tests and screenshots; MPI launcher
   xvfb xauth mpi-default-bin
 )

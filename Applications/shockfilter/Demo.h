@@ -30,7 +30,8 @@ using Rgb = std::array<double, 3>;
 void CreateDirectory(const std::filesystem::path& directory);
 
 /// The 2D part of the demo: picture, sharpened pictures for several t, before/after.
-void RunPictureDemo(const std::filesystem::path& directory, const ShockOptions& common);
+/// Returns whether its check holds: the sharpness increases with t.
+bool RunPictureDemo(const std::filesystem::path& directory, const ShockOptions& common);
 
 /// The 3D part of the demo: blurred volume, sharpened at VolumeDemoTime, middle slices side by side.
 void RunVolumeDemo(const std::filesystem::path& directory, const ShockOptions& common);

@@ -214,9 +214,14 @@ int RunDemoCommand(const std::vector<std::string>& args)
   const std::filesystem::path directory =
     ParseCommandLine("demo", args, DemoOptionSpecs(settings), { "OUTDIR" })[0];
   CreateDirectory(directory);
-  RunPictureDemo(directory, settings.shock);
+  const bool sharper = RunPictureDemo(directory, settings.shock);
   RunVolumeDemo(directory, settings.shock);
   RunMeshDemo(directory, settings.shock);
+  if (!sharper)
+  {
+    std::cerr << "demo: FAILED: the pictures do not get sharper with t\n";
+    return 1; // its own check failed (2 is for bad input)
+  }
   return 0;
 }
 

@@ -288,7 +288,7 @@ void CreateDirectory(const std::filesystem::path& directory)
 }
 
 /// The 2D part of the demo: picture, sharpened pictures for several t, before/after.
-void RunPictureDemo(const std::filesystem::path& directory, const ShockOptions& common)
+bool RunPictureDemo(const std::filesystem::path& directory, const ShockOptions& common)
 {
   const std::string arrayName = "Picture";
   const int width = 512;
@@ -333,6 +333,7 @@ void RunPictureDemo(const std::filesystem::path& directory, const ShockOptions& 
             << " with t\n";
   WriteDemoFile(SideBySide(picture, shown, 8), directory, "before_after.png", arrayName,
     "input | t=" + NumberText(PictureDemoShownTime));
+  return increasing;
 }
 
 namespace

@@ -196,6 +196,186 @@ void PassWithoutFlow(const PDEParameters& p, const double* input, PDEReport& rep
   }
 }
 
+/**
+ * The time integration of one run: range-normalised values in two buffers that
+ * swap roles every step, the flow recomputed before each step, checkpoints
+ * written as they are passed.
+ */
+template <int D>
+class PDEIntegration
+{
+public:
+  /// `validSample` and `validFace` are null when every sample is finite.
+  PDEIntegration(const Lattice<D>& lattice, int components, const double* input, double range,
+    const PDEParameters& parameters, const unsigned char* validSample,
+    const unsigned char* validFace, int threads, PDEReport& report,
+    const PDECheckpointFunction& checkpoint)
+    : L(lattice)
+    , C(components)
+    , Count(lattice.numSamples * components)
+    , Input(input)
+    , Range(range)
+    , P(parameters)
+    , ValidSample(validSample)
+    , Threads(threads)
+    , Report(report)
+    , Checkpoint(checkpoint)
+    , State(AllocateLargeArray<double>(this->Count))
+    , Next(AllocateLargeArray<double>(this->Count))
+    , Flow(lattice, components, parameters.smoothingPasses, validSample, validFace, threads)
+    , Stepper(lattice, components, validSample, validFace, threads)
+  {
+    const double inverseRange = 1.0 / range;
+    double* state = this->State.get();
+    const std::int64_t count = this->Count;
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::int64_t v = 0; v < count; ++v)
+    {
+      state[v] = input[v] * inverseRange;
+    }
+    if (checkpoint && !parameters.checkpointTimes.empty())
+    {
+      this->Snapshot = AllocateLargeArray<double>(this->Count);
+    }
+  }
+
+  /// Step until the time, a steady state, the iteration limit or an abort.
+  void Run(const ProgressFunction& progress)
+  {
+    PDEReport& report = this->Report;
+    const PDEParameters& p = this->P;
+    double t = 0.0;
+    while (t < p.time)
+    {
+      if (report.iterations >= p.maximumIterations)
+      {
+        report.iterationLimit = true;
+        break;
+      }
+      const auto flowStart = Clock::now();
+      this->Flow.Compute(this->State.get(), 1.0);
+      this->FlowComputed = true;
+      report.flowSeconds += SecondsSince(flowStart);
+
+      const auto updateStart = Clock::now();
+      const double speed = this->Stepper.SpeedBound(this->Flow.Velocity());
+      if (!(speed > 0.0))
+      {
+        report.updateSeconds += SecondsSince(updateStart);
+        report.steadyState = true; // no flow anywhere: nothing can change any more
+        break;
+      }
+      const double cflStep = p.courantNumber / speed;
+      double target = std::min(p.time, t + cflStep);
+      if (this->NextCheckpoint < p.checkpointTimes.size())
+      {
+        target = std::min(target, p.checkpointTimes[this->NextCheckpoint]);
+      }
+      const double dt = target - t;
+      report.largestStep = std::max(report.largestStep, cflStep);
+      report.smallestStep = report.iterations == 0 ? cflStep : std::min(report.smallestStep, cflStep);
+      const double change =
+        this->Stepper.Apply(this->Flow.Velocity(), dt, this->State.get(), this->Next.get());
+      std::swap(this->State, this->Next);
+      report.updateSeconds += SecondsSince(updateStart);
+      ++report.iterations;
+      t = target;
+      this->PassCheckpoints(t, false);
+      if (progress && !progress(t / p.time))
+      {
+        report.aborted = true;
+        break;
+      }
+      // Only a full CFL step can tell: one shortened to land on a checkpoint may
+      // be too short to change anything.
+      if (change <= SteadyChange && dt >= cflStep)
+      {
+        report.steadyState = t < p.time;
+        break;
+      }
+    }
+    report.reachedTime = report.steadyState ? p.time : t;
+  }
+
+  /// After Run: the remaining checkpoints, the flow fields and the output.
+  void Finish(double* output, GridFlowFields* fields)
+  {
+    if (this->Report.aborted)
+    {
+      std::copy(this->Input, this->Input + this->Count, output);
+      return;
+    }
+    // A steady state holds for every later checkpoint; a run cut short gives none.
+    if (this->Report.steadyState)
+    {
+      this->PassCheckpoints(this->P.time, true);
+    }
+    if (fields)
+    {
+      if (!this->FlowComputed)
+      {
+        this->Flow.Compute(this->State.get(), 1.0);
+      }
+      ExportFlowFields<D>(L, this->Flow, *fields);
+    }
+    if (this->P.time == 0.0)
+    {
+      std::copy(this->Input, this->Input + this->Count, output); // t = 0 gives the input exactly
+      return;
+    }
+    this->WriteOutput(this->State.get(), output);
+  }
+
+private:
+  void WriteOutput(const double* normalised, double* target) const
+  {
+    const double* input = this->Input;
+    const unsigned char* validSample = this->ValidSample;
+    const double range = this->Range;
+    const int C = this->C;
+    const std::int64_t count = this->Count;
+#pragma omp parallel for schedule(static) num_threads(this->Threads)
+    for (std::int64_t v = 0; v < count; ++v)
+    {
+      // Samples with a non-finite component never change: copied bit for bit.
+      target[v] = validSample && !validSample[v / C] ? input[v] : normalised[v] * range;
+    }
+  }
+
+  void PassCheckpoints(double reached, bool all)
+  {
+    const std::vector<double>& times = this->P.checkpointTimes;
+    while (this->NextCheckpoint < times.size() && (all || times[this->NextCheckpoint] <= reached))
+    {
+      if (this->Checkpoint)
+      {
+        this->WriteOutput(this->State.get(), this->Snapshot.get());
+        this->Checkpoint(times[this->NextCheckpoint],
+          this->Report.flowSeconds + this->Report.updateSeconds, this->Snapshot.get());
+      }
+      ++this->NextCheckpoint;
+    }
+  }
+
+  const Lattice<D>& L;
+  const int C;
+  const std::int64_t Count;
+  const double* Input;
+  const double Range;
+  const PDEParameters& P;
+  const unsigned char* ValidSample;
+  const int Threads;
+  PDEReport& Report;
+  const PDECheckpointFunction& Checkpoint;
+  LargeArray<double> State;
+  LargeArray<double> Next;
+  LargeArray<double> Snapshot;
+  FlowComputation<D> Flow;
+  const PDEStep<D> Stepper;
+  size_t NextCheckpoint = 0;
+  bool FlowComputed = false;
+};
+
 template <int D>
 Status RunPDE(const GridShape& shape, int C, const double* input, double* output,
   const PDEParameters& p, PDEReport& report, GridFlowFields* fields,
@@ -229,121 +409,10 @@ Status RunPDE(const GridShape& shape, int C, const double* input, double* output
   const unsigned char* validSample = scan.allFinite ? nullptr : validSamples.data();
   const unsigned char* validFace = scan.allFinite ? nullptr : validFaces.data();
 
-  // Work on range-normalised values in two buffers that swap roles every step.
-  LargeArray<double> state = AllocateLargeArray<double>(count);
-  LargeArray<double> next = AllocateLargeArray<double>(count);
-  const double inverseRange = 1.0 / range;
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t v = 0; v < count; ++v)
-  {
-    state[v] = input[v] * inverseRange;
-  }
-  auto writeOutput = [&](const double* normalised, double* target) {
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (std::int64_t v = 0; v < count; ++v)
-    {
-      // Samples with a non-finite component never change: copied bit for bit.
-      target[v] = validSample && !validSample[v / C] ? input[v] : normalised[v] * range;
-    }
-  };
-  LargeArray<double> snapshot;
-  if (checkpoint && !p.checkpointTimes.empty())
-  {
-    snapshot = AllocateLargeArray<double>(count);
-  }
-
-  FlowComputation<D> flow(L, C, p.smoothingPasses, validSample, validFace, threads);
-  const PDEStep<D> stepper(L, C, validSample, validFace, threads);
-  size_t nextCheckpoint = 0;
-  auto passCheckpoints = [&](double reached, bool all) {
-    while (nextCheckpoint < p.checkpointTimes.size() &&
-      (all || p.checkpointTimes[nextCheckpoint] <= reached))
-    {
-      if (checkpoint)
-      {
-        writeOutput(state.get(), snapshot.get());
-        checkpoint(p.checkpointTimes[nextCheckpoint], report.flowSeconds + report.updateSeconds,
-          snapshot.get());
-      }
-      ++nextCheckpoint;
-    }
-  };
-
-  double t = 0.0;
-  bool flowComputed = false;
-  while (t < p.time)
-  {
-    if (report.iterations >= p.maximumIterations)
-    {
-      report.iterationLimit = true;
-      break;
-    }
-    const auto flowStart = Clock::now();
-    flow.Compute(state.get(), 1.0);
-    flowComputed = true;
-    report.flowSeconds += SecondsSince(flowStart);
-
-    const auto updateStart = Clock::now();
-    const double speed = stepper.SpeedBound(flow.Velocity());
-    if (!(speed > 0.0))
-    {
-      report.updateSeconds += SecondsSince(updateStart);
-      report.steadyState = true; // no flow anywhere: nothing can change any more
-      break;
-    }
-    const double cflStep = p.courantNumber / speed;
-    double target = std::min(p.time, t + cflStep);
-    if (nextCheckpoint < p.checkpointTimes.size())
-    {
-      target = std::min(target, p.checkpointTimes[nextCheckpoint]);
-    }
-    const double dt = target - t;
-    report.largestStep = std::max(report.largestStep, cflStep);
-    report.smallestStep = report.iterations == 0 ? cflStep : std::min(report.smallestStep, cflStep);
-    const double change = stepper.Apply(flow.Velocity(), dt, state.get(), next.get());
-    std::swap(state, next);
-    report.updateSeconds += SecondsSince(updateStart);
-    ++report.iterations;
-    t = target;
-    passCheckpoints(t, false);
-    if (progress && !progress(t / p.time))
-    {
-      report.aborted = true;
-      break;
-    }
-    // Only a full CFL step can tell: one shortened to land on a checkpoint may
-    // be too short to change anything.
-    if (change <= SteadyChange && dt >= cflStep)
-    {
-      report.steadyState = t < p.time;
-      break;
-    }
-  }
-  report.reachedTime = report.steadyState ? p.time : t;
-  if (report.aborted)
-  {
-    std::copy(input, input + count, output);
-    return {};
-  }
-  // A steady state holds for every later checkpoint; a run cut short gives none.
-  if (report.steadyState)
-  {
-    passCheckpoints(p.time, true);
-  }
-  if (fields)
-  {
-    if (!flowComputed)
-    {
-      flow.Compute(state.get(), 1.0);
-    }
-    ExportFlowFields<D>(L, flow, *fields);
-  }
-  if (p.time == 0.0)
-  {
-    std::copy(input, input + count, output); // t = 0 gives the input exactly
-    return {};
-  }
-  writeOutput(state.get(), output);
+  PDEIntegration<D> integration(
+    L, C, input, range, p, validSample, validFace, threads, report, checkpoint);
+  integration.Run(progress);
+  integration.Finish(output, fields);
   return {};
 }
 

@@ -187,57 +187,9 @@ private:
       f += dir * L.faceStride[exitAxis];
 
       std::array<double, D> w;
-      if (pinned < 0)
+      if (!this->Enter(c, f, left, exitAxis, dir, pinned, v, w))
       {
-        this->Load(f, w);
-        if (!(this->Dot(w, v) > 0.0))
-        {
-          break; // the flow reverses: a ridge of the potential
-        }
-        if (w[exitAxis] * dir < 0.0)
-        {
-          // Both faces push towards the boundary just crossed: slide along it.
-          pinned = exitAxis;
-          if (dir > 0)
-          {
-            c[pinned] -= 1;
-            f = left;
-          }
-          if (!this->Sliding(f, pinned, w))
-          {
-            break;
-          }
-        }
-      }
-      else
-      {
-        // Sliding into the next pair of faces along the pinned boundary.
-        std::array<double, D> lower, upper;
-        this->Load(f, lower);
-        this->Load(f + L.faceStride[pinned], upper);
-        if (lower[pinned] > 0.0 && upper[pinned] < 0.0)
-        {
-          this->Sliding(f, pinned, w);
-        }
-        else
-        {
-          // Leave the boundary into a face that does not push back into it.
-          const bool lowerOk = lower[pinned] <= 0.0;
-          const bool upperOk = upper[pinned] >= 0.0;
-          const bool takeUpper =
-            upperOk && (!lowerOk || this->Dot(upper, v) > this->Dot(lower, v));
-          if (takeUpper)
-          {
-            c[pinned] += 1;
-            f += L.faceStride[pinned];
-          }
-          w = takeUpper ? upper : lower;
-          pinned = -1;
-        }
-        if (!(this->Dot(w, v) > 0.0))
-        {
-          break; // the flow reverses
-        }
+        break; // the flow reverses, or a sliding velocity vanishes
       }
       if (w[exitAxis] * dir < 0.0 && exitAxis != pinned)
       {
@@ -250,6 +202,71 @@ private:
     }
     this->ClampToGrid(q);
     return steps;
+  }
+
+  /**
+   * The trace has crossed into face f (coordinates c) along `exitAxis` in
+   * direction `dir`, leaving face `left` with velocity v: the velocity w to go
+   * on with. Starts sliding where both faces push into the boundary just
+   * crossed, and leaves a boundary it slides on into a face that does not push
+   * back (c, f and `pinned` change accordingly). False when the trace stops.
+   */
+  bool Enter(std::array<std::int64_t, D>& c, std::int64_t& f, std::int64_t left, int exitAxis,
+    int dir, int& pinned, const std::array<double, D>& v, std::array<double, D>& w) const
+  {
+    if (pinned < 0)
+    {
+      this->Load(f, w);
+      if (!(this->Dot(w, v) > 0.0))
+      {
+        return false; // the flow reverses: a ridge of the potential
+      }
+      if (w[exitAxis] * dir < 0.0)
+      {
+        // Both faces push towards the boundary just crossed: slide along it.
+        pinned = exitAxis;
+        if (dir > 0)
+        {
+          c[pinned] -= 1;
+          f = left;
+        }
+        if (!this->Sliding(f, pinned, w))
+        {
+          return false;
+        }
+      }
+    }
+    else
+    {
+      // Sliding into the next pair of faces along the pinned boundary.
+      std::array<double, D> lower, upper;
+      this->Load(f, lower);
+      this->Load(f + L.faceStride[pinned], upper);
+      if (lower[pinned] > 0.0 && upper[pinned] < 0.0)
+      {
+        this->Sliding(f, pinned, w);
+      }
+      else
+      {
+        // Leave the boundary into a face that does not push back into it.
+        const bool lowerOk = lower[pinned] <= 0.0;
+        const bool upperOk = upper[pinned] >= 0.0;
+        const bool takeUpper =
+          upperOk && (!lowerOk || this->Dot(upper, v) > this->Dot(lower, v));
+        if (takeUpper)
+        {
+          c[pinned] += 1;
+          f += L.faceStride[pinned];
+        }
+        w = takeUpper ? upper : lower;
+        pinned = -1;
+      }
+      if (!(this->Dot(w, v) > 0.0))
+      {
+        return false; // the flow reverses
+      }
+    }
+    return true;
   }
 
   std::int64_t TraceStepped(std::array<double, D>& q, std::array<std::int64_t, D> c,

@@ -1,6 +1,16 @@
 #include "ShockTypes.h"
 
+#include <omp.h>
+
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
+
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <new>
 
 namespace shock
 {
@@ -32,6 +42,89 @@ Status CheckAdvectionParameters(const AdvectionParameters& parameters)
     return { "the value scale must be finite and >= 0" };
   }
   return {};
+}
+
+int ResolveThreadCount(int requested)
+{
+  return requested > 0 ? requested : std::max(1, omp_get_num_procs());
+}
+
+void ParallelFor(std::int64_t count, int threads,
+  const std::function<void(std::int64_t begin, std::int64_t end)>& body)
+{
+#pragma omp parallel num_threads(ResolveThreadCount(threads))
+  {
+    const std::int64_t thread = omp_get_thread_num();
+    const std::int64_t team = omp_get_num_threads();
+    const std::int64_t begin = count * thread / team;
+    const std::int64_t end = count * (thread + 1) / team;
+    if (begin < end)
+    {
+      body(begin, end);
+    }
+  }
+}
+
+#ifdef __linux__
+namespace
+{
+constexpr std::size_t HugePage = std::size_t(2) << 20;
+
+std::size_t HugePageMultiple(std::size_t bytes)
+{
+  return (bytes + HugePage - 1) / HugePage * HugePage;
+}
+}
+#endif
+
+void* AllocateLarge(std::size_t bytes)
+{
+#ifdef __linux__
+  if (bytes >= HugePage)
+  {
+    // Map a huge page more than needed, then unmap the unaligned head and the tail.
+    const std::size_t size = HugePageMultiple(bytes);
+    void* mapped =
+      mmap(nullptr, size + HugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (mapped == MAP_FAILED)
+    {
+      throw std::bad_alloc();
+    }
+    char* const first = static_cast<char*>(mapped);
+    const std::size_t misalignment = reinterpret_cast<std::uintptr_t>(first) % HugePage;
+    char* const block = first + (misalignment > 0 ? HugePage - misalignment : 0);
+    char* const last = first + size + HugePage;
+    if (block > first)
+    {
+      munmap(first, static_cast<std::size_t>(block - first));
+    }
+    if (last > block + size)
+    {
+      munmap(block + size, static_cast<std::size_t>(last - (block + size)));
+    }
+    // Advice only: without transparent huge pages the block simply has small pages.
+    madvise(block, size, MADV_HUGEPAGE);
+    return block;
+  }
+#endif
+  void* block = std::malloc(std::max<std::size_t>(bytes, 1));
+  if (!block)
+  {
+    throw std::bad_alloc();
+  }
+  return block;
+}
+
+void FreeLarge(void* block, std::size_t bytes) noexcept
+{
+#ifdef __linux__
+  if (bytes >= HugePage)
+  {
+    munmap(block, HugePageMultiple(bytes));
+    return;
+  }
+#endif
+  std::free(block);
 }
 
 } // namespace shock

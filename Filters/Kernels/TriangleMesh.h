@@ -105,6 +105,13 @@ public:
   std::int64_t NumberOfEdges() const { return this->numberOfEdges; }
 
 private:
+  // The steps of Build, in order.
+  void BuildPointTriangles(int threads); // sequential: ordered lists
+  void BuildOneRing(int threads);
+  void ComputeMeanEdgeLength(int threads);
+  void ComputeGeometry(int threads);
+  void BuildNeighbours(int threads);
+
   std::int64_t numberOfPoints = 0;
   std::int64_t numberOfTriangles = 0;
   std::int64_t numberOfEdges = 0;

@@ -182,6 +182,13 @@ TEST(MeshSharpening, SphereStaysASphere)
     }
     EXPECT_LT(worst, 0.05); // radians
     EXPECT_EQ(report.flippedTriangles, 0);
+    // The identity keeps a sphere too: the same parameters must change a shape
+    // with creases to round off.
+    const MeshData box = shocktest::RoundedBox(10, 2.0, 0.4);
+    const shock::TriangleMesh boxMesh = Build(box);
+    shock::SharpeningReport boxReport;
+    Sharpen(boxMesh, p, &boxReport);
+    EXPECT_GT(boxReport.maxDisplacement, 0.01);
   }
 }
 
