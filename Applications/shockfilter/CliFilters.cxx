@@ -1,13 +1,19 @@
 #include "CliFilters.h"
 
 #include "ShockIOMessages.h"
+#include "ShockImageChecks.h"
 
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
+
+#include <algorithm>
+#include <cmath>
 
 #include <chrono>
+#include <new>
 
 namespace shockcli
 {
@@ -142,10 +148,28 @@ void UpdateOrThrow(vtkAlgorithm* algorithm, const std::string& context)
   Require(trap->Finish(context, error, shockio::Strictness::Lenient), error);
 }
 
-double TimedUpdate(vtkAlgorithm* filter)
+std::uint64_t ImageFilterBytes(vtkIdType samples, int components)
+{
+  return static_cast<std::uint64_t>(samples) * (40 + 20 * static_cast<std::uint64_t>(components));
+}
+
+std::uint64_t MeshFilterBytes(vtkIdType points)
+{
+  return static_cast<std::uint64_t>(points) * 1200;
+}
+
+double TimedUpdate(vtkAlgorithm* filter, std::uint64_t bytesNeeded)
 {
   const auto start = std::chrono::steady_clock::now();
-  UpdateOrThrow(filter, "shock filter failed");
+  try
+  {
+    UpdateOrThrow(filter, "shock filter failed");
+  }
+  catch (const std::bad_alloc&)
+  {
+    throw CliError("out of memory: the filter needs about " + shockio::BytesText(bytesNeeded) +
+      " for this input (see the memory notes of '" + ProgramName + " COMMAND --help')");
+  }
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
   return elapsed.count();
 }
@@ -241,6 +265,52 @@ SelectedArray SelectArray(vtkDataSet* data, const std::string& requested, std::o
   throw CliError("the input has no " + what + " '" + requested + "' (" + available + ")");
 }
 
+vtkSmartPointer<vtkPolyData> InUnitFrame(vtkPolyData* mesh, MeshFrame& frame)
+{
+  double bounds[6];
+  mesh->GetBounds(bounds);
+  frame.scale = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    frame.centre[a] = 0.5 * bounds[2 * a] + 0.5 * bounds[2 * a + 1];
+    frame.scale = std::max(frame.scale, bounds[2 * a + 1] - bounds[2 * a]);
+  }
+  if (!std::isfinite(frame.scale) || !std::isfinite(frame.centre[0] + frame.centre[1] + frame.centre[2]))
+  {
+    throw CliError("the mesh spans more than the double range (its size is not a finite number)");
+  }
+  frame.scale = frame.scale > 0.0 ? frame.scale : 1.0; // a single point: the filter tells
+  auto unit = vtkSmartPointer<vtkPolyData>::New();
+  unit->ShallowCopy(mesh);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(mesh->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    mesh->GetPoint(p, x);
+    points->SetPoint(p, (x[0] - frame.centre[0]) / frame.scale, (x[1] - frame.centre[1]) / frame.scale,
+      (x[2] - frame.centre[2]) / frame.scale);
+  }
+  unit->SetPoints(points);
+  return unit;
+}
+
+void BackFromUnitFrame(vtkPolyData* mesh, const MeshFrame& frame)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(mesh->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    mesh->GetPoint(p, x);
+    points->SetPoint(p, x[0] * frame.scale + frame.centre[0], x[1] * frame.scale + frame.centre[1],
+      x[2] * frame.scale + frame.centre[2]);
+  }
+  mesh->SetPoints(points);
+}
+
 /// Filters the point array 'arrayName' of 'input'; throws "shock filter failed: ..." on error.
 FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   const ShockOptions& options, const ImageMethodOptions& methodOptions)
@@ -259,12 +329,18 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   {
     filter->SetMaximumIterations(*methodOptions.maximumIterations);
   }
+  if (methodOptions.hierarchyLevels)
+  {
+    filter->SetHierarchyLevels(*methodOptions.hierarchyLevels);
+  }
   filter->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrayName.c_str());
   filter->SetInputData(input);
 
   FilterRun run;
-  run.totalSeconds = TimedUpdate(filter);
+  vtkDataArray* values = input->GetPointData()->GetArray(arrayName.c_str());
+  run.totalSeconds = TimedUpdate(
+    filter, ImageFilterBytes(input->GetNumberOfPoints(), values ? values->GetNumberOfComponents() : 1));
   run.output = vtkSmartPointer<vtkImageData>::New();
   run.output->ShallowCopy(filter->GetOutput());
   run.time = filter->GetFlowTime();
@@ -277,6 +353,7 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   run.traceSteps = filter->GetLastTraceSteps();
   run.method = filter->GetMethod();
   run.iterations = filter->GetLastIterations();
+  run.levels = filter->GetHierarchyLevels();
   return run;
 }
 

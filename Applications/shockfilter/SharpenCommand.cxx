@@ -35,6 +35,7 @@ struct SharpenSettings
   std::optional<int> iterations;
   std::optional<double> tolerance;
   bool timings = false;
+  std::uint64_t maxSamples = shockio::DefaultMaxSamples;
 };
 
 std::vector<OptionSpec> SharpenOptionSpecs(SharpenSettings& settings)
@@ -72,6 +73,7 @@ std::vector<OptionSpec> SharpenOptionSpecs(SharpenSettings& settings)
       DefaultText(NumberText(defaults->GetSolverTolerance())),
     [&settings, toleranceLow, toleranceHigh](const std::string& v)
     { settings.tolerance = ParseInRange("--tolerance", v, toleranceLow, toleranceHigh); } });
+  specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));
   specs.push_back(TimingsOptionSpec(settings.timings));
   return specs;
 }
@@ -87,6 +89,8 @@ std::string SharpenHelp()
           "  then the points are fitted to them (screened Poisson equation). Creases\n"
           "  and corners become sharp; flat and smooth parts stay. Arrays pass through.\n"
        << MeshFormatsHelp()
+       << "  Memory: about 1200 bytes per point; a file declaring more points or cells\n"
+          "  than --max-samples is refused before it is read.\n"
        << TimingsHelp({ "command", "points", "triangles", "time", "smoothing", "normal_smoothing",
                         "flow_mode", "solver", "threads", "preprocessing", "setup", "fit_setup",
                         "flow", "advection", "fitting", "total", "trace_steps", "solver_iterations",
@@ -116,7 +120,7 @@ int RunSharpenCommand(const std::vector<std::string>& args)
   MeshFormatOfPath(inputPath);
   MeshFormatOfPath(outputPath); // before the work
   RequireWritable(outputPath);
-  vtkSmartPointer<vtkPolyData> input = ReadMeshFile(inputPath);
+  vtkSmartPointer<vtkPolyData> input = ReadMeshFile(inputPath, settings.maxSamples);
 
   vtkNew<vtkPolyDataShockSharpenFilter> filter;
   ConfigureFilter(filter, settings.shock);
@@ -140,8 +144,10 @@ int RunSharpenCommand(const std::vector<std::string>& args)
   {
     filter->SetSolverTolerance(*settings.tolerance);
   }
-  filter->SetInputData(input);
-  const double seconds = TimedUpdate(filter);
+  MeshFrame frame;
+  filter->SetInputData(InUnitFrame(input, frame));
+  const double seconds = TimedUpdate(filter, MeshFilterBytes(input->GetNumberOfPoints()));
+  BackFromUnitFrame(filter->GetOutput(), frame);
   WriteMeshFile(filter->GetOutput(), outputPath);
 
   if (settings.timings)

@@ -142,7 +142,8 @@ EXPECTED_NAMES["SurfaceShockSharpen"] = (EXPECTED_NAMES["ImageShockAdvection"] -
     "LastMaxDisplacement"}
 # The image filter alone offers the PDE baseline.
 EXPECTED_NAMES["ImageShockAdvection"] = EXPECTED_NAMES["ImageShockAdvection"] | {
-    "Method", "CourantNumber", "MaximumIterations", "LastIterations", "LastReachedTime"}
+    "Method", "HierarchyLevels", "CourantNumber", "MaximumIterations", "LastIterations",
+    "LastReachedTime"}
 
 # The panel order, computed as pqProxyWidget::createPropertyWidgets does it:
 # XML order, properties of groups with the same label placed together.
