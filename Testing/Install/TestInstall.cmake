@@ -1,4 +1,4 @@
-# cmake -DBUILD=<build> -DWORK=<scratch> -DPVPYTHON=<pvpython> -DPYTHON=<python3>
+# cmake -DBUILD=<build> -DWORK=<scratch> [-DSOURCE=<repository>] -DPVPYTHON=<pvpython> -DPYTHON=<python3>
 #       [-DPLUGIN_SUBDIR=lib/paraview-5.11/plugins/ShockFilters]
 #       [-DPYTHON_SUBDIR=lib/python3.11/site-packages] -P TestInstall.cmake
 #
@@ -71,4 +71,8 @@ print("shockfilters from", shockfilters.__file__)
       message(FATAL_ERROR "shockfilters was not imported from the installed tree:\n${run_output}")
     endif ()
   endforeach ()
+  if (DEFINED SOURCE)
+    run("Examples/vtk_pipeline.py on the installed package" "${CMAKE_COMMAND}" -E env
+        "PYTHONPATH=${prefix}/${PYTHON_SUBDIR}" "${PYTHON}" "${SOURCE}/Examples/vtk_pipeline.py" "${WORK}/pipeline")
+  endif ()
 endif ()
