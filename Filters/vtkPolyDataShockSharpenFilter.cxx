@@ -2,6 +2,8 @@
 
 #include "MeshSharpening.h"
 #include "vtkCellData.h"
+#include "vtkIdList.h"
+#include "vtkPointData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
@@ -12,6 +14,7 @@
 #include "vtkPolyData.h"
 #include "vtkShockFilterInternals.h"
 #include "vtkShockPolyDataInternals.h"
+#include "vtkSmartPointer.h"
 
 #include <array>
 #include <chrono>
@@ -31,6 +34,97 @@ vtkSmartPointer<vtkDataArray> SingleValue(const char* name, T value)
   array->SetName(name);
   array->InsertNextValue(static_cast<double>(value));
   return array;
+}
+
+/// Unit normal of every cell of `output` with its new points: the normalised sum of its triangles' area vectors.
+std::vector<double> CellNormals(vtkPolyData* output, const vtkShockPolyDataInternals::Triangles& triangles,
+  const std::vector<double>& positions)
+{
+  std::vector<double> normals(static_cast<size_t>(3 * output->GetNumberOfCells()), 0.0);
+  for (size_t f = 0; f < triangles.sourceCell.size(); ++f)
+  {
+    const std::int64_t* t = &triangles.triangles[3 * f];
+    const double* a = &positions[static_cast<size_t>(3 * t[0])];
+    const double* b = &positions[static_cast<size_t>(3 * t[1])];
+    const double* c = &positions[static_cast<size_t>(3 * t[2])];
+    const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    double* n = &normals[static_cast<size_t>(3 * triangles.sourceCell[f])];
+    n[0] += u[1] * v[2] - u[2] * v[1];
+    n[1] += u[2] * v[0] - u[0] * v[2];
+    n[2] += u[0] * v[1] - u[1] * v[0];
+  }
+  for (size_t c = 0; c < normals.size(); c += 3)
+  {
+    const double length = std::sqrt(normals[c] * normals[c] + normals[c + 1] * normals[c + 1] +
+      normals[c + 2] * normals[c + 2]);
+    for (int k = 0; k < 3 && length > 0.0; ++k)
+    {
+      normals[c + static_cast<size_t>(k)] /= length;
+    }
+  }
+  return normals;
+}
+
+/**
+ * Replace the active point and cell normals of `output` (if any) by those of its
+ * new geometry, in a new array of the same type and name: cell normals are the
+ * cells' unit normals, point normals the normalised sum of the unit normals of
+ * the cells around each point (points without cells keep theirs).
+ */
+void RecomputeActiveNormals(vtkPolyData* output, const vtkShockPolyDataInternals::Triangles& triangles,
+  const std::vector<double>& positions)
+{
+  vtkDataArray* pointNormals = output->GetPointData()->GetNormals();
+  vtkDataArray* cellNormals = output->GetCellData()->GetNormals();
+  if (!pointNormals && !cellNormals)
+  {
+    return;
+  }
+  const std::vector<double> cells = CellNormals(output, triangles, positions);
+  if (cellNormals)
+  {
+    vtkSmartPointer<vtkDataArray> fresh = vtk::TakeSmartPointer(cellNormals->NewInstance());
+    fresh->DeepCopy(cellNormals);
+    for (vtkIdType c = 0; c < output->GetNumberOfCells(); ++c)
+    {
+      if (cells[static_cast<size_t>(3 * c)] != 0.0 || cells[static_cast<size_t>(3 * c + 1)] != 0.0 ||
+        cells[static_cast<size_t>(3 * c + 2)] != 0.0)
+      {
+        fresh->SetTuple(c, &cells[static_cast<size_t>(3 * c)]);
+      }
+    }
+    output->GetCellData()->SetNormals(fresh);
+  }
+  if (pointNormals)
+  {
+    std::vector<double> sums(static_cast<size_t>(3 * output->GetNumberOfPoints()), 0.0);
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < output->GetNumberOfCells(); ++c)
+    {
+      output->GetCellPoints(c, ids);
+      for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          sums[static_cast<size_t>(3 * ids->GetId(i) + k)] += cells[static_cast<size_t>(3 * c + k)];
+        }
+      }
+    }
+    vtkSmartPointer<vtkDataArray> fresh = vtk::TakeSmartPointer(pointNormals->NewInstance());
+    fresh->DeepCopy(pointNormals);
+    for (vtkIdType p = 0; p < output->GetNumberOfPoints(); ++p)
+    {
+      double* n = &sums[static_cast<size_t>(3 * p)];
+      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (length > 0.0)
+      {
+        const double unit[3] = { n[0] / length, n[1] / length, n[2] / length };
+        fresh->SetTuple(p, unit);
+      }
+    }
+    output->GetPointData()->SetNormals(fresh);
+  }
 }
 }
 
@@ -117,6 +211,8 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   shock::SharpeningParameters parameters;
   parameters.advection = vtkShockFilterInternals::MakeParameters(this);
   parameters.normalSmoothingPasses = this->NormalSmoothingPasses;
+  parameters.featureAngle = this->FeatureAngle;
+  parameters.fit.target = static_cast<shock::FitTarget>(this->FitTarget);
   parameters.fit.screeningWeight = this->ScreeningWeight;
   parameters.fit.solver = static_cast<shock::FitSolver>(this->Solver);
   parameters.fit.iterations = this->SolverIterations;
@@ -148,6 +244,21 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   this->LastSolverResidual = report.fit.residual;
   this->LastFlippedTriangles = static_cast<vtkIdType>(report.flippedTriangles);
   this->LastMaxDisplacement = report.maxDisplacement;
+  this->LastRepeatedTriangles = static_cast<vtkIdType>(report.repeatedTriangles);
+  this->LastDegenerateTriangles = static_cast<vtkIdType>(report.degenerateTriangles);
+  this->LastFeatureEdges = static_cast<vtkIdType>(report.featureEdges);
+  if (report.repeatedTriangles > 0)
+  {
+    vtkWarningMacro(<< report.repeatedTriangles
+                    << " triangles repeat the points of another triangle and were ignored (a mesh "
+                       "appended to itself?): the result is that of the mesh without them.");
+  }
+  if (report.degenerateTriangles > 0)
+  {
+    vtkWarningMacro(<< report.degenerateTriangles
+                    << " degenerate (zero-area) triangles were ignored: the result is that of the "
+                       "mesh without them.");
+  }
 
   // Coincident copies take the position computed for their representative.
   if (!representative.empty())
@@ -166,6 +277,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
     points->SetPoint(p, &positions[static_cast<size_t>(3 * p)]);
   }
   output->SetPoints(points);
+  RecomputeActiveNormals(output, triangles, positions);
 
   vtkNew<vtkFieldData> field;
   field->ShallowCopy(input->GetFieldData());
@@ -216,12 +328,15 @@ void vtkPolyDataShockSharpenFilter::ResetMeasurements()
   this->LastSolverIterations = 0;
   this->LastSolverResidual = this->LastMaxDisplacement = 0.0;
   this->LastFlippedTriangles = 0;
+  this->LastRepeatedTriangles = this->LastDegenerateTriangles = this->LastFeatureEdges = 0;
 }
 
 void vtkPolyDataShockSharpenFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   static const char* solverNames[] = { "ConjugateGradient", "ConjugateGradientTolerance", "Exact" };
+  os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
+  os << indent << "FitTarget: " << (this->FitTarget == PROJECTION ? "Projection" : "Rotation") << "\n";
   os << indent << "NormalSmoothingPasses: " << this->NormalSmoothingPasses << "\n";
   os << indent << "ScreeningWeight: " << this->ScreeningWeight << "\n";
   os << indent << "Solver: " << solverNames[this->Solver] << "\n";
@@ -236,4 +351,7 @@ void vtkPolyDataShockSharpenFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastSolverResidual: " << this->LastSolverResidual << "\n";
   os << indent << "LastFlippedTriangles: " << this->LastFlippedTriangles << "\n";
   os << indent << "LastMaxDisplacement: " << this->LastMaxDisplacement << "\n";
+  os << indent << "LastRepeatedTriangles: " << this->LastRepeatedTriangles << "\n";
+  os << indent << "LastDegenerateTriangles: " << this->LastDegenerateTriangles << "\n";
+  os << indent << "LastFeatureEdges: " << this->LastFeatureEdges << "\n";
 }

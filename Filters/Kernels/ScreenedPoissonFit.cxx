@@ -116,8 +116,8 @@ struct System
   std::vector<char> fitted; ///< per point: used by a non-degenerate triangle
 };
 
-Status Assemble(const TriangleMesh& mesh, const double* targets, const Frame& frame,
-  double screening, int threads, System& system)
+Status Assemble(const TriangleMesh& mesh, const double* targets, FitTarget target,
+  const Frame& frame, double screening, int threads, System& system)
 {
   const std::int64_t np = mesh.NumberOfPoints();
   const CompressedLists& ring = mesh.OneRing();
@@ -199,23 +199,10 @@ Status Assemble(const TriangleMesh& mesh, const double* targets, const Frame& fr
         entry(t[c]) += (c == self ? 2.0 : 1.0) * mass + beta * area * gg[c];
       }
 
-      // grad(phi_p) . v_k for the coordinate gradients v_k = sum_c x_c[k] grad(phi_c)
-      // (written with differences to corner 0, as grad(phi_0) = -grad(phi_1) - grad(phi_2)).
-      const double* x0 = mesh.Point(t[0]);
-      const double* x1 = mesh.Point(t[1]);
-      const double* x2 = mesh.Point(t[2]);
-      double gv[3];
-      for (int k = 0; k < 3; ++k)
-      {
-        gv[k] = (x1[k] - x0[k]) * gg[1] + (x2[k] - x0[k]) * gg[2];
-      }
-      // w = v - N <N, v>: the normal part is removed from the values of the position
-      // gradient (the 3x3 Jacobian), so edges map to their projection onto the
-      // target plane. (Projecting each v_k within space instead would keep every
-      // triangle in its own plane: a flat mesh could not bend.)
-      double n[3];
+      // The target gradients w_k enter through (D w)_p = sum_f A_f grad(phi_p) . w_k.
+      double n[3], w[9];
       TargetNormal(mesh, targets, f, n);
-      const double gu = Dot(n, gv); // grad(phi_p) . <N, v>
+      FitTargetGradients(mesh, f, n, target, w);
       for (int k = 0; k < 3; ++k)
       {
         double massSum = 0.0;
@@ -223,7 +210,7 @@ Status Assemble(const TriangleMesh& mesh, const double* targets, const Frame& fr
         {
           massSum += (c == self ? 2.0 : 1.0) * system.original(t[c], k);
         }
-        b[k] += mass * massSum + beta * s * area * (gv[k] - n[k] * gu);
+        b[k] += mass * massSum + beta * s * area * Dot(gp, w + 3 * k);
       }
     }
     if (!fitted)
@@ -431,6 +418,65 @@ double RelativeResidual(const System& system, const Coordinates& x, int threads)
 }
 } // namespace
 
+void FitTargetGradients(const TriangleMesh& mesh, std::int64_t f, const double normal[3],
+  FitTarget target, double gradients[9])
+{
+  std::fill(gradients, gradients + 9, 0.0);
+  if (mesh.Degenerate(f))
+  {
+    return;
+  }
+  // W maps each edge e (a tangent vector) to its target W e; its rows are the
+  // target gradients, w_k = P W^T e_k with P = I - n n^T the projector onto the plane.
+  const double* n = mesh.Normal(f);
+  const double* N = normal;
+  double W[3][3];
+  const double c = Dot(n, N);
+  if (target == FitTarget::Rotation && c > -1.0 + 1e-12)
+  {
+    // Rodrigues: R = c I + [a]x + a a^T / (1 + c), a = n x N, the smallest rotation taking n to N.
+    const double a[3] = { n[1] * N[2] - n[2] * N[1], n[2] * N[0] - n[0] * N[2],
+      n[0] * N[1] - n[1] * N[0] };
+    const double cross[3][3] = { { 0.0, -a[2], a[1] }, { a[2], 0.0, -a[0] }, { -a[1], a[0], 0.0 } };
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        W[i][j] = (i == j ? c : 0.0) + cross[i][j] + a[i] * a[j] / (1.0 + c);
+      }
+    }
+  }
+  else if (target == FitTarget::Projection)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        W[i][j] = (i == j ? 1.0 : 0.0) - N[i] * N[j];
+      }
+    }
+  }
+  else
+  {
+    // N = -n: no smallest rotation; the triangle keeps its own gradients.
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        W[i][j] = i == j ? 1.0 : 0.0;
+      }
+    }
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    const double along = Dot(W[k], n);
+    for (int j = 0; j < 3; ++j)
+    {
+      gradients[3 * k + j] = W[k][j] - along * n[j];
+    }
+  }
+}
+
 Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNormals,
   double* positions, const FitParameters& parameters, FitReport* report)
 {
@@ -450,6 +496,10 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
   if (!(std::isfinite(parameters.screeningWeight) && parameters.screeningWeight > 0.0))
   {
     return { "the screening weight must be finite and > 0" };
+  }
+  if (parameters.target != FitTarget::Projection && parameters.target != FitTarget::Rotation)
+  {
+    return { "unknown fit target" };
   }
   if (parameters.solver != FitSolver::ConjugateGradient &&
     parameters.solver != FitSolver::ConjugateGradientTolerance &&
@@ -490,7 +540,7 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
   }
   System system;
   Status status =
-    Assemble(mesh, targetNormals, frame, parameters.screeningWeight, threads, system);
+    Assemble(mesh, targetNormals, parameters.target, frame, parameters.screeningWeight, threads, system);
   out.setupSeconds = SecondsSince(setupStart);
   if (!status.Ok())
   {
