@@ -336,7 +336,8 @@ void vtkPolyDataShockSharpenFilter::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   static const char* solverNames[] = { "ConjugateGradient", "ConjugateGradientTolerance", "Exact" };
   os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
-  os << indent << "FitTarget: " << (this->FitTarget == PROJECTION ? "Projection" : "Rotation") << "\n";
+  static const char* targetNames[] = { "Projection", "Rotation", "Shear", "CentralProjection" };
+  os << indent << "FitTarget: " << targetNames[this->FitTarget] << "\n";
   os << indent << "NormalSmoothingPasses: " << this->NormalSmoothingPasses << "\n";
   os << indent << "ScreeningWeight: " << this->ScreeningWeight << "\n";
   os << indent << "Solver: " << solverNames[this->Solver] << "\n";

@@ -17,8 +17,9 @@
  * Two departures from the paper, each with a value that reproduces it
  * (docs/sharpening.md has the evaluation): creases sharper than FeatureAngle are
  * kept as they are (the paper's per-point normals round them: 180 reproduces
- * it), and the fit rotates each triangle onto its target normal instead of
- * projecting it, so that sharpening does not shrink the shape (FitTarget
+ * it), and the fit maps each triangle onto its target plane by a central
+ * projection from the centre of curvature instead of an orthogonal
+ * projection, so that sharpening does not shrink the shape (FitTarget
  * PROJECTION reproduces the paper).
  *
  * Parameters specific to this filter: FeatureAngle, FitTarget,
@@ -109,7 +110,9 @@ public:
   enum FitTargets
   {
     PROJECTION = 0, ///< their projection onto the target plane (the paper); shortens edges
-    ROTATION = 1    ///< their rotation onto the target plane: lengths kept (default)
+    ROTATION = 1,   ///< their rotation onto the target plane: lengths kept
+    SHEAR = 2,      ///< moved along the triangle's normal onto the target plane
+    CENTRAL_PROJECTION = 3 ///< projected from the centre of curvature onto the target plane (default)
   };
 
   ///@{
@@ -127,16 +130,25 @@ public:
 
   ///@{
   /**
-   * Target of the fit: ROTATION (default) rotates each triangle's coordinate
-   * gradients by the smallest rotation taking its normal to the sharpened one,
-   * which keeps edge lengths, so the shape keeps its size; PROJECTION is the
-   * paper's w = grad c0 - N <N, grad c0>, which projects every edge onto the
-   * target plane and shrinks rounded shapes as it sharpens them.
+   * What the fit asks each triangle's edges to become, all with the sharpened
+   * normal N. CENTRAL_PROJECTION (default): the image of the edge under the
+   * central projection onto the target plane from the centre of curvature,
+   * which maps a crease rounded with a constant radius exactly onto the sharp
+   * crease it was rounded from; SHEAR: moved along the triangle's own normal
+   * onto the target plane (its footprint kept); ROTATION: turned by the
+   * smallest rotation taking the triangle's normal to N (lengths kept);
+   * PROJECTION: the paper's w = grad c0 - N <N, grad c0>, projected onto the
+   * target plane (shortened). A rounded crease is shorter than the corner it
+   * was rounded from, so the shorter the edges come out, the more the shape
+   * shrinks as it sharpens (docs/sharpening.md has the evaluation). SHEAR and
+   * CENTRAL_PROJECTION rotate triangles tilted by more than 60 degrees.
    */
-  vtkSetClampMacro(FitTarget, int, PROJECTION, ROTATION);
+  vtkSetClampMacro(FitTarget, int, PROJECTION, CENTRAL_PROJECTION);
   vtkGetMacro(FitTarget, int);
   void SetFitTargetToProjection() { this->SetFitTarget(PROJECTION); }
   void SetFitTargetToRotation() { this->SetFitTarget(ROTATION); }
+  void SetFitTargetToShear() { this->SetFitTarget(SHEAR); }
+  void SetFitTargetToCentralProjection() { this->SetFitTarget(CENTRAL_PROJECTION); }
   ///@}
 
   ///@{
@@ -248,7 +260,7 @@ protected:
   bool UsesParallelValueScale() override { return false; }
 
   double FeatureAngle = 30.0;
-  int FitTarget = ROTATION;
+  int FitTarget = CENTRAL_PROJECTION;
   int NormalSmoothingPasses = 0;
   double ScreeningWeight = 1.0;
   int Solver = CONJUGATE_GRADIENT;

@@ -21,6 +21,9 @@ using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 using Coordinates = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using Clock = std::chrono::steady_clock;
 
+/// FitTarget::Shear and CentralProjection up to this tilt (cosine of 60 degrees: edges
+/// stretched at most 2 and 4 times); more tilted triangles are rotated instead.
+constexpr double MinShearCosine = 0.5;
 /// Target normals shorter than this are treated as missing.
 constexpr double MinTargetLength = 1e-8;
 /// Triangles or rows per block of the parallel sums; fixed so that the sums,
@@ -432,9 +435,25 @@ void FitTargetGradients(const TriangleMesh& mesh, std::int64_t f, const double n
   const double* N = normal;
   double W[3][3];
   const double c = Dot(n, N);
-  if (target == FitTarget::Rotation && c > -1.0 + 1e-12)
+  const bool sheared = target == FitTarget::Shear || target == FitTarget::CentralProjection;
+  if (sheared && c >= MinShearCosine)
   {
-    // Rodrigues: R = c I + [a]x + a a^T / (1 + c), a = n x N, the smallest rotation taking n to N.
+    // Shear: e -> e - n <N, e> / <N, n>, along n onto the target plane (the footprint in
+    // the own plane is kept). The central projection from the centre of curvature
+    // stretches that by 1 / <N, n> more.
+    const double scale = target == FitTarget::CentralProjection ? 1.0 / c : 1.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        W[i][j] = scale * ((i == j ? 1.0 : 0.0) - n[i] * N[j] / c);
+      }
+    }
+  }
+  else if (target != FitTarget::Projection && c > -1.0 + 1e-12)
+  {
+    // Rotation (and Shear beyond its tilt limit). Rodrigues: R = c I + [a]x + a a^T / (1 + c),
+    // a = n x N, the smallest rotation taking n to N.
     const double a[3] = { n[1] * N[2] - n[2] * N[1], n[2] * N[0] - n[0] * N[2],
       n[0] * N[1] - n[1] * N[0] };
     const double cross[3][3] = { { 0.0, -a[2], a[1] }, { a[2], 0.0, -a[0] }, { -a[1], a[0], 0.0 } };
@@ -497,7 +516,8 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
   {
     return { "the screening weight must be finite and > 0" };
   }
-  if (parameters.target != FitTarget::Projection && parameters.target != FitTarget::Rotation)
+  if (parameters.target != FitTarget::Projection && parameters.target != FitTarget::Rotation &&
+    parameters.target != FitTarget::Shear && parameters.target != FitTarget::CentralProjection)
   {
     return { "unknown fit target" };
   }
