@@ -156,9 +156,9 @@ public:
    * Laplacian smoothing passes of the face normals before the advection, with
    * the positions fixed (the paper's Figure 11, for noisy scans). Each pass
    * replaces a normal by the renormalised area-weighted mean of itself and its
-   * edge neighbours. Range [0, 1000], default 0.
+   * edge neighbours. Range [0, 100], default 0.
    */
-  vtkSetClampMacro(NormalSmoothingPasses, int, 0, 1000);
+  vtkSetClampMacro(NormalSmoothingPasses, int, 0, 100);
   vtkGetMacro(NormalSmoothingPasses, int);
   ///@}
 
@@ -185,9 +185,9 @@ public:
   /**
    * Conjugate-gradient iterations of the CONJUGATE_GRADIENT solver, started from
    * the input positions; also the iteration cap of CONJUGATE_GRADIENT_TOLERANCE.
-   * Range [0, 100000], default 25 (the paper's value).
+   * Range [0, 10000], default 25 (the paper's value).
    */
-  vtkSetClampMacro(SolverIterations, int, 0, 100000);
+  vtkSetClampMacro(SolverIterations, int, 0, 10000);
   vtkGetMacro(SolverIterations, int);
   ///@}
 

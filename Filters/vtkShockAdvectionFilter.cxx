@@ -8,6 +8,9 @@
 #include "vtkInformationKey.h"
 #include "vtkInformationKeyLookup.h"
 #include "vtkInformationVector.h"
+#include "vtkLogger.h"
+#include "vtkPointData.h"
+#include "vtkCellData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #if VTK_MODULE_ENABLE_VTK_ParallelCore
@@ -55,23 +58,55 @@ bool vtkShockAdvectionFilter::ReportProgress(double fraction)
   return !this->GetAbortExecute();
 }
 
+vtkAbstractArray* vtkShockAdvectionFilter::GetActiveScalarsToFilter(
+  vtkInformationVector** inputVector, int& association)
+{
+  // ParaView hands an empty name when the input had no arrays yet when the
+  // filter was created (pvpython builds filters before their input ran);
+  // VTK users who never select an array get the SCALARS attribute. Both mean
+  // "the active scalars": those of the points, else those of the cells.
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
+  vtkDataArray* scalars = nullptr;
+  const char* where = "point";
+  if (input)
+  {
+    association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+    scalars = input->GetPointData()->GetScalars();
+    if (!scalars)
+    {
+      association = vtkDataObject::FIELD_ASSOCIATION_CELLS;
+      scalars = input->GetCellData()->GetScalars();
+      where = "cell";
+    }
+  }
+  if (!scalars)
+  {
+    vtkErrorMacro("No array to process: none was selected and the input has no active point or "
+                  "cell scalars; select an array with SetInputArrayToProcess (InputArray in "
+                  "ParaView).");
+    return nullptr;
+  }
+  vtkLogF(INFO, "%s: no input array selected: filtering the active %s scalars '%s'.",
+    this->GetClassName(), where, scalars->GetName() ? scalars->GetName() : "(unnamed)");
+  return scalars;
+}
+
 vtkDataArray* vtkShockAdvectionFilter::GetArrayToFilter(
   vtkInformationVector** inputVector, int& association)
 {
   association = -1;
-  vtkAbstractArray* selected = this->GetInputAbstractArrayToProcess(0, inputVector, association);
+  vtkInformation* selection = this->GetInputArrayInformation(0);
+  const bool named =
+    selection->Has(vtkDataObject::FIELD_NAME()) && *selection->Get(vtkDataObject::FIELD_NAME());
+  vtkAbstractArray* selected = named
+    ? this->GetInputAbstractArrayToProcess(0, inputVector, association)
+    : this->GetActiveScalarsToFilter(inputVector, association);
   if (!selected)
   {
-    vtkInformation* selection = this->GetInputArrayInformation(0);
-    if (selection->Has(vtkDataObject::FIELD_NAME()))
+    if (named)
     {
       vtkErrorMacro("No array to process: the input has no point or cell array named '"
         << selection->Get(vtkDataObject::FIELD_NAME()) << "'.");
-    }
-    else
-    {
-      vtkErrorMacro("No array to process: the input has no active point scalars; select an "
-                    "array with SetInputArrayToProcess.");
     }
     return nullptr;
   }

@@ -35,6 +35,7 @@
 #include "vtkFiltersShockModule.h" // for export macro
 
 class vtkDataArray;
+class vtkAbstractArray;
 
 class VTKFILTERSSHOCK_EXPORT vtkShockAdvectionFilter : public vtkPassInputTypeAlgorithm
 {
@@ -81,9 +82,9 @@ public:
    * Umbrella-smoothing passes (Gaussian weights exp(-|(v-w)/l|^2), l the mean
    * edge length) applied to the signal before computing the potential and to the
    * potential before computing the flow. More passes suppress noise and small
-   * features in the flow. Range [0, 10000], default 1 (the paper's setting).
+   * features in the flow. Range [0, 100], default 1 (the paper's setting).
    */
-  vtkSetClampMacro(SmoothingPasses, int, 0, 10000);
+  vtkSetClampMacro(SmoothingPasses, int, 0, 100);
   vtkGetMacro(SmoothingPasses, int);
   ///@}
 
@@ -112,9 +113,9 @@ public:
   ///@{
   /**
    * Number of flow computations K for the COMPOSED and NAIVE modes; each
-   * advection step lasts FlowTime / K. Ignored by FIXED. Range [1, 100000], default 8.
+   * advection step lasts FlowTime / K. Ignored by FIXED. Range [1, 1024], default 8.
    */
-  vtkSetClampMacro(NumberOfFlowUpdates, int, 1, 100000);
+  vtkSetClampMacro(NumberOfFlowUpdates, int, 1, 1024);
   vtkGetMacro(NumberOfFlowUpdates, int);
   ///@}
 
@@ -154,10 +155,10 @@ public:
 
   ///@{
   /**
-   * Number of OpenMP threads; 0 (default) uses all cores. Range [0, 4096].
+   * Number of OpenMP threads; 0 (default) uses all cores. Range [0, 256].
    * The output does not depend on it.
    */
-  vtkSetClampMacro(NumberOfThreads, int, 0, 4096);
+  vtkSetClampMacro(NumberOfThreads, int, 0, 256);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
@@ -197,7 +198,7 @@ public:
    * arrays. Serial runs (one piece) are not affected.
    * vtkPolyDataShockSharpenFilter ignores it: it refuses pieces.
    */
-  vtkSetClampMacro(GhostLevels, int, 0, 256);
+  vtkSetClampMacro(GhostLevels, int, 0, 64);
   vtkGetMacro(GhostLevels, int);
   ///@}
 
@@ -247,10 +248,14 @@ protected:
 
   /**
    * The array chosen with SetInputArrayToProcess (index 0), with its association
-   * (vtkDataObject::FIELD_ASSOCIATION_POINTS or _CELLS). Reports a vtkErrorMacro
+   * (vtkDataObject::FIELD_ASSOCIATION_POINTS or _CELLS). With no array named
+   * (the default, or an empty name) the active point scalars, else the active
+   * cell scalars, said at INFO level (vtkLog). Reports a vtkErrorMacro
    * and returns nullptr when it is missing, not numeric, or not point/cell data.
    */
   vtkDataArray* GetArrayToFilter(vtkInformationVector** inputVector, int& association);
+  /// The active point scalars, else the active cell scalars (no array named).
+  vtkAbstractArray* GetActiveScalarsToFilter(vtkInformationVector** inputVector, int& association);
 
   /**
    * Runs the parallel preparation (see PrepareParallelExecution) before every

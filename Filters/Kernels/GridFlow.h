@@ -1,16 +1,26 @@
 /**
  * @file GridFlow.h
- * @brief Internal building blocks of the grid kernels: the lattice of active axes,
- * row-blocked loops, validity masks, umbrella smoothing and the shock-filter flow.
+ * @brief The steps of the shock-filter flow on a regular grid (sections 3.2-3.3
+ * and Appendix A of Prada and Kazhdan 2015), each a function one can call and
+ * test alone:
  *
- * Shared by GridShockAdvection.cxx (advection along the flow) and GridShockPDE.cxx
- * (the Osher-Rudin PDE driven by the same flow), so that both methods compute
- * the potential and the flow identically. Not installed; not part of the API.
- * Loops use OpenMP: include only from translation units built with it.
+ *  1. SmoothPass, UmbrellaSmooth: umbrella smoothing with Gaussian weights
+ *     exp(-|(v-w)/l|^2) over the grid one-ring;
+ *  2. FaceGradient: per axis, the mean finite difference over a face's parallel
+ *     edges; FaceEnergy: |grad I|^2 summed over the channels;
+ *  3. FacesToSamples: the potential, the (equal-)area-weighted average of the
+ *     energy of a sample's adjacent faces;
+ *  4. UmbrellaSmooth of the potential; BackTraceVelocity: -u, u = 1/2 grad P.
+ *
+ * FlowComputation chains them with reused buffers. Shared by
+ * GridShockAdvection.cxx and GridShockPDE.cxx, so that both methods compute the
+ * potential and the flow identically. Loops use OpenMP: include only from
+ * translation units built with it.
  */
 #ifndef GridFlow_h
 #define GridFlow_h
 
+#include "GridLattice.h"
 #include "GridShockAdvection.h"
 
 #include <algorithm>
@@ -24,246 +34,6 @@ namespace shock
 {
 namespace grid
 {
-
-// Elements per work unit of the row-wise loops (see RowBlocks).
-constexpr std::int64_t BlockLength = 256;
-
-/// The active axes of a grid, with strides and normalised spacings.
-template <int D>
-struct Lattice
-{
-  static constexpr int Corners = 1 << D;
-  std::array<int, D> axis{};                // grid axis (0..2) of each active axis
-  std::array<std::int64_t, D> n{};          // samples per active axis (>= 2)
-  std::array<std::int64_t, D> m{};          // faces per active axis (n - 1)
-  std::array<std::int64_t, D> sampleStride{};
-  std::array<std::int64_t, D> faceStride{};
-  std::array<double, D> h{};                // spacing / mean edge length
-  std::array<double, D> h2{};               // h^2: metric for dot products of index velocities
-  std::array<std::int64_t, Corners> corner{}; // sample offset of face corner with bit pattern b
-  std::int64_t numSamples = 0;
-  std::int64_t numFaces = 0;
-
-  explicit Lattice(const GridShape& shape)
-  {
-    const double meanEdge = shape.MeanEdgeLength();
-    std::int64_t stride = 1;
-    int k = 0;
-    for (int a = 0; a < 3; ++a)
-    {
-      if (shape.dimensions[a] > 1)
-      {
-        this->axis[k] = a;
-        this->n[k] = shape.dimensions[a];
-        this->m[k] = shape.dimensions[a] - 1;
-        this->sampleStride[k] = stride;
-        this->h[k] = shape.spacing[a] / meanEdge;
-        this->h2[k] = this->h[k] * this->h[k];
-        ++k;
-      }
-      stride *= shape.dimensions[a];
-    }
-    this->numSamples = stride;
-    this->numFaces = 1;
-    for (int d = 0; d < D; ++d)
-    {
-      this->faceStride[d] = this->numFaces;
-      this->numFaces *= this->m[d];
-    }
-    for (int b = 0; b < Corners; ++b)
-    {
-      std::int64_t offset = 0;
-      for (int d = 0; d < D; ++d)
-      {
-        offset += ((b >> d) & 1) ? this->sampleStride[d] : 0;
-      }
-      this->corner[b] = offset;
-    }
-  }
-
-  /// Index of the sample with coordinates i; also the lower corner of the face with coordinates i.
-  std::int64_t SampleIndex(const std::array<std::int64_t, D>& i) const
-  {
-    std::int64_t s = 0;
-    for (int d = 0; d < D; ++d)
-    {
-      s += i[d] * this->sampleStride[d];
-    }
-    return s;
-  }
-
-  std::int64_t FaceIndex(const std::array<std::int64_t, D>& c) const
-  {
-    std::int64_t f = 0;
-    for (int d = 0; d < D; ++d)
-    {
-      f += c[d] * this->faceStride[d];
-    }
-    return f;
-  }
-};
-
-/**
- * Work units of the row-wise loops over the samples (extent n) or the faces
- * (extent m) of a lattice: runs of at most BlockLength consecutive elements of one
- * row along the first active axis, which has stride 1. A loop over a block steps
- * along x without decomposing indices into coordinates, and long rows (1D grids
- * in particular) still spread over the threads.
- */
-template <int D>
-class RowBlocks
-{
-public:
-  explicit RowBlocks(const std::array<std::int64_t, D>& extent)
-    : Extent(extent)
-    , PerRow((extent[0] + BlockLength - 1) / BlockLength)
-  {
-    this->Total = this->PerRow;
-    for (int d = 1; d < D; ++d)
-    {
-      this->Total *= extent[d];
-    }
-  }
-
-  std::int64_t Count() const { return this->Total; }
-
-  /// Block k: sets the coordinates of its first element and returns its length.
-  std::int64_t Get(std::int64_t k, std::array<std::int64_t, D>& first) const
-  {
-    std::int64_t row = k / this->PerRow;
-    first[0] = (k - row * this->PerRow) * BlockLength;
-    for (int d = 1; d < D; ++d)
-    {
-      first[d] = row % this->Extent[d];
-      row /= this->Extent[d];
-    }
-    return std::min(BlockLength, this->Extent[0] - first[0]);
-  }
-
-private:
-  std::array<std::int64_t, D> Extent;
-  std::int64_t PerRow;
-  std::int64_t Total = 0;
-};
-
-/**
- * The faces adjacent to the samples of one row. A sample's face through corner
- * bit pattern b has coordinates i - bits(b); the bits along the axes other than
- * the first are the same for the whole row, so their rows of faces are found once.
- */
-template <int D>
-class AdjacentFaces
-{
-public:
-  AdjacentFaces(const Lattice<D>& lattice, const std::array<std::int64_t, D>& i)
-    : L(lattice)
-  {
-    for (int r = 0; r < Lattice<D>::Corners / 2; ++r)
-    {
-      std::int64_t f = 0;
-      bool inside = true;
-      for (int d = 1; d < D; ++d)
-      {
-        const std::int64_t c = i[d] - ((r >> (d - 1)) & 1);
-        inside = inside && c >= 0 && c < L.m[d];
-        f += c * L.faceStride[d];
-      }
-      this->RowStart[r] = inside ? f : -1;
-    }
-  }
-
-  /// The face adjacent to sample x of the row through corner pattern b; -1 outside the grid.
-  std::int64_t Face(std::int64_t x, int b) const
-  {
-    const std::int64_t start = this->RowStart[b >> 1];
-    const std::int64_t fx = x - (b & 1);
-    return (start < 0 || fx < 0 || fx >= L.m[0]) ? -1 : start + fx;
-  }
-
-private:
-  const Lattice<D>& L;
-  std::array<std::int64_t, Lattice<D>::Corners / 2> RowStart{}; // face at x = 0, or -1
-};
-
-/// Data range over the samples whose components are all finite.
-struct SignalRange
-{
-  double low = std::numeric_limits<double>::infinity();
-  double high = -std::numeric_limits<double>::infinity();
-  bool allFinite = true;
-};
-
-/// The range and finiteness of a signal in one parallel pass (min and max are
-/// exact, so any thread count gives the same range).
-inline SignalRange ScanSignal(std::int64_t numSamples, int components, const double* values, int threads)
-{
-  double low = std::numeric_limits<double>::infinity();
-  double high = -low;
-  bool allFinite = true;
-#pragma omp parallel for schedule(static) num_threads(threads) \
-  reduction(min : low) reduction(max : high) reduction(&& : allFinite)
-  for (std::int64_t s = 0; s < numSamples; ++s)
-  {
-    const double* v = values + s * components;
-    bool finite = true;
-    for (int c = 0; c < components; ++c)
-    {
-      finite = finite && std::isfinite(v[c]);
-    }
-    if (!finite)
-    {
-      allFinite = false;
-      continue;
-    }
-    for (int c = 0; c < components; ++c)
-    {
-      low = std::min(low, v[c]);
-      high = std::max(high, v[c]);
-    }
-  }
-  return { low, high, allFinite };
-}
-
-/// Per-sample validity: all components finite.
-inline std::vector<unsigned char> FiniteSamples(
-  std::int64_t numSamples, int components, const double* values, int threads)
-{
-  std::vector<unsigned char> valid(static_cast<size_t>(numSamples));
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t s = 0; s < numSamples; ++s)
-  {
-    const double* v = values + s * components;
-    valid[s] = std::all_of(v, v + components, [](double x) { return std::isfinite(x); });
-  }
-  return valid;
-}
-
-/// Faces whose corners are all valid samples; only they carry gradients and flow.
-template <int D>
-std::vector<unsigned char> ValidFaces(
-  const Lattice<D>& L, const unsigned char* validSample, int threads)
-{
-  std::vector<unsigned char> valid(static_cast<size_t>(L.numFaces));
-  const RowBlocks<D> blocks(L.m);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t k = 0; k < blocks.Count(); ++k)
-  {
-    std::array<std::int64_t, D> c;
-    const std::int64_t length = blocks.Get(k, c);
-    const std::int64_t f0 = L.FaceIndex(c);
-    const std::int64_t base0 = L.SampleIndex(c);
-    for (std::int64_t j = 0; j < length; ++j)
-    {
-      bool all = true;
-      for (int b = 0; b < Lattice<D>::Corners; ++b)
-      {
-        all = all && validSample[base0 + j + L.corner[b]];
-      }
-      valid[f0 + j] = all;
-    }
-  }
-  return valid;
-}
 
 /**
  * SmoothPass on a block of `length` samples of one row when every sample is
@@ -467,6 +237,109 @@ std::array<double, D> FaceGradient(
 }
 
 /**
+ * Section 3.3: |grad I|^2 per face, summed over the C channels (the channels are
+ * coupled through one flow); 0 on invalid faces (`validFace` null: all valid).
+ */
+template <int D>
+void FaceEnergy(const Lattice<D>& L, int C, const double* values, const unsigned char* validFace,
+  double* energy, int threads)
+{
+  const RowBlocks<D> blocks(L.m);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
+  {
+    std::array<std::int64_t, D> c;
+    const std::int64_t length = blocks.Get(k, c);
+    const std::int64_t f0 = L.FaceIndex(c);
+    const std::int64_t base0 = L.SampleIndex(c);
+    for (std::int64_t j = 0; j < length; ++j)
+    {
+      double e = 0.0;
+      if (!validFace || validFace[f0 + j])
+      {
+        for (int channel = 0; channel < C; ++channel)
+        {
+          const auto g = FaceGradient<D>(L, values, C, channel, base0 + j);
+          for (int d = 0; d < D; ++d)
+          {
+            e += g[d] * g[d];
+          }
+        }
+      }
+      energy[f0 + j] = e;
+    }
+  }
+}
+
+/**
+ * Appendix A potential before smoothing: the face energy averaged over each
+ * sample's valid adjacent faces, weighted by area (all faces of a grid have
+ * the same area, so the weights are equal).
+ */
+template <int D>
+void FacesToSamples(const Lattice<D>& L, const double* energy, const unsigned char* validFace,
+  double* potential, int threads)
+{
+  const RowBlocks<D> blocks(L.n);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
+  {
+    std::array<std::int64_t, D> i;
+    const std::int64_t length = blocks.Get(k, i);
+    const std::int64_t s0 = L.SampleIndex(i);
+    const AdjacentFaces<D> faces(L, i);
+    for (std::int64_t j = 0; j < length; ++j)
+    {
+      double sum = 0.0;
+      int count = 0;
+      for (int b = 0; b < Lattice<D>::Corners; ++b)
+      {
+        const std::int64_t f = faces.Face(i[0] + j, b);
+        if (f >= 0 && (!validFace || validFace[f]))
+        {
+          sum += energy[f];
+          ++count;
+        }
+      }
+      potential[s0 + j] = count > 0 ? sum / count : 0.0;
+    }
+  }
+}
+
+/**
+ * Section 3.2 flow u = 1/2 grad P per face, returned as the back-trace velocity
+ * -u in index units (-u / h per axis), D floats per face; 0 on invalid faces.
+ */
+template <int D>
+void BackTraceVelocity(const Lattice<D>& L, const double* potential,
+  const unsigned char* validFace, float* velocity, int threads)
+{
+  const RowBlocks<D> blocks(L.m);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
+  {
+    std::array<std::int64_t, D> c;
+    const std::int64_t length = blocks.Get(k, c);
+    const std::int64_t f0 = L.FaceIndex(c);
+    const std::int64_t base0 = L.SampleIndex(c);
+    for (std::int64_t j = 0; j < length; ++j)
+    {
+      float* v = velocity + (f0 + j) * D;
+      if (validFace && !validFace[f0 + j])
+      {
+        std::fill(v, v + D, 0.0f);
+        continue;
+      }
+      const auto g = FaceGradient<D>(L, potential, 1, 0, base0 + j);
+      for (int d = 0; d < D; ++d)
+      {
+        v[d] = static_cast<float>(-0.5 * g[d] / L.h[d]);
+      }
+    }
+  }
+}
+
+/**
  * The flow of a signal (sections 3.2-3.3): smoothing, face gradients, potential,
  * smoothing of the potential, back-trace velocity. Holds the buffers, which the
  * flow updates of a run reuse.
@@ -504,12 +377,13 @@ public:
     // buffer, and the raw potential to the smoothed signal's, each once its
     // previous content has been used.
     double* energy = this->PotentialField.get();
-    this->ComputeEnergy(energy);
+    FaceEnergy<D>(L, C, this->Smoothed.get(), this->ValidFace, energy, this->Threads);
     double* rawPotential = this->Smoothed.get();
-    this->ComputePotential(energy, rawPotential);
+    FacesToSamples<D>(L, energy, this->ValidFace, rawPotential, this->Threads);
     UmbrellaSmooth<D>(L, 1, rawPotential, 1.0, this->PotentialField.get(), this->Scratch.get(),
       this->ValidSample, this->Passes, this->Threads);
-    this->ComputeVelocity();
+    BackTraceVelocity<D>(L, this->PotentialField.get(), this->ValidFace, this->VelocityField.get(),
+      this->Threads);
   }
 
   /// Potential P per sample, normalised units.
@@ -518,95 +392,6 @@ public:
   const float* Velocity() const { return this->VelocityField.get(); }
 
 private:
-  bool FaceIsValid(std::int64_t f) const { return !this->ValidFace || this->ValidFace[f]; }
-
-  /// |grad I|^2 per face summed over channels (section 3.3 coupling); 0 on invalid faces.
-  void ComputeEnergy(double* energy) const
-  {
-    const RowBlocks<D> blocks(L.m);
-#pragma omp parallel for schedule(static) num_threads(this->Threads)
-    for (std::int64_t k = 0; k < blocks.Count(); ++k)
-    {
-      std::array<std::int64_t, D> c;
-      const std::int64_t length = blocks.Get(k, c);
-      const std::int64_t f0 = L.FaceIndex(c);
-      const std::int64_t base0 = L.SampleIndex(c);
-      for (std::int64_t j = 0; j < length; ++j)
-      {
-        double e = 0.0;
-        if (this->FaceIsValid(f0 + j))
-        {
-          for (int channel = 0; channel < C; ++channel)
-          {
-            const auto g = FaceGradient<D>(L, this->Smoothed.get(), C, channel, base0 + j);
-            for (int d = 0; d < D; ++d)
-            {
-              e += g[d] * g[d];
-            }
-          }
-        }
-        energy[f0 + j] = e;
-      }
-    }
-  }
-
-  /// Potential before smoothing: the face energy averaged over each sample's valid
-  /// adjacent faces (all faces have equal area).
-  void ComputePotential(const double* energy, double* potential) const
-  {
-    const RowBlocks<D> blocks(L.n);
-#pragma omp parallel for schedule(static) num_threads(this->Threads)
-    for (std::int64_t k = 0; k < blocks.Count(); ++k)
-    {
-      std::array<std::int64_t, D> i;
-      const std::int64_t length = blocks.Get(k, i);
-      const std::int64_t s0 = L.SampleIndex(i);
-      const AdjacentFaces<D> faces(L, i);
-      for (std::int64_t j = 0; j < length; ++j)
-      {
-        double sum = 0.0;
-        int count = 0;
-        for (int b = 0; b < Lattice<D>::Corners; ++b)
-        {
-          const std::int64_t f = faces.Face(i[0] + j, b);
-          if (f >= 0 && this->FaceIsValid(f))
-          {
-            sum += energy[f];
-            ++count;
-          }
-        }
-        potential[s0 + j] = count > 0 ? sum / count : 0.0;
-      }
-    }
-  }
-
-  void ComputeVelocity()
-  {
-    const RowBlocks<D> blocks(L.m);
-#pragma omp parallel for schedule(static) num_threads(this->Threads)
-    for (std::int64_t k = 0; k < blocks.Count(); ++k)
-    {
-      std::array<std::int64_t, D> c;
-      const std::int64_t length = blocks.Get(k, c);
-      const std::int64_t f0 = L.FaceIndex(c);
-      const std::int64_t base0 = L.SampleIndex(c);
-      for (std::int64_t j = 0; j < length; ++j)
-      {
-        float* v = this->VelocityField.get() + (f0 + j) * D;
-        if (!this->FaceIsValid(f0 + j))
-        {
-          std::fill(v, v + D, 0.0f);
-          continue;
-        }
-        const auto g = FaceGradient<D>(L, this->PotentialField.get(), 1, 0, base0 + j);
-        for (int d = 0; d < D; ++d)
-        {
-          v[d] = static_cast<float>(-0.5 * g[d] / L.h[d]);
-        }
-      }
-    }
-  }
-
   const Lattice<D>& L;
   const int C;
   const int Passes;

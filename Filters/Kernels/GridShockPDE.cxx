@@ -1,5 +1,6 @@
 #include "GridShockPDE.h"
 #include "GridFlow.h"
+#include "Timer.h"
 
 #include <omp.h>
 
@@ -15,12 +16,6 @@ namespace shock
 namespace
 {
 using namespace grid;
-using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // A step that changes no value by more than this (range-normalised) is a steady state.
 constexpr double SteadyChange = 1e-12;

@@ -5,6 +5,9 @@
  * Implements section 4 and Appendix A of Prada and Kazhdan (2015) on a
  * TriangleMesh:
  *
+ * The steps are public functions: MeshFlow.h (smoothing, gradients, potential,
+ * flow), MeshTrace.h (Trace), MeshAdvect.h (sampling, AdvectVertices/AdvectFaces).
+ *
  *  1. per-point signal (cell signals are first averaged to points, area-weighted),
  *     umbrella-smoothed with Gaussian weights exp(-|(v-w)/l|^2) over the one-ring;
  *  2. per-triangle gradient of the linear interpolant; |grad I|^2 summed over
@@ -29,6 +32,7 @@
 #ifndef MeshShockAdvection_h
 #define MeshShockAdvection_h
 
+#include "MeshTrace.h"
 #include "ShockTypes.h"
 #include "TriangleMesh.h"
 
@@ -95,23 +99,6 @@ struct MeshSignal
 Status AdvectMeshSignal(const TriangleMesh& mesh, const MeshSignal& signal, double* output,
   const AdvectionParameters& parameters, AdvectionReport* report = nullptr,
   MeshFlowFields* fields = nullptr, const ProgressFunction& progress = ProgressFunction());
-
-/// A point on the mesh: a triangle and barycentric coordinates (sum 1, each >= 0).
-struct SurfacePoint
-{
-  std::int64_t triangle = -1;
-  double barycentric[3] = { 1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0 };
-};
-
-/**
- * Move one surface point along a per-triangle velocity for time t with the Appendix A Trace
- * (Tracing::Stepped) or its exact delta -> 0 limit (Tracing::FaceCrossing).
- * Exposed for tests; `velocity` is 3 values per triangle in mesh axes and normalised
- * units (the kernel passes -u of MeshFlowFields::flow), t in normalised time.
- * @return the number of steps (delta-steps or face crossings).
- */
-std::int64_t TraceOnMesh(const TriangleMesh& mesh, const double* velocity, SurfacePoint& point,
-  double time, const AdvectionParameters& parameters, bool* truncated = nullptr);
 
 } // namespace shock
 

@@ -601,4 +601,66 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
   return {};
 }
 
+namespace
+{
+/// Entries `value(f, i, j)` for every non-degenerate triangle f and corner pair (i, j).
+template <typename Value>
+std::vector<SparseEntry> TriangleEntries(const TriangleMesh& mesh, Value value)
+{
+  std::vector<SparseEntry> entries;
+  for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+  {
+    if (mesh.Degenerate(f))
+    {
+      continue;
+    }
+    const std::int64_t* t = mesh.Corners(f);
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        entries.push_back({ t[i], t[j], value(f, i, j) });
+      }
+    }
+  }
+  return entries;
+}
+} // namespace
+
+std::vector<SparseEntry> MassMatrix(const TriangleMesh& mesh)
+{
+  return TriangleEntries(mesh, [&](std::int64_t f, int i, int j) {
+    return (i == j ? 2.0 : 1.0) * mesh.Area(f) / 12.0;
+  });
+}
+
+std::vector<SparseEntry> StiffnessMatrix(const TriangleMesh& mesh)
+{
+  return TriangleEntries(mesh, [&](std::int64_t f, int i, int j) {
+    return mesh.Area(f) * Dot(mesh.HatGradient(f, i), mesh.HatGradient(f, j));
+  });
+}
+
+std::vector<double> Divergence(const TriangleMesh& mesh, const double* gradients)
+{
+  std::vector<double> divergence(static_cast<size_t>(3 * mesh.NumberOfPoints()), 0.0);
+  for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+  {
+    if (mesh.Degenerate(f))
+    {
+      continue;
+    }
+    const std::int64_t* t = mesh.Corners(f);
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        divergence[static_cast<size_t>(3 * t[i] + k)] +=
+          mesh.Area(f) * Dot(mesh.HatGradient(f, i), gradients + 9 * f + 3 * k);
+      }
+    }
+  }
+  return divergence;
+}
+
 } // namespace shock

@@ -69,6 +69,7 @@
 #include "TriangleMesh.h"
 
 #include <cstdint>
+#include <vector>
 
 namespace shock
 {
@@ -166,6 +167,35 @@ void FitTargetGradients(const TriangleMesh& mesh, std::int64_t f, const double n
  */
 Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNormals,
   double* positions, const FitParameters& parameters, FitReport* report = nullptr);
+
+/// One entry of a sparse matrix; entries with the same row and column add up.
+struct SparseEntry
+{
+  std::int64_t row = 0;
+  std::int64_t column = 0;
+  double value = 0.0;
+};
+
+/**
+ * The consistent finite-element mass matrix M of the mesh's hat functions: per
+ * non-degenerate triangle of area A, A/12 [2 1 1; 1 2 1; 1 1 2] on its corners
+ * (one entry per triangle and corner pair, in triangle order).
+ */
+std::vector<SparseEntry> MassMatrix(const TriangleMesh& mesh);
+
+/**
+ * The stiffness matrix S_ij = sum_f A_f grad(phi_i) . grad(phi_j) (the cotangent
+ * Laplacian), one entry per non-degenerate triangle and corner pair.
+ */
+std::vector<SparseEntry> StiffnessMatrix(const TriangleMesh& mesh);
+
+/**
+ * The divergence of a per-triangle gradient field: (D w)_i = sum_f A_f
+ * grad(phi_i) . w_{f,k} for each coordinate k. `gradients` holds 9 values per
+ * triangle, w_{f,k} = gradients[9 f + 3 k .. 9 f + 3 k + 2]; returns 3 values
+ * per point. Degenerate triangles contribute nothing.
+ */
+std::vector<double> Divergence(const TriangleMesh& mesh, const double* gradients);
 
 } // namespace shock
 

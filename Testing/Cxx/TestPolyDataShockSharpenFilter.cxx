@@ -1326,7 +1326,7 @@ TEST(PolyDataShockSharpenFilter, DefaultsClampingAndPrintSelf)
   filter->SetSolverIterations(-3);
   EXPECT_EQ(filter->GetSolverIterations(), 0);
   filter->SetNormalSmoothingPasses(5000);
-  EXPECT_EQ(filter->GetNormalSmoothingPasses(), 1000);
+  EXPECT_EQ(filter->GetNormalSmoothingPasses(), 100);
   filter->SetSolverTolerance(2.0);
   EXPECT_EQ(filter->GetSolverTolerance(), 1.0);
 

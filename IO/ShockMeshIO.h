@@ -1,8 +1,8 @@
 /**
  * @file   ShockMeshIO.h
- * @brief  Reading and writing surface meshes for the `shockfilter` program.
+ * @brief  Reading and writing surface meshes, in the format the file name's
+ *         extension names (any letter case).
  *
- * The format follows the file name's extension, in any letter case:
  *  - `.ply`  Stanford PLY (vtkPLYReader, vtkPLYWriter; written binary little-endian);
  *  - `.obj`  Wavefront OBJ (vtkOBJReader, vtkOBJWriter);
  *  - `.stl`  STL (vtkSTLReader, vtkSTLWriter; written binary; triangles only, so
@@ -10,7 +10,7 @@
  *  - `.vtp`  VTK XML polydata (vtkXMLPolyDataReader, vtkXMLPolyDataWriter);
  *  - `.vtk`  VTK legacy polydata (written binary); a legacy unstructured grid is
  *            read as its surface (vtkGeometryFilter);
- *  - `.off`  Object File Format, OFF and COFF, by this module (see ReadMesh()).
+ *  - `.off`  Object File Format, OFF and COFF (ShockOffFormat.h).
  *
  * Colours: PLY and OFF store per-vertex and per-face RGB(A) colours. On reading
  * they become unsigned-char arrays named PointColorsName (point data) and
@@ -25,45 +25,70 @@
  * triangles (with their cells' colours).
  *
  * Errors are never printed: they come back as one line "<path>: <what is
- * wrong>". The messages of VTK's readers and writers are caught by observers
- * and, for VTK's generic messages, by taking over VTK's output window (and
- * muting vtkLogger's standard error output) while a call runs; the warnings of
- * a successful call go on to the output window afterwards. This uses VTK's
- * global output window: do not read or write meshes from several threads.
+ * wrong>" (a MessageTrap catches VTK's messages; the warnings of a successful
+ * call go on to VTK's output window afterwards). Not for use from several
+ * threads at once (VTK's output window is global).
  *
  * Malformed files give errors rather than crashes: the VTK readers of PLY, STL
- * and OBJ files, which trust their input, get checked files only, and every
- * mesh read is checked for cells of missing points and short data arrays. VTK's
- * XML and legacy readers still trust the binary data of their files: corrupt
+ * and OBJ files get checked files only (ShockMeshChecks.h), and every mesh read
+ * is checked for cells of missing points and short data arrays. VTK's XML and
+ * legacy readers still trust the binary data of their files: corrupt
  * compressed or binary payloads in .vtp and .vtk files can crash them.
+ * Outputs are written to a temporary file renamed over the target when
+ * complete (OutputFile): a failed write leaves an existing file untouched.
+ *
+ * Memory: a mesh read takes about 24 bytes per point (double coordinates) and
+ * 8 bytes per triangle corner plus 8 per cell (vtkCellArray offsets), plus its
+ * arrays (1 byte per colour component); the readers hold the file's text
+ * besides while they parse it.
  */
 #ifndef ShockMeshIO_h
 #define ShockMeshIO_h
+
+#include "ShockMeshFaces.h" // PointColorsName, FaceColorsName
 
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
 #include <string>
+#include <vector>
 
 namespace shockio
 {
 
-/// Name of the per-point colour array that ReadMesh() creates and WriteMesh() looks for.
-inline constexpr const char* PointColorsName = "Colors";
-/// Name of the per-face colour array that ReadMesh() creates and WriteMesh() looks for.
-inline constexpr const char* FaceColorsName = "FaceColors";
+/// What a mesh format keeps of a mesh's arrays.
+enum class MeshArrays
+{
+  None,    ///< geometry only (and for PLY normals, texture coordinates)
+  Colours, ///< unsigned char RGB(A) point and cell colours
+  All      ///< every array
+};
+
+/// A mesh file format.
+struct MeshFormat
+{
+  enum Id
+  {
+    PLY,
+    OFF,
+    OBJ,
+    STL,
+    VTP,
+    VTK
+  } id;
+  const char* name;
+  std::vector<std::string> extensions; ///< lower case, without the dot
+  MeshArrays arrays;
+};
+
+/// The mesh formats, in the order of the file comment.
+const std::vector<MeshFormat>& MeshFormats();
+
+/// The format of `path` by its extension; null with `error` set if there is none.
+const MeshFormat* MeshFormatOf(const std::string& path, std::string& error);
 
 /**
  * Reads the surface mesh in `path`, in the format its extension names.
- *
- * OFF files: an `OFF` or `COFF` header, alone on its line or followed by the
- * counts; then the counts "vertices faces [edges]" (the edge count is ignored);
- * one vertex per line, "x y z" followed for COFF by an RGB or RGBA colour; one
- * face per line, "n i_1 ... i_n" (n >= 3, ids from 0) optionally followed by an
- * RGB or RGBA colour. '#' starts a comment; blank lines are skipped. Colours
- * are 0..255 integers, or 0..1 reals when any colour value in the file is
- * written as a real (with '.', 'e' or 'E'). Every vertex line, and every face
- * line, must have the same number of colour values. Coordinates are doubles.
  *
  * @param path   the file to read
  * @param error  cleared, then set to a one-line message naming the file on failure
@@ -75,16 +100,14 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& erro
 
 /**
  * Writes `mesh` to `path` in the format its extension names (see the file
- * comment for what each format keeps). OFF files get a `COFF` header when the
- * mesh has point colours, the coordinates in the shortest text that reads back
- * exactly, colours as 0..255 integers and 0 as the edge count.
+ * comment for what each format keeps).
  *
  * @param mesh   the mesh to write: not null, with at least one point
- * @param path   the file to create or overwrite
+ * @param path   the file to create or replace
  * @param error  cleared, then set to a one-line message naming the file on failure
  * @return true on success; false on an unknown extension, an empty mesh, a
  *   mesh the format cannot hold (STL without polygons, PLY polygons of more
- *   than 255 points), or a writer error.
+ *   than 255 points), or a writer error (then an existing `path` is untouched).
  */
 bool WriteMesh(vtkPolyData* mesh, const std::string& path, std::string& error);
 

@@ -1,0 +1,271 @@
+#include "CliFilters.h"
+
+#include "ShockIOMessages.h"
+
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+
+#include <chrono>
+
+namespace shockcli
+{
+
+const std::vector<Choice>& FlowModeChoices()
+{
+  static const std::vector<Choice> choices = { { "fixed", vtkShockAdvectionFilter::FIXED },
+    { "composed", vtkShockAdvectionFilter::COMPOSED }, { "naive", vtkShockAdvectionFilter::NAIVE } };
+  return choices;
+}
+
+const std::vector<Choice>& MethodChoices()
+{
+  static const std::vector<Choice> choices = { { "advection", vtkImageShockAdvectionFilter::ADVECTION },
+    { "pde", vtkImageShockAdvectionFilter::PDE } };
+  return choices;
+}
+
+const std::vector<Choice>& SamplingChoices()
+{
+  static const std::vector<Choice> choices = { { "linear", vtkShockAdvectionFilter::LINEAR },
+    { "nearest", vtkShockAdvectionFilter::NEAREST } };
+  return choices;
+}
+
+const std::vector<Choice>& TracingChoices()
+{
+  static const std::vector<Choice> choices = { { "exact", vtkShockAdvectionFilter::FACE_CROSSING },
+    { "stepped", vtkShockAdvectionFilter::STEPPED } };
+  return choices;
+}
+
+/**
+ * The options setting ShockOptions. Ranges are those of vtkShockAdvectionFilter
+ * (whose setters would clamp silently); the defaults shown are those of
+ * 'defaults', a new filter of the kind the command runs.
+ */
+std::vector<OptionSpec> ShockOptionSpecs(
+  ShockOptions& target, ShockOptionSet set, vtkShockAdvectionFilter* defaults)
+{
+  std::vector<OptionSpec> specs;
+  if (set == ShockOptionSet::All)
+  {
+    specs.push_back({ "--time", "T",
+      "flow time t >= 0, normalised units" + DefaultText(NumberText(defaults->GetFlowTime())),
+      [&target](const std::string& v)
+      { target.time = ParseInRange("--time", v, 0.0, std::numeric_limits<double>::max()); } });
+    specs.push_back({ "--smoothing", "N",
+      "smoothing passes, 0..10000" +
+        DefaultText(std::to_string(defaults->GetSmoothingPasses())),
+      [&target](const std::string& v) { target.smoothingPasses = ParseInRange("--smoothing", v, 0, 10000); } });
+    specs.push_back({ "--flow", "MODE",
+      "fixed|composed|naive" + DefaultText(ChoiceName(defaults->GetFlowMode(), FlowModeChoices())),
+      [&target](const std::string& v) { target.flowMode = ParseChoice("--flow", v, FlowModeChoices()); } });
+    specs.push_back({ "--updates", "K",
+      "flow updates of composed/naive, 1..100000" +
+        DefaultText(std::to_string(defaults->GetNumberOfFlowUpdates())),
+      [&target](const std::string& v) { target.flowUpdates = ParseInRange("--updates", v, 1, 100000); } });
+    specs.push_back({ "--sampling", "MODE",
+      "linear|nearest" + DefaultText(ChoiceName(defaults->GetSampling(), SamplingChoices())),
+      [&target](const std::string& v) { target.sampling = ParseChoice("--sampling", v, SamplingChoices()); } });
+    specs.push_back({ "--tracing", "MODE",
+      "exact (face crossing)|stepped" + DefaultText(ChoiceName(defaults->GetTracingMode(), TracingChoices())),
+      [&target](const std::string& v) { target.tracingMode = ParseChoice("--tracing", v, TracingChoices()); } });
+    specs.push_back({ "--step-fraction", "F",
+      "step of stepped tracing (edges), 0.001..1" +
+        DefaultText(NumberText(defaults->GetStepFraction())),
+      [&target](const std::string& v)
+      { target.stepFraction = ParseInRange("--step-fraction", v, 0.001, 1.0); } });
+  }
+  specs.push_back({ "--threads", "N", "OpenMP threads, 0..4096, 0 = all cores" +
+      DefaultText(std::to_string(defaults->GetNumberOfThreads())),
+    [&target](const std::string& v) { target.threads = ParseInRange("--threads", v, 0, 4096); } });
+  return specs;
+}
+
+/// Sets the given parameters on a filter; the others keep their defaults.
+void ConfigureFilter(vtkShockAdvectionFilter* filter, const ShockOptions& options)
+{
+  if (options.time)
+  {
+    filter->SetFlowTime(*options.time);
+  }
+  if (options.smoothingPasses)
+  {
+    filter->SetSmoothingPasses(*options.smoothingPasses);
+  }
+  if (options.flowMode)
+  {
+    filter->SetFlowMode(*options.flowMode);
+  }
+  if (options.flowUpdates)
+  {
+    filter->SetNumberOfFlowUpdates(*options.flowUpdates);
+  }
+  if (options.sampling)
+  {
+    filter->SetSampling(*options.sampling);
+  }
+  if (options.tracingMode)
+  {
+    filter->SetTracingMode(*options.tracingMode);
+  }
+  if (options.stepFraction)
+  {
+    filter->SetStepFraction(*options.stepFraction);
+  }
+  if (options.threads)
+  {
+    filter->SetNumberOfThreads(*options.threads);
+  }
+}
+
+void UpdateOrThrow(vtkAlgorithm* algorithm, const std::string& context)
+{
+  vtkNew<shockio::MessageTrap> trap;
+  trap->Watch(algorithm);
+  algorithm->Update();
+  std::string error;
+  Require(trap->Finish(context, error, shockio::Strictness::Lenient), error);
+}
+
+double TimedUpdate(vtkAlgorithm* filter)
+{
+  const auto start = std::chrono::steady_clock::now();
+  UpdateOrThrow(filter, "shock filter failed");
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  return elapsed.count();
+}
+
+const std::vector<Choice>& AssociationChoices()
+{
+  static const std::vector<Choice> choices = { { "point", vtkDataObject::FIELD_ASSOCIATION_POINTS },
+    { "cell", vtkDataObject::FIELD_ASSOCIATION_CELLS } };
+  return choices;
+}
+
+namespace
+{
+
+/// Names of the arrays of 'attributes', for messages ("none" if there are none).
+std::string ArrayNames(vtkDataSetAttributes* attributes)
+{
+  std::string names;
+  for (int i = 0; i < attributes->GetNumberOfArrays(); ++i)
+  {
+    const char* name = attributes->GetArrayName(i);
+    names += (names.empty() ? "" : ", ") + std::string(name ? name : "(unnamed)");
+  }
+  return names.empty() ? "none" : names;
+}
+
+} // namespace
+
+/**
+ * The array to filter: the numeric array named 'requested', looked for in the
+ * point data then in the cell data (only in those of 'association' when given);
+ * without a name, the active scalars of 'association' (default: the point
+ * data), named 'unnamedName' if they have no name. Throws, listing the arrays
+ * there are, when there is no such array.
+ */
+SelectedArray SelectArray(vtkDataSet* data, const std::string& requested, std::optional<int> association,
+  const char* unnamedName)
+{
+  const auto attributesOf = [data](int where) -> vtkDataSetAttributes*
+  {
+    return where == vtkDataObject::FIELD_ASSOCIATION_CELLS
+      ? static_cast<vtkDataSetAttributes*>(data->GetCellData())
+      : data->GetPointData();
+  };
+  const auto kind = [](int where) { return std::string(ChoiceName(where, AssociationChoices())); };
+  std::vector<int> searched = { vtkDataObject::FIELD_ASSOCIATION_POINTS,
+    vtkDataObject::FIELD_ASSOCIATION_CELLS };
+  if (association)
+  {
+    searched = { *association };
+  }
+  std::string available;
+  for (const int where : searched)
+  {
+    available += (available.empty() ? "" : "; ") + kind(where) + " arrays: " + ArrayNames(attributesOf(where));
+  }
+
+  SelectedArray selected;
+  if (requested.empty())
+  {
+    selected.association = association.value_or(vtkDataObject::FIELD_ASSOCIATION_POINTS);
+    selected.array = attributesOf(selected.association)->GetScalars();
+    if (!selected.array)
+    {
+      throw CliError("the input has no active " + kind(selected.association) +
+        " scalars; choose an array with --array (" + available + ")");
+    }
+    if (!selected.array->GetName() || !*selected.array->GetName())
+    {
+      selected.array->SetName(unnamedName);
+    }
+    selected.name = selected.array->GetName();
+    return selected;
+  }
+  for (const int where : searched)
+  {
+    vtkAbstractArray* found = attributesOf(where)->GetAbstractArray(requested.c_str());
+    if (!found)
+    {
+      continue;
+    }
+    selected.array = vtkDataArray::SafeDownCast(found);
+    if (!selected.array)
+    {
+      throw CliError("the " + kind(where) + " array '" + requested + "' is not numeric (" +
+        found->GetClassName() + ")");
+    }
+    selected.name = requested;
+    selected.association = where;
+    return selected;
+  }
+  const std::string what = association ? kind(*association) + " array" : "point or cell array";
+  throw CliError("the input has no " + what + " '" + requested + "' (" + available + ")");
+}
+
+/// Filters the point array 'arrayName' of 'input'; throws "shock filter failed: ..." on error.
+FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
+  const ShockOptions& options, const ImageMethodOptions& methodOptions)
+{
+  vtkNew<vtkImageShockAdvectionFilter> filter;
+  ConfigureFilter(filter, options);
+  if (methodOptions.method)
+  {
+    filter->SetMethod(*methodOptions.method);
+  }
+  if (methodOptions.courantNumber)
+  {
+    filter->SetCourantNumber(*methodOptions.courantNumber);
+  }
+  if (methodOptions.maximumIterations)
+  {
+    filter->SetMaximumIterations(*methodOptions.maximumIterations);
+  }
+  filter->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrayName.c_str());
+  filter->SetInputData(input);
+
+  FilterRun run;
+  run.totalSeconds = TimedUpdate(filter);
+  run.output = vtkSmartPointer<vtkImageData>::New();
+  run.output->ShallowCopy(filter->GetOutput());
+  run.time = filter->GetFlowTime();
+  run.flowMode = filter->GetFlowMode();
+  run.threads = filter->GetNumberOfThreads();
+  vtkDataArray* array = input->GetPointData()->GetArray(arrayName.c_str());
+  run.components = array ? array->GetNumberOfComponents() : 0;
+  run.flowSeconds = filter->GetLastFlowSeconds();
+  run.advectionSeconds = filter->GetLastAdvectionSeconds();
+  run.traceSteps = filter->GetLastTraceSteps();
+  run.method = filter->GetMethod();
+  run.iterations = filter->GetLastIterations();
+  return run;
+}
+
+} // namespace shockcli

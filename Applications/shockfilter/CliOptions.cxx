@@ -1,0 +1,204 @@
+#include "CliOptions.h"
+
+#include <iomanip>
+#include <sstream>
+
+namespace shockcli
+{
+
+/// True when "-h" or "--help" appears before any "--".
+bool IsHelpRequest(const std::vector<std::string>& args)
+{
+  for (const std::string& arg : args)
+  {
+    if (arg == "--")
+    {
+      return false;
+    }
+    if (arg == "-h" || arg == "--help")
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+const OptionSpec* FindOption(const std::vector<OptionSpec>& options, const std::string& name)
+{
+  for (const OptionSpec& option : options)
+  {
+    if (option.name == name)
+    {
+      return &option;
+    }
+  }
+  return nullptr;
+}
+
+/**
+ * Applies the options found in 'args' and returns the positional arguments.
+ * Options may come anywhere; "--" ends them. Throws CliError on an unknown
+ * option, a missing value or a value the option rejects.
+ */
+std::vector<std::string> ParseArguments(
+  const std::string& command, const std::vector<std::string>& args, const std::vector<OptionSpec>& options)
+{
+  std::vector<std::string> positionals;
+  bool optionsEnded = false;
+  for (std::size_t i = 0; i < args.size(); ++i)
+  {
+    const std::string& arg = args[i];
+    if (optionsEnded || arg.size() < 2 || arg[0] != '-')
+    {
+      positionals.push_back(arg);
+      continue;
+    }
+    if (arg == "--")
+    {
+      optionsEnded = true;
+      continue;
+    }
+    const auto equals = arg.find('=');
+    const std::string name = arg.substr(0, equals);
+    const OptionSpec* option = FindOption(options, name);
+    if (!option)
+    {
+      throw CliError(command + ": unknown option '" + name + "' (see '" + ProgramName + " " +
+        command + " --help')");
+    }
+    if (option->valueName.empty())
+    {
+      if (equals != std::string::npos)
+      {
+        throw CliError(command + ": option " + name + " takes no value");
+      }
+      option->apply("");
+      continue;
+    }
+    std::string value;
+    if (equals != std::string::npos)
+    {
+      value = arg.substr(equals + 1);
+    }
+    else if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0)
+    {
+      value = args[++i];
+    }
+    else
+    {
+      throw CliError(command + ": option " + name + " needs a value " + option->valueName);
+    }
+    option->apply(value);
+  }
+  return positionals;
+}
+
+/**
+ * ParseArguments(), then checks that the positional arguments are exactly
+ * 'names' (e.g. {"INPUT", "OUTPUT"}) and returns them.
+ */
+std::vector<std::string> ParseCommandLine(const std::string& command, const std::vector<std::string>& args,
+  const std::vector<OptionSpec>& options, const std::vector<std::string>& names)
+{
+  std::vector<std::string> positionals = ParseArguments(command, args, options);
+  if (positionals.size() != names.size())
+  {
+    std::string expected;
+    for (std::size_t i = 0; i < names.size(); ++i)
+    {
+      expected += (i == 0 ? "" : (i + 1 == names.size() ? " and " : ", ")) + names[i];
+    }
+    throw CliError(command + ": expected " + expected + ", got " + std::to_string(positionals.size()) +
+      " argument(s) (see '" + ProgramName + " " + command + " --help')");
+  }
+  return positionals;
+}
+
+/// Returns the value of the choice named 'text' (case-insensitive); throws on an unknown name.
+int ParseChoice(const std::string& option, const std::string& text, const std::vector<Choice>& choices)
+{
+  const std::string wanted = ToLower(text);
+  std::string names;
+  for (const Choice& choice : choices)
+  {
+    if (wanted == choice.first)
+    {
+      return choice.second;
+    }
+    names += (names.empty() ? "" : "|") + std::string(choice.first);
+  }
+  throw CliError(option + ": unknown value '" + text + "' (expected " + names + ")");
+}
+
+/// The name of 'value' among 'choices' (for reports).
+const char* ChoiceName(int value, const std::vector<Choice>& choices)
+{
+  for (const Choice& choice : choices)
+  {
+    if (choice.second == value)
+    {
+      return choice.first;
+    }
+  }
+  return "?";
+}
+
+/// Formats option help lines, aligned: "  --time T          help".
+std::string FormatOptions(const std::vector<OptionSpec>& options)
+{
+  std::ostringstream text;
+  for (const OptionSpec& option : options)
+  {
+    const std::string head = option.name + (option.valueName.empty() ? "" : " " + option.valueName);
+    text << "  " << std::left << std::setw(20) << head << " " << option.help << '\n';
+  }
+  return text.str();
+}
+
+/// " (default <value>)", for option help lines.
+std::string DefaultText(const std::string& value)
+{
+  return " (default " + value + ")";
+}
+
+/// --array NAME (not empty).
+OptionSpec ArrayOptionSpec(std::string& target, const std::string& help)
+{
+  return { "--array", "NAME", help,
+    [&target](const std::string& v)
+    {
+      if (v.empty())
+      {
+        throw CliError("--array: the name is empty");
+      }
+      target = v;
+    } };
+}
+
+/// --timings (a flag).
+OptionSpec TimingsOptionSpec(bool& target)
+{
+  return { "--timings", "", "print the run times as one JSON object on stdout",
+    [&target](const std::string&) { target = true; } };
+}
+
+/// Help lines "  --timings prints {"key",...} on stdout;" (wrapped at 78 columns), then 'notes'.
+std::string TimingsHelp(const std::vector<std::string>& keys, const std::string& notes)
+{
+  std::string text = "  --timings prints {";
+  std::size_t column = text.size();
+  for (std::size_t i = 0; i < keys.size(); ++i)
+  {
+    const std::string item = "\"" + keys[i] + "\"" + (i + 1 < keys.size() ? "," : "} on stdout;");
+    if (column + item.size() > 78)
+    {
+      text += "\n  ";
+      column = 2;
+    }
+    text += item;
+    column += item.size();
+  }
+  return text + "\n" + notes;
+}
+
+} // namespace shockcli

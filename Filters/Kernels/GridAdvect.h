@@ -1,0 +1,288 @@
+/**
+ * @file GridAdvect.h
+ * @brief Appendix A AdvectVertices on a regular grid, and the reading of a grid
+ * signal at a traced point (Sampling::Linear: multilinear; Sampling::Nearest).
+ * Loops use OpenMP: include only from translation units built with it.
+ */
+#ifndef GridAdvect_h
+#define GridAdvect_h
+
+#include "GridLattice.h"
+#include "GridTrace.h"
+#include "ShockTypes.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+namespace shock
+{
+namespace grid
+{
+
+// Offset of a back-trace start from its sample towards the adjacent face centre,
+// in units of the sample-to-centre distance (the paper's epsilon).
+constexpr double VertexOffset = 0.001;
+
+/// A weighted sum of samples: the value read at a traced point, or the average of several.
+template <int D>
+struct Stencil
+{
+  // Up to one multilinear read (the corners of a cell) per trace, one trace per corner.
+  static constexpr int Capacity = Lattice<D>::Corners * Lattice<D>::Corners;
+  std::array<std::int64_t, Capacity> sample;
+  std::array<double, Capacity> weight;
+  int size = 0;
+
+  void Add(std::int64_t s, double w)
+  {
+    this->sample[this->size] = s;
+    this->weight[this->size] = w;
+    ++this->size;
+  }
+
+  /// The weighted sum of component c of `values` (C components per sample).
+  double Apply(const double* values, int C, int c) const
+  {
+    // Four partial sums: four short chains of dependent additions instead of one long one.
+    double partial[4] = { 0.0, 0.0, 0.0, 0.0 };
+    int r = 0;
+    for (; r + 4 <= this->size; r += 4)
+    {
+      for (int k = 0; k < 4; ++k)
+      {
+        partial[k] += this->weight[r + k] * values[this->sample[r + k] * C + c];
+      }
+    }
+    for (; r < this->size; ++r)
+    {
+      partial[0] += this->weight[r] * values[this->sample[r] * C + c];
+    }
+    return (partial[0] + partial[1]) + (partial[2] + partial[3]);
+  }
+};
+
+/**
+ * Adds to `stencil` the samples and weights that read a grid signal at index
+ * position q.
+ * Linear: multilinear interpolation over the valid corners of the cell holding q.
+ * Nearest: the nearest sample (the linear rule if that sample is invalid).
+ * `valid` is null when every sample is valid.
+ * Returns false, adding nothing, when no valid sample is available.
+ */
+template <int D>
+bool SampleGrid(const Lattice<D>& L, const unsigned char* valid, Sampling sampling,
+  const std::array<double, D>& q, Stencil<D>& stencil)
+{
+  if (sampling == Sampling::Nearest)
+  {
+    std::int64_t s = 0;
+    for (int d = 0; d < D; ++d)
+    {
+      s += static_cast<std::int64_t>(std::floor(q[d] + 0.5)) * L.sampleStride[d];
+    }
+    if (!valid || valid[s])
+    {
+      stencil.Add(s, 1.0);
+      return true;
+    }
+  }
+  std::int64_t base = 0;
+  std::array<double, D> frac;
+  for (int d = 0; d < D; ++d)
+  {
+    const std::int64_t cell = std::min<std::int64_t>(static_cast<std::int64_t>(q[d]), L.m[d] - 1);
+    frac[d] = q[d] - static_cast<double>(cell);
+    base += cell * L.sampleStride[d];
+  }
+  double weights[Lattice<D>::Corners];
+  double total = 0.0;
+  for (int b = 0; b < Lattice<D>::Corners; ++b)
+  {
+    double w = 1.0;
+    for (int d = 0; d < D; ++d)
+    {
+      w *= ((b >> d) & 1) ? frac[d] : 1.0 - frac[d];
+    }
+    weights[b] = (!valid || valid[base + L.corner[b]]) ? w : 0.0;
+    total += weights[b];
+  }
+  if (!valid)
+  {
+    // All corners valid: the weights already sum to 1 (and a zero weight is harmless).
+    for (int b = 0; b < Lattice<D>::Corners; ++b)
+    {
+      stencil.Add(base + L.corner[b], weights[b]);
+    }
+    return true;
+  }
+  if (!(total > 0.0))
+  {
+    return false;
+  }
+  for (int b = 0; b < Lattice<D>::Corners; ++b)
+  {
+    if (weights[b] != 0.0) // skip invalid corners: 0 x NaN would be NaN
+    {
+      stencil.Add(base + L.corner[b], weights[b] / total);
+    }
+  }
+  return true;
+}
+
+/// Work shared by the advection passes of one run.
+template <int D>
+struct AdvectionContext
+{
+  const Lattice<D>& L;
+  int C;
+  int threads;
+  Sampling sampling;
+  const unsigned char* valid; // null when every sample is finite
+  const ProgressFunction& progress;
+  AdvectionReport& report;
+};
+
+/**
+ * Appendix A AdvectVertices: every valid sample is traced from an offset into
+ * each adjacent face, the source signal is sampled at the traced points and the
+ * results are averaged. With `positions` (Composed flow; D floats per sample and
+ * corner pattern), traces resume from and update the stored positions instead
+ * of starting at the offsets.
+ * Returns false when aborted through the progress callback.
+ */
+template <int D>
+bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, double time,
+  const double* source, double* out, float* positions, double progressStart, double progressSpan)
+{
+  const Lattice<D>& L = ctx.L;
+  const int C = ctx.C;
+  const unsigned char* valid = ctx.valid;
+  constexpr int Corners = Lattice<D>::Corners;
+  const RowBlocks<D> blocks(L.n);
+  // Progress is reported, and an abort honoured, between chunks of blocks.
+  const std::int64_t chunkCount =
+    std::max<std::int64_t>(1, std::min<std::int64_t>(64, L.numSamples / 8192));
+  const std::int64_t chunkSize = (blocks.Count() + chunkCount - 1) / chunkCount;
+  std::uint64_t steps = 0;
+  std::uint64_t truncated = 0;
+
+  for (std::int64_t chunk = 0; chunk < chunkCount; ++chunk)
+  {
+    const std::int64_t begin = chunk * chunkSize;
+    const std::int64_t end = std::min(blocks.Count(), begin + chunkSize);
+#pragma omp parallel for schedule(dynamic) num_threads(ctx.threads) reduction(+ : steps, truncated)
+    for (std::int64_t k = begin; k < end; ++k)
+    {
+      std::array<std::int64_t, D> i;
+      const std::int64_t length = blocks.Get(k, i);
+      const std::int64_t x0 = i[0];
+      const std::int64_t s0 = L.SampleIndex(i);
+      const AdjacentFaces<D> faces(L, i);
+      for (std::int64_t j = 0; j < length; ++j)
+      {
+        const std::int64_t s = s0 + j;
+        i[0] = x0 + j;
+        double* result = out + s * C;
+        if (valid && !valid[s])
+        {
+          std::copy(source + s * C, source + (s + 1) * C, result);
+          continue;
+        }
+        // The traces' reads are gathered first, then combined per component in
+        // registers (no read-modify-write of the output per corner).
+        Stencil<D> stencil;
+        int traces = 0;
+        for (int b = 0; b < Corners; ++b)
+        {
+          std::int64_t f = faces.Face(i[0], b);
+          if (f < 0)
+          {
+            continue;
+          }
+          std::array<double, D> q;
+          std::array<std::int64_t, D> c;
+          float* stored = positions ? positions + (s * Corners + b) * D : nullptr;
+          if (stored)
+          {
+            std::copy(stored, stored + D, q.begin());
+            f = tracer.FaceOf(q, c);
+          }
+          else
+          {
+            // The start lies in face f, whose coordinates are the sample's minus the corner bits.
+            for (int d = 0; d < D; ++d)
+            {
+              const int bit = (b >> d) & 1;
+              c[d] = i[d] - bit;
+              q[d] = static_cast<double>(i[d]) + VertexOffset * (0.5 - bit);
+            }
+          }
+          bool cut = false;
+          steps += static_cast<std::uint64_t>(tracer.Trace(q, c, f, time, cut));
+          truncated += cut ? 1 : 0;
+          if (stored)
+          {
+            std::copy(q.begin(), q.end(), stored);
+          }
+          if (!SampleGrid<D>(L, valid, ctx.sampling, q, stencil))
+          {
+            stencil.Add(s, 1.0); // only non-finite samples around q: keep the sample's own value
+          }
+          ++traces;
+        }
+        for (int c = 0; c < C; ++c)
+        {
+          result[c] = stencil.Apply(source, C, c) / traces;
+        }
+      }
+    }
+    if (ctx.progress &&
+      !ctx.progress(progressStart + progressSpan * static_cast<double>(end) / blocks.Count()))
+    {
+      ctx.report.traceSteps += steps;
+      ctx.report.truncatedTraces += truncated;
+      return false;
+    }
+  }
+  ctx.report.traceSteps += steps;
+  ctx.report.truncatedTraces += truncated;
+  return true;
+}
+
+/// Initial Composed-flow positions: the offsets of AdvectVertices, D floats per
+/// sample and corner pattern.
+template <int D>
+LargeArray<float> InitialTracePositions(const Lattice<D>& L, int threads)
+{
+  constexpr int Corners = Lattice<D>::Corners;
+  LargeArray<float> positions = AllocateLargeArray<float>(L.numSamples * Corners * D);
+  const RowBlocks<D> blocks(L.n);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
+  {
+    std::array<std::int64_t, D> i;
+    const std::int64_t length = blocks.Get(k, i);
+    const std::int64_t s0 = L.SampleIndex(i);
+    const std::int64_t x0 = i[0];
+    for (std::int64_t j = 0; j < length; ++j)
+    {
+      i[0] = x0 + j;
+      for (int b = 0; b < Corners; ++b)
+      {
+        for (int d = 0; d < D; ++d)
+        {
+          positions[((s0 + j) * Corners + b) * D + d] =
+            static_cast<float>(static_cast<double>(i[d]) + VertexOffset * (0.5 - ((b >> d) & 1)));
+        }
+      }
+    }
+  }
+  return positions;
+}
+
+} // namespace grid
+} // namespace shock
+
+#endif

@@ -1,0 +1,268 @@
+/**
+ * @file GridLattice.h
+ * @brief The regular grid as the grid kernels see it: the lattice of active
+ * axes with strides and normalised spacings, row-blocked loops over samples and
+ * faces, the faces adjacent to a sample, and the validity masks of non-finite
+ * samples. Loops use OpenMP: include only from translation units built with it.
+ */
+#ifndef GridLattice_h
+#define GridLattice_h
+
+#include "GridShockAdvection.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace shock
+{
+namespace grid
+{
+
+// Elements per work unit of the row-wise loops (see RowBlocks).
+constexpr std::int64_t BlockLength = 256;
+
+/// The active axes of a grid, with strides and normalised spacings.
+template <int D>
+struct Lattice
+{
+  static constexpr int Corners = 1 << D;
+  std::array<int, D> axis{};                // grid axis (0..2) of each active axis
+  std::array<std::int64_t, D> n{};          // samples per active axis (>= 2)
+  std::array<std::int64_t, D> m{};          // faces per active axis (n - 1)
+  std::array<std::int64_t, D> sampleStride{};
+  std::array<std::int64_t, D> faceStride{};
+  std::array<double, D> h{};                // spacing / mean edge length
+  std::array<double, D> h2{};               // h^2: metric for dot products of index velocities
+  std::array<std::int64_t, Corners> corner{}; // sample offset of face corner with bit pattern b
+  std::int64_t numSamples = 0;
+  std::int64_t numFaces = 0;
+
+  explicit Lattice(const GridShape& shape)
+  {
+    const double meanEdge = shape.MeanEdgeLength();
+    std::int64_t stride = 1;
+    int k = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (shape.dimensions[a] > 1)
+      {
+        this->axis[k] = a;
+        this->n[k] = shape.dimensions[a];
+        this->m[k] = shape.dimensions[a] - 1;
+        this->sampleStride[k] = stride;
+        this->h[k] = shape.spacing[a] / meanEdge;
+        this->h2[k] = this->h[k] * this->h[k];
+        ++k;
+      }
+      stride *= shape.dimensions[a];
+    }
+    this->numSamples = stride;
+    this->numFaces = 1;
+    for (int d = 0; d < D; ++d)
+    {
+      this->faceStride[d] = this->numFaces;
+      this->numFaces *= this->m[d];
+    }
+    for (int b = 0; b < Corners; ++b)
+    {
+      std::int64_t offset = 0;
+      for (int d = 0; d < D; ++d)
+      {
+        offset += ((b >> d) & 1) ? this->sampleStride[d] : 0;
+      }
+      this->corner[b] = offset;
+    }
+  }
+
+  /// Index of the sample with coordinates i; also the lower corner of the face with coordinates i.
+  std::int64_t SampleIndex(const std::array<std::int64_t, D>& i) const
+  {
+    std::int64_t s = 0;
+    for (int d = 0; d < D; ++d)
+    {
+      s += i[d] * this->sampleStride[d];
+    }
+    return s;
+  }
+
+  std::int64_t FaceIndex(const std::array<std::int64_t, D>& c) const
+  {
+    std::int64_t f = 0;
+    for (int d = 0; d < D; ++d)
+    {
+      f += c[d] * this->faceStride[d];
+    }
+    return f;
+  }
+};
+
+/**
+ * Work units of the row-wise loops over the samples (extent n) or the faces
+ * (extent m) of a lattice: runs of at most BlockLength consecutive elements of one
+ * row along the first active axis, which has stride 1. A loop over a block steps
+ * along x without decomposing indices into coordinates, and long rows (1D grids
+ * in particular) still spread over the threads.
+ */
+template <int D>
+class RowBlocks
+{
+public:
+  explicit RowBlocks(const std::array<std::int64_t, D>& extent)
+    : Extent(extent)
+    , PerRow((extent[0] + BlockLength - 1) / BlockLength)
+  {
+    this->Total = this->PerRow;
+    for (int d = 1; d < D; ++d)
+    {
+      this->Total *= extent[d];
+    }
+  }
+
+  std::int64_t Count() const { return this->Total; }
+
+  /// Block k: sets the coordinates of its first element and returns its length.
+  std::int64_t Get(std::int64_t k, std::array<std::int64_t, D>& first) const
+  {
+    std::int64_t row = k / this->PerRow;
+    first[0] = (k - row * this->PerRow) * BlockLength;
+    for (int d = 1; d < D; ++d)
+    {
+      first[d] = row % this->Extent[d];
+      row /= this->Extent[d];
+    }
+    return std::min(BlockLength, this->Extent[0] - first[0]);
+  }
+
+private:
+  std::array<std::int64_t, D> Extent;
+  std::int64_t PerRow;
+  std::int64_t Total = 0;
+};
+
+/**
+ * The faces adjacent to the samples of one row. A sample's face through corner
+ * bit pattern b has coordinates i - bits(b); the bits along the axes other than
+ * the first are the same for the whole row, so their rows of faces are found once.
+ */
+template <int D>
+class AdjacentFaces
+{
+public:
+  AdjacentFaces(const Lattice<D>& lattice, const std::array<std::int64_t, D>& i)
+    : L(lattice)
+  {
+    for (int r = 0; r < Lattice<D>::Corners / 2; ++r)
+    {
+      std::int64_t f = 0;
+      bool inside = true;
+      for (int d = 1; d < D; ++d)
+      {
+        const std::int64_t c = i[d] - ((r >> (d - 1)) & 1);
+        inside = inside && c >= 0 && c < L.m[d];
+        f += c * L.faceStride[d];
+      }
+      this->RowStart[r] = inside ? f : -1;
+    }
+  }
+
+  /// The face adjacent to sample x of the row through corner pattern b; -1 outside the grid.
+  std::int64_t Face(std::int64_t x, int b) const
+  {
+    const std::int64_t start = this->RowStart[b >> 1];
+    const std::int64_t fx = x - (b & 1);
+    return (start < 0 || fx < 0 || fx >= L.m[0]) ? -1 : start + fx;
+  }
+
+private:
+  const Lattice<D>& L;
+  std::array<std::int64_t, Lattice<D>::Corners / 2> RowStart{}; // face at x = 0, or -1
+};
+
+/// Data range over the samples whose components are all finite.
+struct SignalRange
+{
+  double low = std::numeric_limits<double>::infinity();
+  double high = -std::numeric_limits<double>::infinity();
+  bool allFinite = true;
+};
+
+/// The range and finiteness of a signal in one parallel pass (min and max are
+/// exact, so any thread count gives the same range).
+inline SignalRange ScanSignal(std::int64_t numSamples, int components, const double* values, int threads)
+{
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  bool allFinite = true;
+#pragma omp parallel for schedule(static) num_threads(threads) \
+  reduction(min : low) reduction(max : high) reduction(&& : allFinite)
+  for (std::int64_t s = 0; s < numSamples; ++s)
+  {
+    const double* v = values + s * components;
+    bool finite = true;
+    for (int c = 0; c < components; ++c)
+    {
+      finite = finite && std::isfinite(v[c]);
+    }
+    if (!finite)
+    {
+      allFinite = false;
+      continue;
+    }
+    for (int c = 0; c < components; ++c)
+    {
+      low = std::min(low, v[c]);
+      high = std::max(high, v[c]);
+    }
+  }
+  return { low, high, allFinite };
+}
+
+/// Per-sample validity: all components finite.
+inline std::vector<unsigned char> FiniteSamples(
+  std::int64_t numSamples, int components, const double* values, int threads)
+{
+  std::vector<unsigned char> valid(static_cast<size_t>(numSamples));
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t s = 0; s < numSamples; ++s)
+  {
+    const double* v = values + s * components;
+    valid[s] = std::all_of(v, v + components, [](double x) { return std::isfinite(x); });
+  }
+  return valid;
+}
+
+/// Faces whose corners are all valid samples; only they carry gradients and flow.
+template <int D>
+std::vector<unsigned char> ValidFaces(
+  const Lattice<D>& L, const unsigned char* validSample, int threads)
+{
+  std::vector<unsigned char> valid(static_cast<size_t>(L.numFaces));
+  const RowBlocks<D> blocks(L.m);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
+  {
+    std::array<std::int64_t, D> c;
+    const std::int64_t length = blocks.Get(k, c);
+    const std::int64_t f0 = L.FaceIndex(c);
+    const std::int64_t base0 = L.SampleIndex(c);
+    for (std::int64_t j = 0; j < length; ++j)
+    {
+      bool all = true;
+      for (int b = 0; b < Lattice<D>::Corners; ++b)
+      {
+        all = all && validSample[base0 + j + L.corner[b]];
+      }
+      valid[f0 + j] = all;
+    }
+  }
+  return valid;
+}
+
+} // namespace grid
+} // namespace shock
+
+#endif

@@ -1,0 +1,307 @@
+/**
+ * @file GridTrace.h
+ * @brief Appendix A Trace on a regular grid, in index coordinates: a point moved
+ * back along the per-face constant flow, exactly from face to face
+ * (Tracing::FaceCrossing) or in steps of at most delta (Tracing::Stepped).
+ * Loops use OpenMP: include only from translation units built with it.
+ */
+#ifndef GridTrace_h
+#define GridTrace_h
+
+#include "GridLattice.h"
+#include "ShockTypes.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace shock
+{
+namespace grid
+{
+
+/**
+ * Appendix A Trace on the grid, in index coordinates. The flow is constant per
+ * face; a trace stops when the time is used up, when the flow reverses
+ * (<v, v0> <= 0, measured in the physical metric), at the grid boundary, or at
+ * the step cap that guards against cycles of the discrete flow.
+ */
+template <int D>
+class GridTracer
+{
+public:
+  GridTracer(const Lattice<D>& lattice, const float* velocity, const AdvectionParameters& p)
+    : L(lattice)
+    , V(velocity)
+    , Mode(p.tracing)
+    , Delta(p.stepFraction)
+  {
+    // A discrete gradient flow has no cycles in the continuum limit; in case the
+    // discretisation creates one, cap the work per trace at a few grid diameters.
+    double diameter = 0.0;
+    std::int64_t samples = 0;
+    for (int d = 0; d < D; ++d)
+    {
+      diameter += L.n[d] * L.h[d];
+      samples += L.n[d];
+    }
+    this->MaxSteps = (this->Mode == Tracing::FaceCrossing)
+      ? 8 * samples
+      : static_cast<std::int64_t>(std::ceil(4.0 * diameter / this->Delta)) + 1;
+  }
+
+  /**
+   * Trace q (index coordinates), which lies in face f with coordinates c (as
+   * FaceOf finds them), for time t; returns the number of steps taken.
+   */
+  std::int64_t Trace(std::array<double, D>& q, const std::array<std::int64_t, D>& c,
+    std::int64_t f, double t, bool& truncated) const
+  {
+    return this->Mode == Tracing::FaceCrossing ? this->TraceFaceCrossing(q, c, f, t, truncated)
+                                               : this->TraceStepped(q, c, f, t, truncated);
+  }
+
+  /// The face holding q (clamped to the grid): its index, and its coordinates in c.
+  std::int64_t FaceOf(const std::array<double, D>& q, std::array<std::int64_t, D>& c) const
+  {
+    std::int64_t f = 0;
+    for (int d = 0; d < D; ++d)
+    {
+      c[d] = std::min<std::int64_t>(std::max<std::int64_t>(static_cast<std::int64_t>(q[d]), 0), L.m[d] - 1);
+      f += c[d] * L.faceStride[d];
+    }
+    return f;
+  }
+
+private:
+  /// Dot product of index-space velocities in the physical metric.
+  template <typename A, typename B>
+  double Dot(const A& a, const B& b) const
+  {
+    double dot = 0.0;
+    for (int d = 0; d < D; ++d)
+    {
+      dot += L.h2[d] * a[d] * b[d];
+    }
+    return dot;
+  }
+
+  void Load(std::int64_t f, std::array<double, D>& v) const
+  {
+    for (int d = 0; d < D; ++d)
+    {
+      v[d] = this->V[f * D + d];
+    }
+  }
+
+  /**
+   * Filippov velocity on the boundary between face `lowerFace` and its upper
+   * neighbour along `axis`, both pushing into it: the convex combination of their
+   * velocities with no component across the boundary. False if it vanishes.
+   */
+  bool Sliding(std::int64_t lowerFace, int axis, std::array<double, D>& v) const
+  {
+    std::array<double, D> a, b;
+    this->Load(lowerFace, a);
+    this->Load(lowerFace + L.faceStride[axis], b);
+    const double lambda = -b[axis] / (a[axis] - b[axis]);
+    for (int d = 0; d < D; ++d)
+    {
+      v[d] = lambda * a[d] + (1.0 - lambda) * b[d];
+    }
+    v[axis] = 0.0;
+    return this->Dot(v, v) > 0.0;
+  }
+
+  /**
+   * Exact tracing: straight to the next face boundary, then into the neighbour.
+   * Where both faces of a boundary push towards it (a valley of the potential
+   * crossed by the back-trace), the trace slides along the boundary with the
+   * Filippov velocity, the convex combination of the two flows that is tangent
+   * to it: this is the delta -> 0 limit of the zig-zag of the stepped trace.
+   * Where the trace is pushed onto a grid edge or corner from several faces at
+   * once, the exact rule is not unique; the rest of that trace uses the paper's
+   * stepping, which zig-zags along the edge (or stops at a sink).
+   */
+  std::int64_t TraceFaceCrossing(std::array<double, D>& q, std::array<std::int64_t, D> c,
+    std::int64_t f, double t, bool& truncated) const
+  {
+    std::array<double, D> v;
+    this->Load(f, v);
+    if (!(this->Dot(v, v) > 0.0))
+    {
+      return 0;
+    }
+    int pinned = -1; // axis of the boundary the trace slides on; c is the lower face there
+    std::int64_t steps = 0;
+    while (t > 0.0)
+    {
+      // First boundary reached; written with selects rather than branches, as
+      // the exit axis is unpredictable (a division by 0 is computed, then ignored).
+      double exitTime = std::numeric_limits<double>::infinity();
+      int exitAxis = -1;
+      for (int d = 0; d < D; ++d)
+      {
+        const double distance = v[d] > 0.0 ? c[d] + 1 - q[d] : c[d] - q[d];
+        const double quotient = distance / v[d];
+        const double te =
+          (d == pinned || v[d] == 0.0) ? std::numeric_limits<double>::infinity() : quotient;
+        exitAxis = te < exitTime ? d : exitAxis;
+        exitTime = te < exitTime ? te : exitTime;
+      }
+      if (exitAxis < 0)
+      {
+        break; // no motion left (a sliding velocity of zero)
+      }
+      exitTime = std::max(exitTime, 0.0);
+      if (exitTime >= t)
+      {
+        for (int d = 0; d < D; ++d)
+        {
+          q[d] += v[d] * t;
+        }
+        break;
+      }
+      for (int d = 0; d < D; ++d)
+      {
+        q[d] += v[d] * exitTime;
+      }
+      t -= exitTime;
+      const int dir = v[exitAxis] > 0.0 ? 1 : -1;
+      q[exitAxis] = static_cast<double>(dir > 0 ? c[exitAxis] + 1 : c[exitAxis]);
+      ++steps;
+      const std::int64_t next = c[exitAxis] + dir;
+      if (next < 0 || next >= L.m[exitAxis])
+      {
+        break; // grid boundary
+      }
+      if (steps >= this->MaxSteps)
+      {
+        truncated = true;
+        break;
+      }
+      const std::int64_t left = f;
+      c[exitAxis] = next;
+      f += dir * L.faceStride[exitAxis];
+
+      std::array<double, D> w;
+      if (pinned < 0)
+      {
+        this->Load(f, w);
+        if (!(this->Dot(w, v) > 0.0))
+        {
+          break; // the flow reverses: a ridge of the potential
+        }
+        if (w[exitAxis] * dir < 0.0)
+        {
+          // Both faces push towards the boundary just crossed: slide along it.
+          pinned = exitAxis;
+          if (dir > 0)
+          {
+            c[pinned] -= 1;
+            f = left;
+          }
+          if (!this->Sliding(f, pinned, w))
+          {
+            break;
+          }
+        }
+      }
+      else
+      {
+        // Sliding into the next pair of faces along the pinned boundary.
+        std::array<double, D> lower, upper;
+        this->Load(f, lower);
+        this->Load(f + L.faceStride[pinned], upper);
+        if (lower[pinned] > 0.0 && upper[pinned] < 0.0)
+        {
+          this->Sliding(f, pinned, w);
+        }
+        else
+        {
+          // Leave the boundary into a face that does not push back into it.
+          const bool lowerOk = lower[pinned] <= 0.0;
+          const bool upperOk = upper[pinned] >= 0.0;
+          const bool takeUpper =
+            upperOk && (!lowerOk || this->Dot(upper, v) > this->Dot(lower, v));
+          if (takeUpper)
+          {
+            c[pinned] += 1;
+            f += L.faceStride[pinned];
+          }
+          w = takeUpper ? upper : lower;
+          pinned = -1;
+        }
+        if (!(this->Dot(w, v) > 0.0))
+        {
+          break; // the flow reverses
+        }
+      }
+      if (w[exitAxis] * dir < 0.0 && exitAxis != pinned)
+      {
+        // Pushed onto an edge or corner.
+        this->ClampToGrid(q);
+        const std::int64_t face = this->FaceOf(q, c);
+        return steps + this->TraceStepped(q, c, face, t, truncated);
+      }
+      v = w;
+    }
+    this->ClampToGrid(q);
+    return steps;
+  }
+
+  std::int64_t TraceStepped(std::array<double, D>& q, std::array<std::int64_t, D> c,
+    std::int64_t f, double t, bool& truncated) const
+  {
+    const float* v = this->V + f * D;
+    const float* v0 = v;
+    std::int64_t steps = 0;
+    while (t > 0.0 && this->Dot(v, v0) > 0.0)
+    {
+      const double speed = std::sqrt(this->Dot(v, v));
+      const double dt = std::min(t, this->Delta / speed);
+      bool outside = false;
+      for (int d = 0; d < D; ++d)
+      {
+        q[d] += v[d] * dt;
+        outside = outside || q[d] < 0.0 || q[d] > static_cast<double>(L.m[d]);
+      }
+      t -= dt;
+      ++steps;
+      if (outside)
+      {
+        break; // grid boundary
+      }
+      if (steps >= this->MaxSteps)
+      {
+        truncated = true;
+        break;
+      }
+      v0 = v;
+      v = this->V + this->FaceOf(q, c) * D;
+    }
+    this->ClampToGrid(q);
+    return steps;
+  }
+
+  void ClampToGrid(std::array<double, D>& q) const
+  {
+    for (int d = 0; d < D; ++d)
+    {
+      q[d] = std::min(std::max(q[d], 0.0), static_cast<double>(L.m[d]));
+    }
+  }
+
+  const Lattice<D>& L;
+  const float* V;
+  Tracing Mode;
+  double Delta;
+  std::int64_t MaxSteps = 0;
+};
+
+} // namespace grid
+} // namespace shock
+
+#endif

@@ -1,0 +1,256 @@
+#include "MeshAdvect.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace shock
+{
+
+namespace
+{
+// Offset of a vertex-advection start towards the adjacent face centre (the paper's epsilon).
+constexpr double VertexOffset = 0.001;
+
+bool SampleNearest(const TriangleMesh& mesh, const SurfacePoint& q, const MeshSource& source,
+  double* acc)
+{
+  const int C = source.components;
+  const std::int64_t* t = mesh.Corners(q.triangle);
+  if (source.cells)
+  {
+    if (!AllFinite(source.cells + q.triangle * C, C))
+    {
+      return false;
+    }
+    for (int c = 0; c < C; ++c)
+    {
+      acc[c] += source.cells[q.triangle * C + c];
+    }
+    return true;
+  }
+  Vec3 x{ 0.0, 0.0, 0.0 };
+  for (int k = 0; k < 3; ++k)
+  {
+    x = Combine(1.0, x, q.barycentric[k], Load(mesh.Point(t[k])));
+  }
+  int nearest = -1;
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k)
+  {
+    const Vec3 d = Combine(1.0, x, -1.0, Load(mesh.Point(t[k])));
+    if (source.validPoint[static_cast<size_t>(t[k])] && Dot(d, d) < best)
+    {
+      best = Dot(d, d);
+      nearest = k;
+    }
+  }
+  if (nearest < 0)
+  {
+    return false;
+  }
+  for (int c = 0; c < C; ++c)
+  {
+    acc[c] += source.points[t[nearest] * C + c];
+  }
+  return true;
+}
+} // namespace
+
+bool AllFinite(const double* v, int C)
+{
+  for (int c = 0; c < C; ++c)
+  {
+    if (!std::isfinite(v[c]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool SampleSurface(const TriangleMesh& mesh, const SurfacePoint& q, Sampling sampling,
+  const MeshSource& source, double* acc)
+{
+  if (sampling == Sampling::Nearest)
+  {
+    return SampleNearest(mesh, q, source, acc);
+  }
+  const int C = source.components;
+  const std::int64_t* t = mesh.Corners(q.triangle);
+  double total = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    total += source.validPoint[static_cast<size_t>(t[k])] ? q.barycentric[k] : 0.0;
+  }
+  if (!(total > 0.0))
+  {
+    return false;
+  }
+  for (int c = 0; c < C; ++c)
+  {
+    // A convex combination: clamp away rounding so outputs never leave the corners' range.
+    double value = 0.0;
+    double low = std::numeric_limits<double>::infinity();
+    double high = -low;
+    for (int k = 0; k < 3; ++k)
+    {
+      if (source.validPoint[static_cast<size_t>(t[k])])
+      {
+        const double v = source.points[t[k] * C + c];
+        value += (q.barycentric[k] / total) * v;
+        low = std::min(low, v);
+        high = std::max(high, v);
+      }
+    }
+    acc[c] += std::clamp(value, low, high);
+  }
+  return true;
+}
+
+SurfacePoint VertexStart(const TriangleMesh& mesh, std::int64_t p, std::int64_t f)
+{
+  SurfacePoint q;
+  q.triangle = f;
+  const std::int64_t* t = mesh.Corners(f);
+  for (int k = 0; k < 3; ++k)
+  {
+    q.barycentric[k] = VertexOffset / 3.0 + (t[k] == p ? 1.0 - VertexOffset : 0.0);
+  }
+  return q;
+}
+
+SurfacePoint FaceStart(std::int64_t f)
+{
+  SurfacePoint q;
+  q.triangle = f;
+  return q;
+}
+
+template <typename Body>
+bool AdvectionPass::ForEach(std::int64_t n, Body&& body)
+{
+  const std::int64_t chunkCount = std::max<std::int64_t>(1, std::min<std::int64_t>(64, n / 8192));
+  const std::int64_t chunkSize = (n + chunkCount - 1) / chunkCount;
+  std::uint64_t steps = 0;
+  std::uint64_t truncated = 0;
+  bool completed = true;
+  for (std::int64_t chunk = 0; chunk < chunkCount && completed; ++chunk)
+  {
+    const std::int64_t begin = chunk * chunkSize;
+    const std::int64_t end = std::min(n, begin + chunkSize);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(this->threads) reduction(+ : steps, truncated)
+    for (std::int64_t i = begin; i < end; ++i)
+    {
+      body(i, steps, truncated);
+    }
+    completed = !this->progress ||
+      this->progress(this->progressStart + this->progressSpan * static_cast<double>(end) / n);
+  }
+  this->report.traceSteps += steps;
+  this->report.truncatedTraces += truncated;
+  return completed;
+}
+
+std::uint64_t AdvectionPass::Trace(SurfacePoint& q, std::uint64_t& truncated) const
+{
+  bool cut = false;
+  const std::int64_t steps = this->tracer.Trace(q, this->time, cut);
+  truncated += cut ? 1 : 0;
+  return static_cast<std::uint64_t>(steps);
+}
+
+bool AdvectFaces(
+  AdvectionPass& pass, const MeshSource& source, double* out, std::vector<SurfacePoint>* positions)
+{
+  const int C = source.components;
+  const TriangleMesh& mesh = pass.mesh;
+  return pass.ForEach(mesh.NumberOfTriangles(),
+    [&](std::int64_t f, std::uint64_t& steps, std::uint64_t& cut) {
+      double* acc = out + f * C;
+      const double* own = source.cells + f * C;
+      if (mesh.Degenerate(f) || !AllFinite(own, C))
+      {
+        std::copy(own, own + C, acc);
+        return;
+      }
+      SurfacePoint local = FaceStart(f);
+      SurfacePoint& q = positions ? (*positions)[static_cast<size_t>(f)] : local;
+      steps += pass.Trace(q, cut);
+      std::fill(acc, acc + C, 0.0);
+      if (!SampleSurface(mesh, q, pass.sampling, source, acc))
+      {
+        std::copy(own, own + C, acc);
+      }
+    });
+}
+
+bool AdvectVertices(
+  AdvectionPass& pass, const MeshSource& source, double* out, std::vector<SurfacePoint>* positions)
+{
+  const int C = source.components;
+  const TriangleMesh& mesh = pass.mesh;
+  const CompressedLists& around = mesh.PointTriangles();
+  return pass.ForEach(mesh.NumberOfPoints(), [&](std::int64_t p, std::uint64_t& steps, std::uint64_t& cut) {
+    double* acc = out + p * C;
+    const double* own = source.points + p * C;
+    std::fill(acc, acc + C, 0.0);
+    int samples = 0;
+    if (source.validPoint[static_cast<size_t>(p)])
+    {
+      for (std::int64_t k = around.Begin(p); k < around.End(p); ++k)
+      {
+        const std::int64_t f = around.items[static_cast<size_t>(k)];
+        if (mesh.Degenerate(f))
+        {
+          continue;
+        }
+        SurfacePoint local = VertexStart(mesh, p, f);
+        SurfacePoint& q = positions ? (*positions)[static_cast<size_t>(k)] : local;
+        steps += pass.Trace(q, cut);
+        if (!SampleSurface(mesh, q, pass.sampling, source, acc))
+        {
+          for (int c = 0; c < C; ++c)
+          {
+            acc[c] += own[c]; // only non-finite values around q: keep the point's own value
+          }
+        }
+        ++samples;
+      }
+    }
+    if (samples == 0)
+    {
+      std::copy(own, own + C, acc); // invalid, isolated or only on degenerate triangles
+      return;
+    }
+    for (int c = 0; c < C; ++c)
+    {
+      acc[c] /= samples;
+    }
+  });
+}
+
+std::vector<SurfacePoint> InitialPositions(const TriangleMesh& mesh, bool cells)
+{
+  if (cells)
+  {
+    std::vector<SurfacePoint> positions(static_cast<size_t>(mesh.NumberOfTriangles()));
+    for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+    {
+      positions[static_cast<size_t>(f)] = FaceStart(f);
+    }
+    return positions;
+  }
+  const CompressedLists& around = mesh.PointTriangles();
+  std::vector<SurfacePoint> positions(around.items.size());
+  for (std::int64_t p = 0; p < mesh.NumberOfPoints(); ++p)
+  {
+    for (std::int64_t k = around.Begin(p); k < around.End(p); ++k)
+    {
+      positions[static_cast<size_t>(k)] = VertexStart(mesh, p, around.items[static_cast<size_t>(k)]);
+    }
+  }
+  return positions;
+}
+
+} // namespace shock

@@ -1,0 +1,153 @@
+#include "MeshFlow.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shock
+{
+
+std::vector<double> UmbrellaWeights(const TriangleMesh& mesh, double length, int threads)
+{
+  const CompressedLists& ring = mesh.OneRing();
+  const double l = length;
+  std::vector<double> weights(ring.items.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t p = 0; p < mesh.NumberOfPoints(); ++p)
+  {
+    const Vec3 x = Load(mesh.Point(p));
+    for (std::int64_t k = ring.Begin(p); k < ring.End(p); ++k)
+    {
+      const Vec3 d = Combine(1.0, x, -1.0, Load(mesh.Point(ring.items[static_cast<size_t>(k)])));
+      weights[static_cast<size_t>(k)] = std::exp(-Dot(d, d) / (l * l));
+    }
+  }
+  return weights;
+}
+
+void UmbrellaSmooth(const TriangleMesh& mesh, const std::vector<double>& weights,
+  const std::vector<unsigned char>& validPoint, int C, std::vector<double>& values, int passes,
+  int threads)
+{
+  const CompressedLists& ring = mesh.OneRing();
+  std::vector<double> smoothed(values.size());
+  for (int pass = 0; pass < passes; ++pass)
+  {
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int64_t p = 0; p < mesh.NumberOfPoints(); ++p)
+    {
+      double* out = &smoothed[static_cast<size_t>(p * C)];
+      const double* self = &values[static_cast<size_t>(p * C)];
+      std::copy(self, self + C, out);
+      if (!validPoint[static_cast<size_t>(p)])
+      {
+        continue;
+      }
+      double weight = 1.0;
+      for (std::int64_t k = ring.Begin(p); k < ring.End(p); ++k)
+      {
+        const std::int64_t w = ring.items[static_cast<size_t>(k)];
+        if (!validPoint[static_cast<size_t>(w)])
+        {
+          continue;
+        }
+        const double a = weights[static_cast<size_t>(k)];
+        weight += a;
+        for (int c = 0; c < C; ++c)
+        {
+          out[c] += a * values[static_cast<size_t>(w * C + c)];
+        }
+      }
+      for (int c = 0; c < C; ++c)
+      {
+        out[c] /= weight;
+      }
+    }
+    values.swap(smoothed);
+  }
+}
+
+Vec3 TriangleGradient(
+  const TriangleMesh& mesh, const double* values, int C, int c, std::int64_t f, double length)
+{
+  const std::int64_t* t = mesh.Corners(f);
+  Vec3 g{ 0.0, 0.0, 0.0 };
+  for (int k = 0; k < 3; ++k)
+  {
+    g = Combine(1.0, g, values[t[k] * C + c], Load(mesh.HatGradient(f, k)));
+  }
+  const double l = length;
+  return { g[0] * l, g[1] * l, g[2] * l };
+}
+
+std::vector<double> TriangleEnergy(const TriangleMesh& mesh, const double* values, int C,
+  const std::vector<unsigned char>& validTriangle, double length, int threads)
+{
+  std::vector<double> energy(static_cast<size_t>(mesh.NumberOfTriangles()), 0.0);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+  {
+    if (!validTriangle[static_cast<size_t>(f)])
+    {
+      continue;
+    }
+    double e = 0.0;
+    for (int c = 0; c < C; ++c)
+    {
+      const Vec3 g = TriangleGradient(mesh, values, C, c, f, length);
+      e += Dot(g, g);
+    }
+    energy[static_cast<size_t>(f)] = e;
+  }
+  return energy;
+}
+
+void TrianglesToPoints(const TriangleMesh& mesh, int C, const double* cells,
+  const std::vector<unsigned char>& cellValid, std::vector<double>& points, int threads)
+{
+  const CompressedLists& around = mesh.PointTriangles();
+  points.assign(static_cast<size_t>(mesh.NumberOfPoints() * C), 0.0);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t p = 0; p < mesh.NumberOfPoints(); ++p)
+  {
+    double total = 0.0;
+    double* out = &points[static_cast<size_t>(p * C)];
+    for (std::int64_t k = around.Begin(p); k < around.End(p); ++k)
+    {
+      const std::int64_t f = around.items[static_cast<size_t>(k)];
+      const double a = mesh.Area(f);
+      if (a > 0.0 && cellValid[static_cast<size_t>(f)])
+      {
+        total += a;
+        for (int c = 0; c < C; ++c)
+        {
+          out[c] += a * cells[f * C + c];
+        }
+      }
+    }
+    for (int c = 0; c < C; ++c)
+    {
+      out[c] = total > 0.0 ? out[c] / total : 0.0;
+    }
+  }
+}
+
+std::vector<double> TriangleFlow(const TriangleMesh& mesh, const std::vector<double>& potential,
+  const std::vector<unsigned char>& validTriangle, double length, int threads)
+{
+  std::vector<double> flow(static_cast<size_t>(3 * mesh.NumberOfTriangles()), 0.0);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+  {
+    if (validTriangle[static_cast<size_t>(f)])
+    {
+      const Vec3 g = TriangleGradient(mesh, potential.data(), 1, 0, f, length);
+      for (int k = 0; k < 3; ++k)
+      {
+        flow[static_cast<size_t>(3 * f + k)] = 0.5 * g[k];
+      }
+    }
+  }
+  return flow;
+}
+
+} // namespace shock

@@ -1,0 +1,353 @@
+#include "ShockImageChecks.h"
+
+#include "ShockIOFiles.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+namespace shockio
+{
+
+std::uint64_t ImageHeader::Bytes() const
+{
+  std::uint64_t bytes = 1;
+  for (const std::uint64_t factor :
+    { this->width, this->height, this->depth, this->components, this->bytesPerComponent })
+  {
+    bytes = factor != 0 && bytes > std::numeric_limits<std::uint64_t>::max() / factor
+      ? std::numeric_limits<std::uint64_t>::max()
+      : bytes * factor;
+  }
+  return bytes;
+}
+
+std::string SizeText(const ImageHeader& header)
+{
+  std::string text = std::to_string(header.width) + "x" + std::to_string(header.height);
+  if (header.depth != 1)
+  {
+    text += "x" + std::to_string(header.depth);
+  }
+  return text + " samples";
+}
+
+std::string BytesText(std::uint64_t bytes)
+{
+  const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB" };
+  double value = static_cast<double>(bytes);
+  int unit = 0;
+  while (value >= 1024.0 && unit < 6)
+  {
+    value /= 1024.0;
+    ++unit;
+  }
+  std::ostringstream text;
+  text.precision(unit == 0 ? 0 : 3);
+  text << value << " " << units[unit];
+  return text.str();
+}
+
+bool WithinLimit(const ImageHeader& header, std::uint64_t maxSamples, std::string& problem)
+{
+  const std::uint64_t samples = ImageHeader{ header.width, header.height, header.depth, 1, 1, true }.Bytes();
+  if (samples <= maxSamples)
+  {
+    return true;
+  }
+  problem = "declares " + SizeText(header) + " (" + BytesText(header.Bytes()) +
+    " as read), more than the limit of " + std::to_string(maxSamples) + " samples";
+  return false;
+}
+
+namespace
+{
+
+/// Up to `count` bytes of `path` from `offset` (fewer at the end of the file).
+std::string ReadBytes(const std::string& path, std::uint64_t offset, std::size_t count)
+{
+  std::ifstream file(path, std::ios::binary);
+  file.seekg(static_cast<std::streamoff>(offset));
+  std::string bytes(count, '\0');
+  file.read(bytes.data(), static_cast<std::streamsize>(count));
+  bytes.resize(file ? count : static_cast<std::size_t>(std::max<std::streamsize>(0, file.gcount())));
+  return bytes;
+}
+
+std::uint64_t Unsigned(const std::string& bytes, std::size_t at, int size, bool little)
+{
+  std::uint64_t value = 0;
+  for (int i = 0; i < size; ++i)
+  {
+    const auto byte = static_cast<unsigned char>(bytes[at + (little ? size - 1 - i : i)]);
+    value = (value << 8) | byte;
+  }
+  return value;
+}
+
+/// JPEG: the frame header (SOFn) of the first frame.
+bool JpegHeader(const std::string& path, ImageHeader& header, std::string& problem)
+{
+  std::string bytes;
+  if (!ReadFile(path, bytes, problem))
+  {
+    return false;
+  }
+  std::size_t at = 2;
+  if (bytes.size() < 4 || Unsigned(bytes, 0, 2, false) != 0xFFD8)
+  {
+    problem = "not a JPEG file (no start-of-image marker)";
+    return false;
+  }
+  while (at + 4 <= bytes.size())
+  {
+    const auto marker = static_cast<unsigned char>(bytes[at + 1]);
+    if (static_cast<unsigned char>(bytes[at]) != 0xFF || marker == 0xDA || marker == 0xD9)
+    {
+      break; // not a marker, or the scan starts without a frame header
+    }
+    const std::uint64_t length = Unsigned(bytes, at + 2, 2, false);
+    const bool frame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 &&
+      marker != 0xCC;
+    if (frame && at + 10 <= bytes.size())
+    {
+      header = { Unsigned(bytes, at + 7, 2, false), Unsigned(bytes, at + 5, 2, false), 1,
+        static_cast<unsigned char>(bytes[at + 9]), 1, true };
+      return true;
+    }
+    at += 2 + length;
+  }
+  problem = "the JPEG file has no frame header (truncated or damaged)";
+  return false;
+}
+
+/// BMP: the BITMAPINFOHEADER (or the OS/2 BITMAPCOREHEADER).
+bool BmpHeader(const std::string& path, ImageHeader& header, std::string& problem)
+{
+  const std::string bytes = ReadBytes(path, 0, 54);
+  if (bytes.size() < 26 || bytes.compare(0, 2, "BM") != 0)
+  {
+    problem = "not a BMP file (too short, or no 'BM' signature)";
+    return false;
+  }
+  const std::uint64_t infoSize = Unsigned(bytes, 14, 4, true);
+  const bool core = infoSize == 12;
+  if (!core && bytes.size() < 30)
+  {
+    problem = "the BMP header is truncated";
+    return false;
+  }
+  const auto width = static_cast<std::int32_t>(Unsigned(bytes, 18, core ? 2 : 4, true));
+  const auto height = static_cast<std::int32_t>(Unsigned(bytes, core ? 20 : 22, core ? 2 : 4, true));
+  const std::uint64_t bits = Unsigned(bytes, core ? 24 : 28, 2, true);
+  if (width <= 0 || height == 0 || height == std::numeric_limits<std::int32_t>::min())
+  {
+    problem = "the BMP header declares " + std::to_string(width) + "x" + std::to_string(height) +
+      " pixels";
+    return false;
+  }
+  header = { static_cast<std::uint64_t>(width), static_cast<std::uint64_t>(std::abs(static_cast<std::int64_t>(height))),
+    1, bits == 24 ? 3u : 1u, 1, true };
+  return true;
+}
+
+/**
+ * PNM: the header as the format defines it ("P5" or "P6", width, height,
+ * maximum value as decimal numbers, separated by white space and comments,
+ * one white space character before the data) and data for every pixel.
+ * vtkPNMReader loops forever on some headers that do not follow it.
+ */
+bool PnmHeader(
+  const std::string& path, std::uint64_t maxSamples, ImageHeader& header, std::string& problem)
+{
+  const std::string bytes = ReadBytes(path, 0, 4096);
+  if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != '5' && bytes[1] != '6'))
+  {
+    problem = "not a binary PGM (P5) or PPM (P6) file";
+    return false;
+  }
+  std::size_t at = 2;
+  std::uint64_t values[3] = { 0, 0, 0 };
+  for (std::uint64_t& value : values)
+  {
+    while (at < bytes.size() && (std::isspace(static_cast<unsigned char>(bytes[at])) || bytes[at] == '#'))
+    {
+      at = bytes[at] == '#' ? std::min(bytes.find('\n', at), bytes.size()) : at + 1;
+    }
+    const std::size_t start = at;
+    while (at < bytes.size() && std::isdigit(static_cast<unsigned char>(bytes[at])) && at - start < 10)
+    {
+      value = value * 10 + static_cast<std::uint64_t>(bytes[at++] - '0');
+    }
+    if (at == start || at >= bytes.size() || !std::isspace(static_cast<unsigned char>(bytes[at])))
+    {
+      problem = "malformed PNM header (expected width, height and maximum value as numbers)";
+      return false;
+    }
+  }
+  if (values[0] == 0 || values[1] == 0 || values[2] == 0 || values[2] > 255)
+  {
+    problem = "the PNM header declares " + std::to_string(values[0]) + "x" +
+      std::to_string(values[1]) + " pixels of maximum value " + std::to_string(values[2]) +
+      " (sizes must be positive, values 1 to 255)";
+    return false;
+  }
+  header = { values[0], values[1], 1, bytes[1] == '6' ? 3u : 1u, 1, true };
+  if (!WithinLimit(header, maxSamples, problem))
+  {
+    return false;
+  }
+  std::error_code code;
+  const std::uint64_t size = std::filesystem::file_size(path, code);
+  const std::uint64_t needed = header.Samples() * header.components;
+  if (!code && (size < at + 1 || size - at - 1 < needed))
+  {
+    problem = "the PNM file holds fewer pixels than its header declares (truncated?)";
+    return false;
+  }
+  return true;
+}
+
+/// TIFF (classic, either byte order): the first directory's size, and the number of directories (slices).
+bool TiffHeader(const std::string& path, ImageHeader& header, std::string& problem)
+{
+  std::string bytes = ReadBytes(path, 0, 8);
+  const bool little = bytes.compare(0, 4, std::string("II*\0", 4)) == 0;
+  if (bytes.size() < 8 || (!little && bytes.compare(0, 4, std::string("MM\0*", 4)) != 0))
+  {
+    problem = "not a classic TIFF file (BigTIFF is not read)";
+    return false;
+  }
+  std::uint64_t offset = Unsigned(bytes, 4, 4, little);
+  std::set<std::uint64_t> seen;
+  header = { 0, 0, 0, 1, 1, true };
+  while (offset != 0 && seen.insert(offset).second && seen.size() <= 100000)
+  {
+    bytes = ReadBytes(path, offset, 2);
+    const std::uint64_t entries = bytes.size() == 2 ? Unsigned(bytes, 0, 2, little) : 0;
+    bytes = ReadBytes(path, offset + 2, static_cast<std::size_t>(entries * 12 + 4));
+    if (entries == 0 || bytes.size() < entries * 12 + 4)
+    {
+      problem = "a TIFF directory is empty or truncated";
+      return false;
+    }
+    for (std::size_t e = 0; e < entries && header.depth == 0; ++e)
+    {
+      const std::uint64_t tag = Unsigned(bytes, e * 12, 2, little);
+      const bool isShort = Unsigned(bytes, e * 12 + 2, 2, little) == 3;
+      const std::uint64_t value = Unsigned(bytes, e * 12 + 8, isShort ? 2 : 4, little);
+      header.width = tag == 256 ? value : header.width;
+      header.height = tag == 257 ? value : header.height;
+      header.components = tag == 277 ? value : header.components;
+      header.bytesPerComponent = tag == 258 && isShort ? std::max<std::uint64_t>(1, value / 8) : header.bytesPerComponent;
+    }
+    ++header.depth;
+    offset = Unsigned(bytes, entries * 12, 4, little);
+  }
+  if (header.width == 0 || header.height == 0)
+  {
+    problem = "the TIFF file declares no image size";
+    return false;
+  }
+  return true;
+}
+
+/// The first `count` numbers after `key` in `text` (e.g. "DIMENSIONS" or "WholeExtent=\""); false if absent.
+bool NumbersAfter(const std::string& text, const std::string& key, std::int64_t* numbers, int count)
+{
+  const std::size_t at = text.find(key);
+  if (at == std::string::npos)
+  {
+    return false;
+  }
+  std::istringstream stream(text.substr(at + key.size(), 200));
+  for (int i = 0; i < count; ++i)
+  {
+    if (!(stream >> numbers[i]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// VTI (WholeExtent) and legacy structured points (DIMENSIONS): the size in the text header.
+bool VtkHeader(const std::string& path, bool xml, ImageHeader& header, std::string& problem)
+{
+  const std::string text = ReadBytes(path, 0, 1 << 16);
+  std::int64_t numbers[6] = { 0, 0, 0, 0, 0, 0 };
+  std::int64_t dims[3] = { 0, 0, 0 };
+  if (xml ? !NumbersAfter(text, "WholeExtent=\"", numbers, 6) : !NumbersAfter(text, "DIMENSIONS", dims, 3))
+  {
+    header.known = false; // the reader reports what is missing
+    return true;
+  }
+  for (int a = 0; xml && a < 3; ++a)
+  {
+    dims[a] = numbers[2 * a + 1] - numbers[2 * a] + 1;
+  }
+  if (std::any_of(dims, dims + 3, [](std::int64_t d) { return d <= 0 || d > (std::int64_t{ 1 } << 31); }))
+  {
+    problem = "the file declares invalid dimensions " + std::to_string(dims[0]) + "x" +
+      std::to_string(dims[1]) + "x" + std::to_string(dims[2]);
+    return false;
+  }
+  header = { static_cast<std::uint64_t>(dims[0]), static_cast<std::uint64_t>(dims[1]),
+    static_cast<std::uint64_t>(dims[2]), 1, 4, true };
+  return true;
+}
+
+/// The header of `path` in `format`; false with `problem` set.
+bool ReadHeader(const std::string& path, const ImageFormat& format, std::uint64_t maxSamples,
+  ImageHeader& header, std::string& problem)
+{
+  switch (format.id)
+  {
+    case ImageFormat::PNG:
+    {
+      std::string text;
+      return ReadFile(path, text, problem) && CheckPng(text, header, maxSamples, problem);
+    }
+    case ImageFormat::JPEG:
+      return JpegHeader(path, header, problem);
+    case ImageFormat::TIFF:
+      return TiffHeader(path, header, problem);
+    case ImageFormat::BMP:
+      return BmpHeader(path, header, problem);
+    case ImageFormat::PNM:
+      return PnmHeader(path, maxSamples, header, problem);
+    case ImageFormat::VTI:
+      return VtkHeader(path, true, header, problem);
+    case ImageFormat::LegacyVTK:
+      return VtkHeader(path, false, header, problem);
+  }
+  return true;
+}
+
+} // namespace
+
+bool CheckImageFile(const std::string& path, const ImageFormat& format, std::uint64_t maxSamples,
+  ImageHeader& header, std::string& error)
+{
+  std::string problem;
+  if (!ReadHeader(path, format, maxSamples, header, problem) ||
+    (header.known && !WithinLimit(header, maxSamples, problem)))
+  {
+    error = problem.rfind(path + ":", 0) == 0 ? problem : path + ": " + problem;
+    return false;
+  }
+  if (header.known && (header.width == 0 || header.height == 0))
+  {
+    error = path + ": the file declares an empty image (" + SizeText(header) + ")";
+    return false;
+  }
+  return true;
+}
+
+} // namespace shockio

@@ -1,0 +1,542 @@
+#include "ShockMeshChecks.h"
+
+#include "ShockIOFiles.h"
+#include "ShockIOMessages.h"
+#include "ShockTextWords.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <initializer_list>
+#include <limits>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace shockio
+{
+namespace
+{
+
+/// A PLY value type.
+struct PlyType
+{
+  int size = 0; ///< bytes in binary files
+  bool integer = false;
+  bool isSigned = false;
+};
+
+/// The PLY type named `name` (the classic and the sized names).
+std::optional<PlyType> PlyTypeNamed(std::string_view name)
+{
+  static const std::pair<const char*, PlyType> types[] = { { "char", { 1, true, true } },
+    { "int8", { 1, true, true } }, { "uchar", { 1, true, false } }, { "uint8", { 1, true, false } },
+    { "short", { 2, true, true } }, { "int16", { 2, true, true } },
+    { "ushort", { 2, true, false } }, { "uint16", { 2, true, false } },
+    { "int", { 4, true, true } }, { "int32", { 4, true, true } }, { "uint", { 4, true, false } },
+    { "uint32", { 4, true, false } }, { "float", { 4, false, true } },
+    { "float32", { 4, false, true } }, { "double", { 8, false, true } },
+    { "float64", { 8, false, true } } };
+  for (const auto& [typeName, type] : types)
+  {
+    if (name == typeName)
+    {
+      return type;
+    }
+  }
+  return std::nullopt;
+}
+
+/// A property of a PLY element: a value, or a list when it has a count type.
+struct PlyProperty
+{
+  std::string_view name;
+  PlyType type;
+  std::optional<PlyType> countType;
+};
+
+/// An element of a PLY header: its name, count and properties.
+struct PlyElement
+{
+  std::string_view name;
+  std::int64_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+/// The format of the data of a PLY file.
+enum class PlyEncoding
+{
+  Ascii,
+  LittleEndian,
+  BigEndian
+};
+
+/// vtkPLY reads lines into a buffer of this size; longer ones break it.
+constexpr size_t PlyLineLength = 4096;
+
+/**
+ * The words of a line of a PLY file as vtkPLY splits them (at spaces, tabs and
+ * carriage returns); false with a `problem` text for a line it would misread:
+ * too long, or holding a NUL character (which ends its copy of the line).
+ */
+bool PlyWords(std::string_view line, std::vector<std::string_view>& words, std::string& problem)
+{
+  if (line.size() + 1 >= PlyLineLength || line.find('\0') != std::string_view::npos)
+  {
+    problem = line.size() + 1 >= PlyLineLength ? "the line is longer than VTK's PLY reader takes"
+                                               : "a NUL character in the line";
+    return false;
+  }
+  words = Words(line, " \t\r");
+  return true;
+}
+
+/**
+ * The values of the body of a PLY file in order, as vtkPLY reads them: in an
+ * ASCII file one element per line, in a binary one packed. The functions return
+ * false with a `problem` text when the data does not fit.
+ */
+class PlyBody
+{
+public:
+  PlyBody(std::string_view data, PlyEncoding encoding, size_t headerBytes, size_t headerLines)
+    : Data(data)
+    , Encoding(encoding)
+    , HeaderBytes(headerBytes)
+    , LineNumber(headerLines)
+  {
+  }
+
+  /// Starts the next element (in an ASCII file, its line).
+  bool Begin(std::string& problem)
+  {
+    if (this->Encoding != PlyEncoding::Ascii)
+    {
+      return true;
+    }
+    if (this->Position >= this->Data.size())
+    {
+      return this->EndOfData(problem);
+    }
+    const size_t end = std::min(this->Data.find('\n', this->Position), this->Data.size());
+    const std::string_view line = this->Data.substr(this->Position, end - this->Position);
+    this->Position = end + 1;
+    ++this->LineNumber;
+    this->NextWord = 0;
+    if (!PlyWords(line, this->LineWords, problem))
+    {
+      return false;
+    }
+    if (end == this->Data.size())
+    {
+      problem = "the last line has no line break, which VTK's PLY reader needs";
+      return false;
+    }
+    if (this->LineWords.empty())
+    {
+      problem = "a blank line in the data";
+      return false;
+    }
+    return true;
+  }
+
+  /// The next value, of type `type`.
+  bool Next(const PlyType& type, double& value, std::string& problem)
+  {
+    if (this->Encoding == PlyEncoding::Ascii)
+    {
+      if (this->NextWord >= this->LineWords.size())
+      {
+        problem = "fewer values than the header announces";
+        return false;
+      }
+      const std::string_view word = this->LineWords[this->NextWord++];
+      std::int64_t integer = 0;
+      const bool parsed = type.integer ? ParseInteger(word, integer) : ParseNumber(word, value);
+      if (!parsed)
+      {
+        problem = Quoted(word) + (type.integer ? " is not an integer" : " is not a finite number");
+        return false;
+      }
+      value = type.integer ? static_cast<double>(integer) : value;
+      return true;
+    }
+    if (this->Data.size() - this->Position < static_cast<size_t>(type.size))
+    {
+      return this->EndOfData(problem);
+    }
+    value = this->Decode(type);
+    this->Position += static_cast<size_t>(type.size);
+    if (!std::isfinite(value))
+    {
+      problem = "a value is not a finite number";
+      return false;
+    }
+    return true;
+  }
+
+  /// Ends an element.
+  bool End(std::string& problem)
+  {
+    if (this->Encoding == PlyEncoding::Ascii && this->NextWord < this->LineWords.size())
+    {
+      problem = "more values than the header announces";
+      return false;
+    }
+    return true;
+  }
+
+  /// Where the reading is, "line <n>: " or "byte <n>: ", or "" at the end of the data.
+  std::string Where() const
+  {
+    if (this->Ended)
+    {
+      return "";
+    }
+    return this->Encoding == PlyEncoding::Ascii
+      ? "line " + std::to_string(this->LineNumber) + ": "
+      : "byte " + std::to_string(this->HeaderBytes + this->Position) + ": ";
+  }
+
+private:
+  bool EndOfData(std::string& problem)
+  {
+    this->Ended = true;
+    problem = "the file ends before the data the header announces (truncated?)";
+    return false;
+  }
+
+  /// The binary value of `type` at the current position.
+  double Decode(const PlyType& type) const
+  {
+    std::array<unsigned char, 8> bytes{};
+    std::memcpy(bytes.data(), this->Data.data() + this->Position, static_cast<size_t>(type.size));
+    const std::uint16_t one = 1;
+    const bool hostLittleEndian = *reinterpret_cast<const unsigned char*>(&one) == 1;
+    if (hostLittleEndian != (this->Encoding == PlyEncoding::LittleEndian))
+    {
+      std::reverse(bytes.begin(), bytes.begin() + type.size);
+    }
+    const auto as = [&bytes](auto typed) {
+      std::memcpy(&typed, bytes.data(), sizeof(typed));
+      return static_cast<double>(typed);
+    };
+    switch (type.size)
+    {
+      case 1:
+        return type.isSigned ? as(std::int8_t()) : as(std::uint8_t());
+      case 2:
+        return type.isSigned ? as(std::int16_t()) : as(std::uint16_t());
+      case 4:
+        return !type.integer ? as(float())
+          : type.isSigned    ? as(std::int32_t())
+                             : as(std::uint32_t());
+      default:
+        return as(double());
+    }
+  }
+
+  std::string_view Data;
+  PlyEncoding Encoding;
+  size_t HeaderBytes;
+  size_t Position = 0;
+  size_t LineNumber;
+  std::vector<std::string_view> LineWords;
+  size_t NextWord = 0;
+  bool Ended = false;
+};
+
+/// The index of the element called `name`, or -1.
+int FindPlyElement(const std::vector<PlyElement>& elements, std::string_view name)
+{
+  for (size_t e = 0; e < elements.size(); ++e)
+  {
+    if (elements[e].name == name)
+    {
+      return static_cast<int>(e);
+    }
+  }
+  return -1;
+}
+
+/// The property called `name` of an element, or null.
+const PlyProperty* FindPlyProperty(const PlyElement& element, std::string_view name)
+{
+  for (const PlyProperty& property : element.properties)
+  {
+    if (property.name == name)
+    {
+      return &property;
+    }
+  }
+  return nullptr;
+}
+
+/// The vertex id list of a face element, or null (vtkPLY reads 'vertex_index' as well).
+const PlyProperty* FindPlyFaceIndices(const PlyElement& face)
+{
+  const PlyProperty* indices = FindPlyProperty(face, "vertex_indices");
+  return indices ? indices : FindPlyProperty(face, "vertex_index");
+}
+
+/**
+ * The first property of `element` that vtkPLYReader reads as another kind than
+ * the file declares, which breaks it: one of `values` declared a list, or one
+ * of `lists` declared a single value. Null if none.
+ */
+const PlyProperty* MisdeclaredPlyProperty(const PlyElement& element,
+  std::initializer_list<std::string_view> values, std::initializer_list<std::string_view> lists)
+{
+  for (const PlyProperty& property : element.properties)
+  {
+    const auto& expected = property.countType ? values : lists;
+    if (std::find(expected.begin(), expected.end(), property.name) != expected.end())
+    {
+      return &property;
+    }
+  }
+  return nullptr;
+}
+
+/// What the header of a PLY file says.
+struct PlyHeader
+{
+  PlyEncoding encoding = PlyEncoding::Ascii;
+  std::vector<PlyElement> elements;
+  size_t size = 0;  ///< bytes, up to the data
+  size_t lines = 0; ///< lines, up to the data
+};
+
+bool CheckPlyLayout(const std::vector<PlyElement>& elements, std::string& problem);
+
+/**
+ * Reads the header of a PLY file (`text`, which it views) as vtkPLY does, and
+ * checks that vtkPLYReader takes it (CheckPlyLayout()). False with a `problem`
+ * text otherwise.
+ */
+bool ReadPlyHeader(std::string_view text, PlyHeader& header, std::string& problem)
+{
+  std::optional<PlyEncoding> encoding;
+  bool ended = false;
+  while (!ended && header.size < text.size())
+  {
+    const size_t end = std::min(text.find('\n', header.size), text.size());
+    const std::string_view line = text.substr(header.size, end - header.size);
+    header.size = end + 1;
+    ++header.lines;
+    const std::string at = "line " + std::to_string(header.lines) + ": ";
+    std::vector<std::string_view> words;
+    const bool readable = PlyWords(line, words, problem);
+    if (header.lines == 1 && (!readable || words.size() != 1 || words[0] != "ply"))
+    {
+      problem = "not a PLY file (the first line is not 'ply')";
+      return false;
+    }
+    if (!readable || words.empty())
+    {
+      problem = at + (readable ? "a blank line in the header" : problem);
+      return false;
+    }
+    const std::string_view keyword = words[0];
+    if (keyword == "format")
+    {
+      static const std::pair<const char*, PlyEncoding> encodings[] = {
+        { "ascii", PlyEncoding::Ascii }, { "binary_little_endian", PlyEncoding::LittleEndian },
+        { "binary_big_endian", PlyEncoding::BigEndian }
+      };
+      for (const auto& [name, value] : encodings)
+      {
+        encoding =
+          words.size() == 3 && words[1] == name ? std::optional<PlyEncoding>(value) : encoding;
+      }
+      if (!encoding)
+      {
+        problem =
+          at + "unknown PLY format (expected ascii, binary_little_endian or binary_big_endian)";
+        return false;
+      }
+    }
+    else if (keyword == "element")
+    {
+      std::int64_t count = 0;
+      if (words.size() != 3 || !ParseCount(words[2], count) ||
+        count > std::numeric_limits<int>::max())
+      {
+        problem = at + "expected 'element <name> <count>'";
+        return false;
+      }
+      header.elements.push_back({ words[1], count, {} });
+    }
+    else if (keyword == "property")
+    {
+      const bool list = words.size() == 5 && words[1] == "list", scalar = words.size() == 3;
+      const std::optional<PlyType> countType = list ? PlyTypeNamed(words[2]) : std::nullopt;
+      const std::optional<PlyType> type =
+        list || scalar ? PlyTypeNamed(words[list ? 3 : 1]) : std::nullopt;
+      if (header.elements.empty() || !type || (list && (!countType || !countType->integer)))
+      {
+        problem = at +
+          "expected 'property <type> <name>' or 'property list <integer type> <type> <name>' after "
+          "an element";
+        return false;
+      }
+      header.elements.back().properties.push_back({ words.back(), *type, countType });
+    }
+    ended = keyword == "end_header"; // comments, obj_info and others are skipped, as vtkPLY does
+  }
+  if (!ended || !encoding)
+  {
+    problem =
+      !ended ? "the PLY header has no end_header line" : "the PLY header has no format line";
+    return false;
+  }
+  header.encoding = *encoding;
+
+  return CheckPlyLayout(header.elements, problem);
+}
+
+/**
+ * Whether vtkPLYReader takes the elements of a header: the vertex element
+ * first, with x, y and z values, then optionally the face element with a list
+ * of integer vertex_indices, and no property declared a list where it reads a
+ * value or the other way round. False with a `problem` text otherwise.
+ */
+bool CheckPlyLayout(const std::vector<PlyElement>& elements, std::string& problem)
+{
+  // vtkPLYReader reads the elements in file order but skips the data of
+  // others than 'vertex' and 'face': those must come first.
+  const int vertexElement = FindPlyElement(elements, "vertex"),
+            faceElement = FindPlyElement(elements, "face");
+  if (vertexElement != 0 || (faceElement >= 0 && faceElement != 1))
+  {
+    problem = vertexElement < 0
+      ? "the PLY file has no 'vertex' element"
+      : "VTK's PLY reader needs the 'vertex' element first and the 'face' element next";
+    return false;
+  }
+  for (const char* coordinate : { "x", "y", "z" })
+  {
+    if (!FindPlyProperty(elements[0], coordinate))
+    {
+      problem = "the PLY vertices have no x, y and z values";
+      return false;
+    }
+  }
+  const PlyProperty* misdeclared = MisdeclaredPlyProperty(elements[0],
+    { "x", "y", "z", "nx", "ny", "nz", "u", "v", "texture_u", "texture_v", "red", "green", "blue",
+      "alpha", "diffuse_red", "diffuse_green", "diffuse_blue" },
+    {});
+  if (faceElement == 1)
+  {
+    const PlyProperty* indices = FindPlyFaceIndices(elements[1]);
+    if (!indices || !indices->countType || !indices->type.integer)
+    {
+      problem = "the PLY faces have no 'vertex_indices' list of integers";
+      return false;
+    }
+    misdeclared = misdeclared
+      ? misdeclared
+      : MisdeclaredPlyProperty(elements[1], { "intensity", "red", "green", "blue", "alpha" },
+          { "vertex_indices", "vertex_index", "texcoord" });
+  }
+  if (misdeclared)
+  {
+    problem = "the PLY property '" + std::string(misdeclared->name) + "' is declared a " +
+      (misdeclared->countType ? "list" : "single value") + ", which VTK's PLY reader does not take";
+    return false;
+  }
+  return true;
+}
+
+/**
+ * Checks the data of the vertices and faces of a PLY file (`text`) as its
+ * header describes it: complete, numeric, finite, with at most 255 vertices
+ * per face and every vertex id in range. False with a `problem` text otherwise.
+ */
+bool CheckPlyData(std::string_view text, const PlyHeader& header, std::string& problem)
+{
+  PlyBody body(
+    text.substr(std::min(header.size, text.size())), header.encoding, header.size, header.lines);
+  const std::int64_t numberOfVertices = header.elements[0].count;
+  // ReadPlyHeader() put the vertices first and the faces, if any, second.
+  const bool faces = header.elements.size() > 1 && header.elements[1].name == "face";
+  const PlyProperty* indices = faces ? FindPlyFaceIndices(header.elements[1]) : nullptr;
+  for (size_t e = 0; e < (faces ? 2u : 1u); ++e)
+  {
+    const PlyElement& element = header.elements[e];
+    for (std::int64_t i = 0; i < element.count; ++i)
+    {
+      std::string what;
+      const auto fail = [&]() {
+        problem = body.Where() + std::string(element.name) + " " + std::to_string(i) + ": " + what;
+        return false;
+      };
+      if (!body.Begin(what))
+      {
+        return fail();
+      }
+      for (const PlyProperty& property : element.properties)
+      {
+        const bool faceIds = &property == indices;
+        double length = 1.0;
+        if (property.countType && !body.Next(*property.countType, length, what))
+        {
+          return fail();
+        }
+        if (length < 0.0 || (faceIds && length > 255.0))
+        {
+          what = "a list of " + std::to_string(static_cast<std::int64_t>(length)) +
+            (faceIds ? " vertex ids (VTK reads 0 to 255)" : " values");
+          return fail();
+        }
+        if (faceIds && length < 3.0)
+        {
+          what = std::to_string(static_cast<std::int64_t>(length)) + " vertices; a face has at least 3";
+          return fail();
+        }
+        for (std::int64_t k = 0; k < static_cast<std::int64_t>(length); ++k)
+        {
+          double value = 0.0;
+          if (!body.Next(property.type, value, what))
+          {
+            return fail();
+          }
+          if (faceIds && (value < 0.0 || value >= static_cast<double>(numberOfVertices)))
+          {
+            what = "vertex id " + std::to_string(static_cast<std::int64_t>(value)) +
+              " is not in 0.." + std::to_string(numberOfVertices - 1);
+            return fail();
+          }
+        }
+      }
+      if (!body.End(what))
+      {
+        return fail();
+      }
+    }
+  }
+  return true;
+}
+
+} // namespace
+
+bool CheckPly(const std::string& path, std::string& error)
+{
+  std::string text;
+  if (!ReadFile(path, text, error))
+  {
+    return false;
+  }
+  PlyHeader header;
+  std::string problem;
+  if (!ReadPlyHeader(text, header, problem) || !CheckPlyData(text, header, problem))
+  {
+    error = path + ": " + problem;
+    return false;
+  }
+  return true;
+}
+
+} // namespace shockio
