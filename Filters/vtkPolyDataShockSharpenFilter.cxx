@@ -66,6 +66,63 @@ std::vector<double> CellNormals(vtkPolyData* output, const vtkShockPolyDataInter
   return normals;
 }
 
+/// Give `output` new points of the input's type; coincident copies take their representative's position.
+void SetNewPoints(vtkPolyData* output, vtkPolyData* input, const std::vector<std::int64_t>& representative,
+  std::vector<double>& positions)
+{
+  for (size_t p = 0; p < representative.size(); ++p)
+  {
+    const size_t r = static_cast<size_t>(representative[p]);
+    std::copy(&positions[3 * r], &positions[3 * r] + 3, &positions[3 * p]);
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataType(input->GetPoints()->GetDataType());
+  points->SetNumberOfPoints(input->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+  {
+    points->SetPoint(p, &positions[static_cast<size_t>(3 * p)]);
+  }
+  output->SetPoints(points);
+}
+
+/// The warnings, field data and log line of a completed run.
+void ReportRun(vtkPolyDataShockSharpenFilter* self, const shock::SharpeningReport& report,
+  vtkPolyData* input, vtkPolyData* output)
+{
+  if (report.repeatedTriangles > 0)
+  {
+    vtkWarningWithObjectMacro(self, << report.repeatedTriangles
+                    << " triangles repeat the points of another triangle and were ignored (a mesh "
+                       "appended to itself?): the result is that of the mesh without them.");
+  }
+  if (report.degenerateTriangles > 0)
+  {
+    vtkWarningWithObjectMacro(self, << report.degenerateTriangles
+                    << " degenerate (zero-area) triangles were ignored: the result is that of the "
+                       "mesh without them.");
+  }
+
+  vtkNew<vtkFieldData> field;
+  field->ShallowCopy(input->GetFieldData());
+  field->AddArray(SingleValue("ShockSolverIterations", report.fit.iterations));
+  field->AddArray(SingleValue("ShockSolverResidual", report.fit.residual));
+  field->AddArray(SingleValue("ShockFlippedTriangles", report.flippedTriangles));
+  field->AddArray(SingleValue("ShockMaxDisplacement", report.maxDisplacement));
+  output->SetFieldData(field);
+  vtkLogF(INFO,
+    "vtkPolyDataShockSharpenFilter: %d solver iterations, relative residual %.3g%s, %lld flipped "
+    "triangles, max displacement %.3g of the bounding-box diagonal",
+    report.fit.iterations, report.fit.residual,
+    // The paper's fixed 25 iterations do not aim at a tolerance: only flag the modes that do.
+    (self->GetSolver() == vtkPolyDataShockSharpenFilter::CONJUGATE_GRADIENT || report.fit.converged) ? "" : " (above the tolerance)",
+    static_cast<long long>(report.flippedTriangles), report.maxDisplacement);
+  if (report.fit.invalidTargets > 0)
+  {
+    vtkWarningWithObjectMacro(self, << report.fit.invalidTargets
+                    << " triangles had no valid sharpened normal and kept their own.");
+  }
+}
+
 /**
  * Replace the active point and cell normals of `output` (if any) by those of its
  * new geometry, in a new array of the same type and name: cell normals are the
@@ -247,57 +304,9 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   this->LastRepeatedTriangles = static_cast<vtkIdType>(report.repeatedTriangles);
   this->LastDegenerateTriangles = static_cast<vtkIdType>(report.degenerateTriangles);
   this->LastFeatureEdges = static_cast<vtkIdType>(report.featureEdges);
-  if (report.repeatedTriangles > 0)
-  {
-    vtkWarningMacro(<< report.repeatedTriangles
-                    << " triangles repeat the points of another triangle and were ignored (a mesh "
-                       "appended to itself?): the result is that of the mesh without them.");
-  }
-  if (report.degenerateTriangles > 0)
-  {
-    vtkWarningMacro(<< report.degenerateTriangles
-                    << " degenerate (zero-area) triangles were ignored: the result is that of the "
-                       "mesh without them.");
-  }
-
-  // Coincident copies take the position computed for their representative.
-  if (!representative.empty())
-  {
-    for (size_t p = 0; p < representative.size(); ++p)
-    {
-      const size_t r = static_cast<size_t>(representative[p]);
-      std::copy(&positions[3 * r], &positions[3 * r] + 3, &positions[3 * p]);
-    }
-  }
-  vtkNew<vtkPoints> points;
-  points->SetDataType(input->GetPoints()->GetDataType());
-  points->SetNumberOfPoints(input->GetNumberOfPoints());
-  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
-  {
-    points->SetPoint(p, &positions[static_cast<size_t>(3 * p)]);
-  }
-  output->SetPoints(points);
+  SetNewPoints(output, input, representative, positions);
   RecomputeActiveNormals(output, triangles, positions);
-
-  vtkNew<vtkFieldData> field;
-  field->ShallowCopy(input->GetFieldData());
-  field->AddArray(SingleValue("ShockSolverIterations", report.fit.iterations));
-  field->AddArray(SingleValue("ShockSolverResidual", report.fit.residual));
-  field->AddArray(SingleValue("ShockFlippedTriangles", report.flippedTriangles));
-  field->AddArray(SingleValue("ShockMaxDisplacement", report.maxDisplacement));
-  output->SetFieldData(field);
-  vtkLogF(INFO,
-    "vtkPolyDataShockSharpenFilter: %d solver iterations, relative residual %.3g%s, %lld flipped "
-    "triangles, max displacement %.3g of the bounding-box diagonal",
-    report.fit.iterations, report.fit.residual,
-    // The paper's fixed 25 iterations do not aim at a tolerance: only flag the modes that do.
-    (this->Solver == CONJUGATE_GRADIENT || report.fit.converged) ? "" : " (above the tolerance)",
-    static_cast<long long>(report.flippedTriangles), report.maxDisplacement);
-  if (report.fit.invalidTargets > 0)
-  {
-    vtkWarningMacro(<< report.fit.invalidTargets
-                    << " triangles had no valid sharpened normal and kept their own.");
-  }
+  ReportRun(this, report, input, output);
 
   if (this->GenerateSharpenedNormals)
   {
