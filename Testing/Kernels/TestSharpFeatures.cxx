@@ -381,6 +381,34 @@ TEST(SharpeningKeeps, FeatureSplitResultsDoNotDependOnTheThreadCount)
   EXPECT_EQ(Sharpen(block, p), one);
 }
 
+TEST(SharpeningKeeps, FlowFieldsCoverTheInputsPointsAndTriangles)
+{
+  // A split mesh (sharp cap edges, curved side) with every triangle given twice: the
+  // fields are per input point and triangle; a copy has its first occurrence's flow.
+  const MeshData block = shocktest::CappedCylinder(24, 6, 0.5, 1.2);
+  MeshData twice = block;
+  twice.triangles.insert(twice.triangles.end(), block.triangles.begin(), block.triangles.end());
+  const shock::TriangleMesh mesh = Build(twice);
+  shock::SharpeningParameters p;
+  p.advection.time = 256.0;
+  p.featureAngle = 60.0;
+  std::vector<double> positions(twice.points.size());
+  shock::SharpeningReport report;
+  shock::MeshFlowFields fields;
+  ASSERT_TRUE(shock::SharpenMeshGeometry(mesh, p, positions.data(), nullptr, &report, &fields).Ok());
+  EXPECT_GT(report.featureEdges, 0);
+  EXPECT_EQ(report.repeatedTriangles, block.NumberOfTriangles());
+  ASSERT_EQ(fields.potential.size(), static_cast<size_t>(twice.NumberOfPoints()));
+  ASSERT_EQ(fields.flow.size(), static_cast<size_t>(3 * twice.NumberOfTriangles()));
+  EXPECT_TRUE(std::all_of(fields.potential.begin(), fields.potential.end(), [](double v) { return std::isfinite(v) && v >= 0.0; }));
+  EXPECT_GT(*std::max_element(fields.potential.begin(), fields.potential.end()), 0.0);
+  const size_t half = fields.flow.size() / 2;
+  for (size_t i = 0; i < half; ++i)
+  {
+    EXPECT_EQ(fields.flow[i + half], fields.flow[i]);
+  }
+}
+
 TEST(SharpeningKeeps, InvalidFeatureAngleAndFitTargetAreRejected)
 {
   const shock::TriangleMesh mesh = Build(shocktest::Icosphere(1));
