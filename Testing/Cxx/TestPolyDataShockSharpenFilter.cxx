@@ -1318,7 +1318,17 @@ TEST(PolyDataShockSharpenFilter, DefaultsClampingAndPrintSelf)
   EXPECT_TRUE(filter->GetMergeCoincidentPoints());
   EXPECT_FALSE(filter->GetGenerateSharpenedNormals());
   EXPECT_EQ(filter->GetSampling(), Filter::LINEAR);
+  EXPECT_EQ(filter->GetFeatureAngle(), 30.0);
+  EXPECT_EQ(filter->GetFitTarget(), Filter::CENTRAL_PROJECTION);
 
+  filter->SetFeatureAngle(-5.0);
+  EXPECT_EQ(filter->GetFeatureAngle(), 0.0);
+  filter->SetFeatureAngle(500.0);
+  EXPECT_EQ(filter->GetFeatureAngle(), 180.0);
+  filter->SetFitTarget(9);
+  EXPECT_EQ(filter->GetFitTarget(), Filter::CENTRAL_PROJECTION);
+  filter->SetFitTarget(-1);
+  EXPECT_EQ(filter->GetFitTarget(), Filter::PROJECTION);
   filter->SetScreeningWeight(0.0);
   EXPECT_EQ(filter->GetScreeningWeight(), 1e-6);
   filter->SetSolver(7);
@@ -1338,19 +1348,24 @@ TEST(PolyDataShockSharpenFilter, DefaultsClampingAndPrintSelf)
   filter->MergeCoincidentPointsOff();
   filter->GenerateSharpenedNormalsOn();
   filter->SetFlowTime(123.25);
+  filter->SetFeatureAngle(42.5);
+  filter->SetFitTargetToShear();
   std::ostringstream os;
   filter->Print(os);
   for (const char* key : { "vtkPolyDataShockSharpenFilter", "FlowTime: 123.25", "NormalSmoothingPasses: 3",
          "ScreeningWeight: 2.5", "Solver: ConjugateGradientTolerance", "SolverIterations: 40",
          "SolverTolerance: 1e-07", "MergeCoincidentPoints: Off", "GenerateSharpenedNormals: On",
-         "LastSolverResidual", "LastMaxDisplacement" })
+         "LastSolverResidual", "LastMaxDisplacement", "FeatureAngle: 42.5", "FitTarget: Shear",
+         "LastRepeatedTriangles", "LastDegenerateTriangles", "LastFeatureEdges" })
   {
     EXPECT_NE(os.str().find(key), std::string::npos) << key << "\n" << os.str();
   }
   filter->SetSolverToExact();
+  filter->SetFitTargetToCentralProjection();
   std::ostringstream exact;
   filter->Print(exact);
   EXPECT_NE(exact.str().find("Solver: Exact"), std::string::npos) << exact.str();
+  EXPECT_NE(exact.str().find("FitTarget: CentralProjection"), std::string::npos) << exact.str();
 }
 
 } // namespace
