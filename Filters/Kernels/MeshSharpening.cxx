@@ -184,9 +184,11 @@ Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& param
   const std::vector<double>& input, std::vector<double>& target, SharpeningReport& r,
   MeshFlowFields* fields, const ProgressFunction& progress, int threads)
 {
+  const auto splitStart = Clock::now();
   FeatureSplitMesh split;
   const Status splitStatus =
     SplitAtFeatureEdges(mesh, input.data(), parameters.featureAngle, threads, split);
+  r.normalsSeconds += SecondsSince(splitStart);
   if (!splitStatus.Ok())
   {
     return splitStatus;
@@ -253,7 +255,7 @@ Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& pa
     std::copy(mesh.Normal(f), mesh.Normal(f) + 3, &input[static_cast<size_t>(3 * f)]);
   }
   SmoothNormals(mesh, input, parameters.normalSmoothingPasses, threads);
-  r.normalsSeconds = SecondsSince(normalsStart);
+  r.normalsSeconds += SecondsSince(normalsStart);
 
   const Status advected = AdvectNormals(mesh, parameters, input, target, r, fields, progress, threads);
   if (!advected.Ok() || r.advection.aborted)
@@ -308,7 +310,9 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
   TriangleMesh reduced;
   std::vector<std::int64_t> source;
   Status status;
+  const auto cleanStart = Clock::now();
   const bool removed = WithoutRepeatedTriangles(mesh, threads, reduced, source, r, status);
+  r.normalsSeconds = SecondsSince(cleanStart);
   if (!status.Ok())
   {
     return status;

@@ -56,7 +56,8 @@ struct SharpeningReport
 {
   AdvectionReport advection; ///< flow and advection of the normals
   FitReport fit;             ///< solver iterations, residual, set-up and solve times
-  double normalsSeconds = 0.0; ///< face normals and their optional smoothing
+  /// Face normals, their optional smoothing, the search for repeated triangles and the feature split.
+  double normalsSeconds = 0.0;
   /// Non-degenerate triangles whose normal points against the input normal after the fit.
   std::int64_t flippedTriangles = 0;
   /// Largest point displacement divided by the diagonal of the input's bounding box.
