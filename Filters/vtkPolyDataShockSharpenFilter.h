@@ -141,7 +141,7 @@ public:
    * target plane (shortened). A rounded crease is shorter than the corner it
    * was rounded from, so the shorter the edges come out, the more the shape
    * shrinks as it sharpens (docs/sharpening.md has the evaluation). SHEAR and
-   * CENTRAL_PROJECTION rotate triangles tilted by more than 60 degrees.
+   * CENTRAL_PROJECTION rotate triangles tilted by more than 45 degrees.
    */
   vtkSetClampMacro(FitTarget, int, PROJECTION, CENTRAL_PROJECTION);
   vtkGetMacro(FitTarget, int);

@@ -21,9 +21,9 @@ using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 using Coordinates = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using Clock = std::chrono::steady_clock;
 
-/// FitTarget::Shear and CentralProjection up to this tilt (cosine of 60 degrees: edges
-/// stretched at most 2 and 4 times); more tilted triangles are rotated instead.
-constexpr double MinShearCosine = 0.5;
+/// FitTarget::Shear and CentralProjection up to this tilt (cosine of 45 degrees: edges
+/// stretched at most sqrt(2) and 2 times); more tilted triangles are rotated instead.
+constexpr double MinShearCosine = 0.7071;
 /// Target normals shorter than this are treated as missing.
 constexpr double MinTargetLength = 1e-8;
 /// Triangles or rows per block of the parallel sums; fixed so that the sums,

@@ -37,8 +37,8 @@
  *       of a rounded right angle of radius r becomes a leg of length r, where
  *       a projection gives 0.71 r, a rotation 0.79 r and the shear 0.88 r, so
  *       those shrink the shape as they sharpen it (docs/sharpening.md).
- *     Shear and CentralProjection rotate triangles tilted by more than 60
- *     degrees (whose edges would stretch more than 2 or 4 times);
+ *     Shear and CentralProjection rotate triangles tilted by more than 45
+ *     degrees (whose edges would stretch more than sqrt(2) or 2 times);
  *  3. c1 = argmin_c  eps ||c - c0||^2_M + ||grad c - w||^2, i.e.
  *         (eps M + S) c1 = eps M c0 + D w,
  *     with M the consistent finite-element mass matrix (A/12 [2 1 1; 1 2 1; 1 1 2]

@@ -213,7 +213,7 @@ TEST(FitTargets, EdgesMapAsDefined)
           EXPECT_NEAR(Length(Sub(we, expected)), 0.0, 1e-12);
         }
         const bool sheared = target == shock::FitTarget::Shear || target == shock::FitTarget::CentralProjection;
-        const bool rotated = target == shock::FitTarget::Rotation || (sheared && c < 0.5);
+        const bool rotated = target == shock::FitTarget::Rotation || (sheared && c < std::sqrt(0.5));
         if (rotated)
         {
           EXPECT_NEAR(Length(we), Length(e), 1e-12) << "rotations keep lengths";
