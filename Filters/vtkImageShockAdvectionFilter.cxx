@@ -155,7 +155,10 @@ int vtkImageShockAdvectionFilter::RequestData(
   if (input->GetNumberOfPoints() == 0)
   {
     output->ShallowCopy(input);
-    vtkWarningMacro("The input image is empty: nothing to filter.");
+    if (this->ParallelPiecesWithData == NOT_A_PIECE) // an empty piece of a parallel run is normal
+    {
+      vtkWarningMacro("The input image is empty: nothing to filter.");
+    }
     return 1;
   }
 
@@ -225,8 +228,10 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, int c
   if (this->Method == ADVECTION)
   {
     shock::AdvectionReport report;
-    status = shock::AdvectGridSignal(grid, components, input, output,
-      vtkShockFilterInternals::MakeParameters(this), &report, fields, progress);
+    shock::AdvectionParameters parameters = vtkShockFilterInternals::MakeParameters(this);
+    parameters.hierarchyLevels = this->HierarchyLevels;
+    status =
+      shock::AdvectGridSignal(grid, components, input, output, parameters, &report, fields, progress);
     if (status.Ok())
     {
       this->RecordRun(
@@ -414,6 +419,7 @@ void vtkImageShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Method: " << (this->Method == ADVECTION ? "Advection" : "PDE") << "\n";
+  os << indent << "HierarchyLevels: " << this->HierarchyLevels << "\n";
   os << indent << "CourantNumber: " << this->CourantNumber << "\n";
   os << indent << "MaximumIterations: " << this->MaximumIterations << "\n";
   os << indent << "LastIterations: " << this->LastIterations << "\n";

@@ -101,6 +101,22 @@ public:
 
   ///@{
   /**
+   * ADVECTION method: number of resolution levels of the coarse-to-fine
+   * tracing, beyond the paper (after its section 6; docs/hierarchy.md). 1, the
+   * default, is the paper's single level. With L > 1 a pyramid of the signal
+   * halves every axis L - 1 times, every level computes its own flow, and every
+   * back-trace starts at the coarsest level and continues at each finer one
+   * (the input is sampled once, at the finest), so that traces cross the small
+   * potential maxima of noise and texture on their way to large edges. Every
+   * level runs the same FlowTime in the input's units. Levels the image is too
+   * small for (an axis below 3 samples) are not built. Range [1, 16], default 1.
+   */
+  vtkSetClampMacro(HierarchyLevels, int, 1, 16);
+  vtkGetMacro(HierarchyLevels, int);
+  ///@}
+
+  ///@{
+  /**
    * PDE method: Courant number of the explicit step, dt = CourantNumber /
    * (max |u| x sum over axes of 1 / spacing), spacings in mean edge lengths.
    * Range [0.01, 1], default 0.5; above 1 the scheme is not stable.
@@ -158,6 +174,7 @@ protected:
   void ResetMeasurements() override;
 
   int Method = ADVECTION;
+  int HierarchyLevels = 1;
   double CourantNumber = 0.5;
   int MaximumIterations = 100000;
   vtkTypeInt64 LastIterations = 0;

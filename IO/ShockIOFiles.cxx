@@ -56,9 +56,16 @@ bool CheckWritable(const std::string& path, std::string& error)
     error = path + ": cannot write, directory '" + parent.string() + "' does not exist";
     return false;
   }
-  if (fs::is_directory(path, code))
+  const fs::file_status status = fs::status(path, code);
+  if (fs::is_directory(status))
   {
     error = path + ": cannot write, it is a directory";
+    return false;
+  }
+  if (fs::exists(status) && !fs::is_regular_file(status))
+  {
+    // A device such as /dev/full: it cannot be replaced by a complete file.
+    error = path + ": cannot write, it is not a regular file";
     return false;
   }
   return true;

@@ -11,16 +11,25 @@
 
 #include "ShockIOMessages.h"
 
+#include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace shockio
 {
 
+/**
+ * The default limit on the samples a file may declare: pixels or voxels of an
+ * image, points or cells of a mesh. Readers refuse files declaring more before
+ * anything is allocated.
+ */
+inline constexpr std::uint64_t DefaultMaxSamples = 100000000;
+
 /// Whether `path` exists, is a regular file, opens for reading and is not empty; else sets `error`.
 bool CheckReadable(const std::string& path, std::string& error);
 
-/// Whether `path` can be written: its directory exists and it is no directory; else sets `error`.
+/// Whether `path` can be written: its directory exists and it is a regular file if it exists; else sets `error`.
 bool CheckWritable(const std::string& path, std::string& error);
 
 /// The lower-case extension of `path`, with its dot ("" if none).
@@ -90,13 +99,20 @@ private:
 /// Writes `text` as the file `path` (through an OutputFile); false with `error` set on failure.
 bool WriteFile(const std::string& path, const std::string& text, std::string& error);
 
+/// Checks a file just written (under its temporary name) before it replaces its target.
+using WrittenFileCheck = std::function<bool(const std::string& written)>;
+
 /**
  * Runs a VTK writer (of any kind: vtkWriter, vtkImageWriter) whose input is
- * set on `path`, through an OutputFile: `trap` watches it, and any error it
- * reports leaves the target untouched. False with `error` set on failure.
+ * set on `path`, through an OutputFile: `trap` watches it, and the target is
+ * replaced only if the writer reports no error and `check` (when given) finds
+ * the written file complete; many VTK writers ignore failed writes (a full
+ * disk), so reading the file back is the check that holds. False with `error`
+ * set on failure; an existing target is then untouched.
  */
 template <typename Writer>
-bool RunWriter(Writer* writer, const std::string& path, MessageTrap* trap, std::string& error)
+bool RunWriter(Writer* writer, const std::string& path, MessageTrap* trap, std::string& error,
+  const WrittenFileCheck& check = {})
 {
   OutputFile output(path);
   if (!output.Open(error))
@@ -106,7 +122,7 @@ bool RunWriter(Writer* writer, const std::string& path, MessageTrap* trap, std::
   writer->SetFileName(output.Path().c_str());
   trap->Watch(writer);
   writer->Write();
-  if (writer->GetErrorCode() != 0)
+  if (writer->GetErrorCode() != 0 || (check && !check(output.Path())))
   {
     error = path + ": writing failed (is the disk full?)";
     return false;

@@ -36,9 +36,6 @@ struct ImageHeader
   std::uint64_t Bytes() const;
 };
 
-/// The default limit on the samples (pixels or voxels) an image file may declare.
-inline constexpr std::uint64_t DefaultMaxSamples = 100000000;
-
 /**
  * Whether VTK's reader of `format` can read `path` safely, the size it
  * declares (in `header`) at most `maxSamples` samples; else `error` is set to

@@ -1,6 +1,7 @@
 #include "ShockImageChecks.h"
 
 #include "ShockIOFiles.h"
+#include "ShockMeshChecks.h"
 
 #include <algorithm>
 #include <cctype>
@@ -146,6 +147,11 @@ bool BmpHeader(const std::string& path, ImageHeader& header, std::string& proble
   const auto width = static_cast<std::int32_t>(Unsigned(bytes, 18, core ? 2 : 4, true));
   const auto height = static_cast<std::int32_t>(Unsigned(bytes, core ? 20 : 22, core ? 2 : 4, true));
   const std::uint64_t bits = Unsigned(bytes, core ? 24 : 28, 2, true);
+  if (bits != 8 && bits != 24)
+  {
+    problem = "a BMP of " + std::to_string(bits) + " bits per pixel (VTK reads 8 and 24)";
+    return false;
+  }
   if (width <= 0 || height == 0 || height == std::numeric_limits<std::int32_t>::min())
   {
     problem = "the BMP header declares " + std::to_string(width) + "x" + std::to_string(height) +
@@ -227,20 +233,41 @@ bool TiffHeader(const std::string& path, ImageHeader& header, std::string& probl
   std::uint64_t offset = Unsigned(bytes, 4, 4, little);
   std::set<std::uint64_t> seen;
   header = { 0, 0, 0, 1, 1, true };
-  while (offset != 0 && seen.insert(offset).second && seen.size() <= 100000)
+  std::uint64_t budget = 64 << 20; // bytes of directories read: a chain of them cannot make this slow
+  while (offset != 0 && seen.insert(offset).second)
   {
     bytes = ReadBytes(path, offset, 2);
     const std::uint64_t entries = bytes.size() == 2 ? Unsigned(bytes, 0, 2, little) : 0;
+    if (entries * 12 + 4 > budget)
+    {
+      problem = "the TIFF directories are too many or too large";
+      return false;
+    }
+    budget -= entries * 12 + 4;
     bytes = ReadBytes(path, offset + 2, static_cast<std::size_t>(entries * 12 + 4));
     if (entries == 0 || bytes.size() < entries * 12 + 4)
     {
       problem = "a TIFF directory is empty or truncated";
       return false;
     }
+    std::set<std::uint64_t> tags;
     for (std::size_t e = 0; e < entries && header.depth == 0; ++e)
     {
       const std::uint64_t tag = Unsigned(bytes, e * 12, 2, little);
-      const bool isShort = Unsigned(bytes, e * 12 + 2, 2, little) == 3;
+      if (!tags.insert(tag).second)
+      {
+        // libtiff takes the first, a reader of the last would check another size.
+        problem = "a TIFF directory lists tag " + std::to_string(tag) + " twice";
+        return false;
+      }
+      const std::uint64_t type = Unsigned(bytes, e * 12 + 2, 2, little);
+      const bool isShort = type == 3;
+      if ((tag == 256 || tag == 257 || tag == 277) &&
+        ((type != 3 && type != 4) || Unsigned(bytes, e * 12 + 4, 4, little) != 1))
+      {
+        problem = "the TIFF tag " + std::to_string(tag) + " is not one SHORT or LONG value";
+        return false;
+      }
       const std::uint64_t value = Unsigned(bytes, e * 12 + 8, isShort ? 2 : 4, little);
       header.width = tag == 256 ? value : header.width;
       header.height = tag == 257 ? value : header.height;
@@ -325,7 +352,7 @@ bool ReadHeader(const std::string& path, const ImageFormat& format, std::uint64_
     case ImageFormat::VTI:
       return VtkHeader(path, true, header, problem);
     case ImageFormat::LegacyVTK:
-      return VtkHeader(path, false, header, problem);
+      return CheckLegacyCounts(path, maxSamples, problem) && VtkHeader(path, false, header, problem);
   }
   return true;
 }

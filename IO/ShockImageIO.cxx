@@ -22,9 +22,13 @@
 #include "vtkTIFFWriter.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
+#include "vtkOutputWindow.h"
+#include "vtk_tiff.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
+#include <cstdio>
 #include <new>
 
 namespace shockio
@@ -315,15 +319,33 @@ vtkSmartPointer<vtkImageData> PrepareRasterImage(vtkImageData* image, vtkDataArr
   return raster;
 }
 
+/**
+ * Whether a raster file just written is complete: its checks pass and it
+ * declares the size of `image` (vtkTIFFWriter and others ignore failed writes).
+ */
+WrittenFileCheck DeclaresSize(vtkImageData* image, const ImageFormat& format)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  return [dims0 = dims[0], dims1 = dims[1], &format](const std::string& written)
+  {
+    ImageHeader header;
+    std::string error;
+    return CheckImageFile(written, format, ~std::uint64_t{ 0 }, header, error) &&
+      header.width == static_cast<std::uint64_t>(dims0) && header.height == static_cast<std::uint64_t>(dims1);
+  };
+}
+
 /// Runs a new writer of type Writer on `image` (after `setup`), through an OutputFile.
 template <typename Writer, typename Setup>
-bool Write(vtkImageData* image, const std::string& path, std::string& error, Setup setup)
+bool Write(vtkImageData* image, const std::string& path, std::string& error, Setup setup,
+  const WrittenFileCheck& check = {})
 {
   vtkNew<Writer> writer;
   writer->SetInputData(image);
   setup(writer.GetPointer());
   vtkNew<MessageTrap> trap;
-  const bool written = RunWriter(writer.GetPointer(), path, trap, error);
+  const bool written = RunWriter(writer.GetPointer(), path, trap, error, check);
   return trap->Finish(path, error, Strictness::Lenient) && written;
 }
 
@@ -331,6 +353,33 @@ template <typename Writer>
 bool Write(vtkImageData* image, const std::string& path, std::string& error)
 {
   return Write<Writer>(image, path, error, [](Writer*) {});
+}
+
+/// A raster writer of type Writer, its file checked (DeclaresSize()) before it replaces the target.
+template <typename Writer, typename Setup>
+bool WriteRaster(vtkImageData* image, const ImageFormat& format, const std::string& path,
+  std::string& error, Setup setup)
+{
+  return Write<Writer>(image, path, error, setup, DeclaresSize(image, format));
+}
+
+/// libtiff prints its errors on stderr unless told otherwise: they go to VTK's output window.
+void TiffMessage(const char* module, const char* format, va_list arguments)
+{
+  char text[1024];
+  std::vsnprintf(text, sizeof(text), format, arguments);
+  vtkOutputWindowDisplayErrorText((std::string(module ? module : "libtiff") + ": " + text).c_str());
+}
+
+/// Writes a TIFF file with libtiff's messages going to the trap of the call.
+bool WriteTiff(vtkImageData* image, const ImageFormat& format, const std::string& path, std::string& error)
+{
+  const TIFFErrorHandler previousError = TIFFSetErrorHandler(TiffMessage);
+  const TIFFErrorHandler previousWarning = TIFFSetWarningHandler(TiffMessage);
+  const bool written = WriteRaster<vtkTIFFWriter>(image, format, path, error, [](vtkTIFFWriter*) {});
+  TIFFSetErrorHandler(previousError);
+  TIFFSetWarningHandler(previousWarning);
+  return written;
 }
 
 } // namespace
@@ -369,15 +418,16 @@ bool WriteImage(vtkImageData* image, const std::string& path, const std::string&
   switch (format->id)
   {
     case ImageFormat::PNG:
-      return Write<vtkPNGWriter>(raster, path, error);
+      return WriteRaster<vtkPNGWriter>(raster, *format, path, error, [](vtkPNGWriter*) {});
     case ImageFormat::JPEG:
-      return Write<vtkJPEGWriter>(raster, path, error, [](vtkJPEGWriter* w) { w->SetQuality(95); });
+      return WriteRaster<vtkJPEGWriter>(
+        raster, *format, path, error, [](vtkJPEGWriter* w) { w->SetQuality(95); });
     case ImageFormat::TIFF:
-      return Write<vtkTIFFWriter>(raster, path, error);
+      return WriteTiff(raster, *format, path, error);
     case ImageFormat::BMP:
-      return Write<vtkBMPWriter>(raster, path, error);
+      return WriteRaster<vtkBMPWriter>(raster, *format, path, error, [](vtkBMPWriter*) {});
     case ImageFormat::PNM:
-      return Write<vtkPNMWriter>(raster, path, error);
+      return WriteRaster<vtkPNMWriter>(raster, *format, path, error, [](vtkPNMWriter*) {});
     default:
       return false;
   }

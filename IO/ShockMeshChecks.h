@@ -18,6 +18,7 @@
 #ifndef ShockMeshChecks_h
 #define ShockMeshChecks_h
 
+#include <cstdint>
 #include <string>
 
 namespace shockio
@@ -45,6 +46,20 @@ bool CheckStl(const std::string& path, std::string& error);
  * material name be shorter and every coordinate a finite number.
  */
 bool CheckObj(const std::string& path, std::string& error);
+
+/**
+ * Whether the counts a legacy VTK file declares (POINTS, POLYGONS, CELLS,
+ * POINT_DATA, ...) are at most `maxElements` and fit in the file (a value
+ * takes at least a byte): VTK's legacy readers allocate them unchecked.
+ */
+bool CheckLegacyCounts(const std::string& path, std::uint64_t maxElements, std::string& error);
+
+/**
+ * Whether the counts a VTK XML file declares (NumberOfPoints, NumberOfPolys,
+ * ...) are at most `maxElements` and, for uncompressed data, fit in the file:
+ * VTK's XML readers allocate them unchecked (an abort).
+ */
+bool CheckXmlCounts(const std::string& path, std::uint64_t maxElements, std::string& error);
 
 } // namespace shockio
 

@@ -85,4 +85,17 @@ vtkIdType LargestPolygon(vtkPolyData* mesh)
   return largest;
 }
 
+vtkIdType CountTriangles(vtkPolyData* mesh)
+{
+  vtkIdType triangles = 0;
+  for (vtkCellArray* cells : { mesh->GetPolys(), mesh->GetStrips() })
+  {
+    for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
+    {
+      triangles += std::max<vtkIdType>(0, cells->GetCellSize(c) - 2);
+    }
+  }
+  return triangles;
+}
+
 } // namespace shockio

@@ -36,6 +36,9 @@ vtkSmartPointer<vtkPolyData> FacesOnly(vtkPolyData* mesh);
 /// The largest number of points of a polygon of `mesh`.
 vtkIdType LargestPolygon(vtkPolyData* mesh);
 
+/// Number of triangles of the polygons and strips of `mesh` (n - 2 per cell of n points).
+vtkIdType CountTriangles(vtkPolyData* mesh);
+
 } // namespace shockio
 
 #endif

@@ -27,6 +27,7 @@
 #include "vtkXMLPolyDataWriter.h"
 #include "vtkXMLReader.h"
 
+#include <algorithm>
 #include <new>
 #include <tuple>
 #include <type_traits>
@@ -176,7 +177,8 @@ vtkSmartPointer<vtkPolyData> ReadLegacy(
 }
 
 /// Writes a binary PLY file, with the colours, normals and texture coordinates vtkPLYWriter takes.
-bool WritePly(vtkPolyData* mesh, const std::string& path, MessageTrap* trap, std::string& error)
+bool WritePly(vtkPolyData* mesh, const std::string& path, MessageTrap* trap, std::string& error,
+  const WrittenFileCheck& check)
 {
   const vtkSmartPointer<vtkPolyData> faces = FacesOnly(mesh);
   if (const vtkIdType largest = LargestPolygon(faces); largest > 255)
@@ -229,11 +231,12 @@ bool WritePly(vtkPolyData* mesh, const std::string& path, MessageTrap* trap, std
   writer->SetEnableAlpha(true); // RGBA arrays keep their alpha, RGB ones stay RGB
   // (OutputFile keeps the lower-case extension: vtkPLY appends ".ply" to
   // any other file name.)
-  return RunWriter(writer.GetPointer(), path, trap, error);
+  return RunWriter(writer.GetPointer(), path, trap, error, check);
 }
 
 /// Writes a binary STL file of the triangulated polygons and strips of `mesh`.
-bool WriteStl(vtkPolyData* mesh, const std::string& path, MessageTrap* trap, std::string& error)
+bool WriteStl(vtkPolyData* mesh, const std::string& path, MessageTrap* trap, std::string& error,
+  const WrittenFileCheck& check)
 {
   if (mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips() == 0)
   {
@@ -248,12 +251,31 @@ bool WriteStl(vtkPolyData* mesh, const std::string& path, MessageTrap* trap, std
   vtkNew<vtkSTLWriter> writer;
   writer->SetInputConnection(triangles->GetOutputPort());
   writer->SetFileTypeToBinary();
-  return RunWriter(writer.GetPointer(), path, trap, error);
+  return RunWriter(writer.GetPointer(), path, trap, error, check);
+}
+
+/**
+ * Whether a file just written reads back as `mesh` written in `format`: as
+ * many points (but STL, whose reader merges them) and triangles. VTK's PLY,
+ * OBJ, STL and TIFF writers ignore failed writes (a full disk): this finds them.
+ */
+WrittenFileCheck ReadsBack(const MeshFormat& format, vtkPolyData* mesh)
+{
+  const bool faces = format.arrays != MeshArrays::All && format.id != MeshFormat::OBJ;
+  const vtkIdType points = mesh->GetNumberOfPoints();
+  const vtkIdType triangles = CountTriangles(faces ? FacesOnly(mesh).Get() : mesh);
+  const bool stl = format.id == MeshFormat::STL;
+  return [points, triangles, stl](const std::string& written)
+  {
+    std::string error;
+    const vtkSmartPointer<vtkPolyData> back = ReadMesh(written, error);
+    return back && (stl || back->GetNumberOfPoints() == points) && CountTriangles(back) == triangles;
+  };
 }
 
 /// Reads the file in `format`; null with `error` set when a check of this module fails.
-vtkSmartPointer<vtkPolyData> ReadFormat(
-  const MeshFormat& format, const std::string& path, MessageTrap* trap, std::string& error)
+vtkSmartPointer<vtkPolyData> ReadFormat(const MeshFormat& format, const std::string& path,
+  std::uint64_t maxSamples, MessageTrap* trap, std::string& error)
 {
   switch (format.id)
   {
@@ -264,9 +286,10 @@ vtkSmartPointer<vtkPolyData> ReadFormat(
     case MeshFormat::STL:
       return CheckStl(path, error) ? ReadWith<vtkSTLReader>(path, trap) : nullptr;
     case MeshFormat::VTP:
-      return ReadWith<vtkXMLPolyDataReader>(path, trap);
+      return CheckXmlCounts(path, maxSamples, error) ? ReadWith<vtkXMLPolyDataReader>(path, trap)
+                                                     : nullptr;
     case MeshFormat::VTK:
-      return ReadLegacy(path, trap, error);
+      return CheckLegacyCounts(path, maxSamples, error) ? ReadLegacy(path, trap, error) : nullptr;
     case MeshFormat::OFF:
       return ReadOff(path, error);
   }
@@ -274,33 +297,33 @@ vtkSmartPointer<vtkPolyData> ReadFormat(
 }
 
 /// Writes the file in `format`; false with `error` set when this module finds a problem.
-bool WriteFormat(
-  const MeshFormat& format, vtkPolyData* mesh, const std::string& path, MessageTrap* trap, std::string& error)
+bool WriteFormat(const MeshFormat& format, vtkPolyData* mesh, const std::string& path,
+  MessageTrap* trap, std::string& error, const WrittenFileCheck& check)
 {
   switch (format.id)
   {
     case MeshFormat::PLY:
-      return WritePly(mesh, path, trap, error);
+      return WritePly(mesh, path, trap, error, check);
     case MeshFormat::OBJ:
     {
       vtkNew<vtkOBJWriter> writer;
       writer->SetInputData(0, mesh);
-      return RunWriter(writer.GetPointer(), path, trap, error);
+      return RunWriter(writer.GetPointer(), path, trap, error, check);
     }
     case MeshFormat::STL:
-      return WriteStl(mesh, path, trap, error);
+      return WriteStl(mesh, path, trap, error, check);
     case MeshFormat::VTP:
     {
       vtkNew<vtkXMLPolyDataWriter> writer;
       writer->SetInputData(mesh);
-      return RunWriter(writer.GetPointer(), path, trap, error);
+      return RunWriter(writer.GetPointer(), path, trap, error, check);
     }
     case MeshFormat::VTK:
     {
       vtkNew<vtkPolyDataWriter> writer;
       writer->SetInputData(mesh);
       writer->SetFileTypeToBinary();
-      return RunWriter(writer.GetPointer(), path, trap, error);
+      return RunWriter(writer.GetPointer(), path, trap, error, check);
     }
     case MeshFormat::OFF:
       return WriteOff(mesh, path, error);
@@ -310,7 +333,8 @@ bool WriteFormat(
 
 } // namespace
 
-vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& error)
+vtkSmartPointer<vtkPolyData> ReadMesh(
+  const std::string& path, std::string& error, std::uint64_t maxSamples)
 {
   error.clear();
   const MeshFormat* format = MeshFormatOf(path, error);
@@ -322,7 +346,7 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& erro
   vtkSmartPointer<vtkPolyData> mesh;
   try
   {
-    mesh = ReadFormat(*format, path, trap, error);
+    mesh = ReadFormat(*format, path, maxSamples, trap, error);
   }
   catch (const std::bad_alloc&)
   {
@@ -356,7 +380,7 @@ bool WriteMesh(vtkPolyData* mesh, const std::string& path, std::string& error)
     return false;
   }
   vtkNew<MessageTrap> trap;
-  const bool written = WriteFormat(*format, mesh, path, trap, error);
+  const bool written = WriteFormat(*format, mesh, path, trap, error, ReadsBack(*format, mesh));
   return trap->Finish(path, error) && written;
 }
 

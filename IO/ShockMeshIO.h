@@ -45,11 +45,13 @@
 #ifndef ShockMeshIO_h
 #define ShockMeshIO_h
 
+#include "ShockIOFiles.h"    // DefaultMaxSamples
 #include "ShockMeshFaces.h" // PointColorsName, FaceColorsName
 
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -94,9 +96,11 @@ const MeshFormat* MeshFormatOf(const std::string& path, std::string& error);
  * @param error  cleared, then set to a one-line message naming the file on failure
  * @return the mesh (with at least one point), or nullptr on failure: unknown
  *   extension, missing, unreadable or empty file, an error of a reader or of
- *   the checks, or no points read.
+ *   the checks, more than `maxSamples` points or cells declared (the default
+ *   is DefaultMaxSamples of ShockIOFiles.h), or no points read.
  */
-vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, std::string& error);
+vtkSmartPointer<vtkPolyData> ReadMesh(
+  const std::string& path, std::string& error, std::uint64_t maxSamples = DefaultMaxSamples);
 
 /**
  * Writes `mesh` to `path` in the format its extension names (see the file

@@ -312,6 +312,83 @@ struct PlyHeader
 bool CheckPlyLayout(const std::vector<PlyElement>& elements, std::string& problem);
 
 /**
+ * Reads one line of a PLY header (its `words`, after the first line) into
+ * `header` and `encoding`; false with `problem` set for a line vtkPLY would
+ * misread or crash on: an unknown keyword, a second format line, a second
+ * element or property of one name.
+ */
+bool ReadPlyHeaderLine(const std::vector<std::string_view>& words, const std::string& at,
+  PlyHeader& header, std::optional<PlyEncoding>& encoding, std::string& problem)
+{
+  const std::string_view keyword = words[0];
+  if (keyword == "format" && encoding)
+  {
+    problem = at + "a second format line";
+    return false;
+  }
+  if (keyword == "format")
+  {
+    static const std::pair<const char*, PlyEncoding> encodings[] = {
+      { "ascii", PlyEncoding::Ascii }, { "binary_little_endian", PlyEncoding::LittleEndian },
+      { "binary_big_endian", PlyEncoding::BigEndian }
+    };
+    for (const auto& [name, value] : encodings)
+    {
+      encoding =
+        words.size() == 3 && words[1] == name ? std::optional<PlyEncoding>(value) : encoding;
+    }
+    if (!encoding)
+    {
+      problem =
+        at + "unknown PLY format (expected ascii, binary_little_endian or binary_big_endian)";
+      return false;
+    }
+  }
+  else if (keyword == "element")
+  {
+    std::int64_t count = 0;
+    if (words.size() != 3 || !ParseCount(words[2], count) ||
+      count > std::numeric_limits<int>::max())
+    {
+      problem = at + "expected 'element <name> <count>'";
+      return false;
+    }
+    if (FindPlyElement(header.elements, words[1]) >= 0)
+    {
+      problem = at + "a second element " + Quoted(words[1]);
+      return false;
+    }
+    header.elements.push_back({ words[1], count, {} });
+  }
+  else if (keyword == "property")
+  {
+    const bool list = words.size() == 5 && words[1] == "list", scalar = words.size() == 3;
+    const std::optional<PlyType> countType = list ? PlyTypeNamed(words[2]) : std::nullopt;
+    const std::optional<PlyType> type =
+      list || scalar ? PlyTypeNamed(words[list ? 3 : 1]) : std::nullopt;
+    if (header.elements.empty() || !type || (list && (!countType || !countType->integer)))
+    {
+      problem = at +
+        "expected 'property <type> <name>' or 'property list <integer type> <type> <name>' after "
+        "an element";
+      return false;
+    }
+    if (FindPlyProperty(header.elements.back(), words.back()))
+    {
+      problem = at + "a second property " + Quoted(words.back());
+      return false;
+    }
+    header.elements.back().properties.push_back({ words.back(), *type, countType });
+  }
+  else if (keyword != "comment" && keyword != "obj_info" && keyword != "end_header")
+  {
+    problem = at + "unknown PLY header line " + Quoted(keyword);
+    return false;
+  }
+  return true;
+}
+
+/**
  * Reads the header of a PLY file (`text`, which it views) as vtkPLY does, and
  * checks that vtkPLYReader takes it (CheckPlyLayout()). False with a `problem`
  * text otherwise.
@@ -339,52 +416,11 @@ bool ReadPlyHeader(std::string_view text, PlyHeader& header, std::string& proble
       problem = at + (readable ? "a blank line in the header" : problem);
       return false;
     }
-    const std::string_view keyword = words[0];
-    if (keyword == "format")
+    if (header.lines > 1 && !ReadPlyHeaderLine(words, at, header, encoding, problem))
     {
-      static const std::pair<const char*, PlyEncoding> encodings[] = {
-        { "ascii", PlyEncoding::Ascii }, { "binary_little_endian", PlyEncoding::LittleEndian },
-        { "binary_big_endian", PlyEncoding::BigEndian }
-      };
-      for (const auto& [name, value] : encodings)
-      {
-        encoding =
-          words.size() == 3 && words[1] == name ? std::optional<PlyEncoding>(value) : encoding;
-      }
-      if (!encoding)
-      {
-        problem =
-          at + "unknown PLY format (expected ascii, binary_little_endian or binary_big_endian)";
-        return false;
-      }
+      return false;
     }
-    else if (keyword == "element")
-    {
-      std::int64_t count = 0;
-      if (words.size() != 3 || !ParseCount(words[2], count) ||
-        count > std::numeric_limits<int>::max())
-      {
-        problem = at + "expected 'element <name> <count>'";
-        return false;
-      }
-      header.elements.push_back({ words[1], count, {} });
-    }
-    else if (keyword == "property")
-    {
-      const bool list = words.size() == 5 && words[1] == "list", scalar = words.size() == 3;
-      const std::optional<PlyType> countType = list ? PlyTypeNamed(words[2]) : std::nullopt;
-      const std::optional<PlyType> type =
-        list || scalar ? PlyTypeNamed(words[list ? 3 : 1]) : std::nullopt;
-      if (header.elements.empty() || !type || (list && (!countType || !countType->integer)))
-      {
-        problem = at +
-          "expected 'property <type> <name>' or 'property list <integer type> <type> <name>' after "
-          "an element";
-        return false;
-      }
-      header.elements.back().properties.push_back({ words.back(), *type, countType });
-    }
-    ended = keyword == "end_header"; // comments, obj_info and others are skipped, as vtkPLY does
+    ended = words[0] == "end_header";
   }
   if (!ended || !encoding)
   {

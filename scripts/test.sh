@@ -1,8 +1,71 @@
 #!/usr/bin/env bash
-# The whole test suite: installs what is missing, builds, runs every CTest test
-# (GoogleTest kernel and filter tests, pvpython plugin tests).
+# The whole test suite, in stages (SHOCK_TEST_STAGES, default "main sanitize fuzz"):
+#  main      installs what is missing, builds build/, runs every CTest test
+#            (GoogleTest kernel, filter and IO tests, the command line, the corpus
+#            of damaged files, pvpython plugin, GUI and MPI tests);
+#  sanitize  builds the project a second time with -fsanitize=address,undefined
+#            (build-asan/, VTK module, program and tests, no plugin) and runs the
+#            kernel, filter, IO, command-line and corpus tests under it;
+#  fuzz      builds the libFuzzer targets with clang (build-fuzz/) and runs each
+#            for SHOCK_FUZZ_SECONDS (default 60) from Testing/Fuzz/seeds/<format>;
+#            an input that crashes one is left in build-fuzz/crashes/ (add it to
+#            the seeds as crash-<what> once fixed: it stays as a regression test).
+# e.g. `SHOCK_TEST_STAGES=main bash scripts/test.sh` runs the first stage only.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bash "$root/scripts/build.sh"
-# One test at a time: each test already uses every core through OpenMP.
-ctest --test-dir "$root/build" --output-on-failure --timeout 900
+stages="${SHOCK_TEST_STAGES:-main sanitize fuzz}"
+jobs="$(nproc)"
+launcher=()
+if command -v ccache >/dev/null; then
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+fi
+# ParaView's VTK: the sanitizer and fuzz builds use it without the plugin.
+vtk_dir="$(dirname "$(find /usr/lib -path '*paraview-*/vtk/vtk-config.cmake' -print -quit 2>/dev/null)")"
+sanitizers="-fsanitize=address,undefined -fno-omit-frame-pointer"
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0:abort_on_error=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}"
+
+stage() { echo "== test.sh: $1 ($(date -u +%H:%M:%S))"; }
+
+if [[ " $stages " == *" main "* ]]; then
+  stage "main: build and the whole CTest suite"
+  bash "$root/scripts/build.sh"
+  # One test at a time: each test already uses every core through OpenMP.
+  ctest --test-dir "$root/build" --output-on-failure --timeout 900
+else
+  bash "$root/scripts/install-deps.sh"
+fi
+
+if [[ " $stages " == *" sanitize "* ]]; then
+  stage "sanitize: build-asan with $sanitizers"
+  cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
+    -DSHOCK_ENABLE_PARAVIEW=OFF -DVTK_DIR="$vtk_dir" \
+    -DCMAKE_CXX_FLAGS="$sanitizers -fno-sanitize-recover=all" -DCMAKE_C_FLAGS="$sanitizers" \
+    -DCMAKE_EXE_LINKER_FLAGS="$sanitizers" -DCMAKE_SHARED_LINKER_FLAGS="$sanitizers"
+  cmake --build "$root/build-asan" --parallel "$jobs"
+  ctest --test-dir "$root/build-asan" --output-on-failure --timeout 1800 -L 'kernels|filters|io|cli|robustness'
+fi
+
+if [[ " $stages " == *" fuzz "* ]]; then
+  stage "fuzz: libFuzzer targets, ${SHOCK_FUZZ_SECONDS:-60} s each"
+  fuzz="$root/build-fuzz"
+  cmake -S "$root" -B "$fuzz" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
+    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DSHOCK_FUZZ=ON -DBUILD_TESTING=OFF \
+    -DSHOCK_ENABLE_PARAVIEW=OFF -DVTK_DIR="$vtk_dir" \
+    -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer" \
+    -DCMAKE_EXE_LINKER_FLAGS="$sanitizers" -DCMAKE_SHARED_LINKER_FLAGS="$sanitizers"
+  formats=(png jpg tif bmp ppm vtk vti off ply stl obj vtp)
+  cmake --build "$fuzz" --parallel "$jobs" --target "${formats[@]/#/fuzz_}"
+  mkdir -p "$fuzz/crashes"
+  for format in "${formats[@]}"; do
+    # New inputs go to a scratch corpus; the committed seeds are only read.
+    rm -rf "$fuzz/corpus/$format" && mkdir -p "$fuzz/corpus/$format"
+    echo "fuzz_$format: ${SHOCK_FUZZ_SECONDS:-60} s from $(ls "$root/Testing/Fuzz/seeds/$format" | wc -l) seeds"
+    (cd "$fuzz" && "$fuzz/bin/fuzz_$format" -max_total_time="${SHOCK_FUZZ_SECONDS:-60}" -timeout=10 \
+      -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$fuzz/crashes/$format-" \
+      "$fuzz/corpus/$format" "$root/Testing/Fuzz/seeds/$format" 2>"$fuzz/fuzz_$format.log") ||
+      { tail -50 "$fuzz/fuzz_$format.log"; echo "fuzz_$format failed: see $fuzz/crashes" >&2; exit 1; }
+    grep -E '^stat::number_of_executed_units|^stat::peak_rss_mb' "$fuzz/fuzz_$format.log" | tr '\n' ' '; echo
+  done
+fi
+stage "done"

@@ -14,7 +14,7 @@ namespace shockcli
 OptionSpec MaxSamplesOptionSpec(std::uint64_t& target)
 {
   return { "--max-samples", "N",
-    "most samples (pixels, voxels) an input image may declare, 1..1e12" +
+    "most samples (pixels, voxels, points, cells) an input may declare" +
       DefaultText(std::to_string(shockio::DefaultMaxSamples)),
     [&target](const std::string& v)
     { target = ParseInRange<std::uint64_t>("--max-samples", v, 1, 1000000000000ull); } };
@@ -42,15 +42,24 @@ void RequireWritable(const std::string& path)
   Require(shockio::CheckWritable(path, error), error);
 }
 
+namespace
+{
+
+/// The error of a reader, naming the option that raises the limit when it is the reason.
+std::string WithLimitHint(std::string error)
+{
+  return error.find("more than the limit of") != std::string::npos
+    ? error + " (raise it with --max-samples)"
+    : error;
+}
+
+} // namespace
+
 vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& path, std::uint64_t maxSamples)
 {
   std::string error;
   vtkSmartPointer<vtkImageData> image = shockio::ReadImage(path, maxSamples, error);
-  if (!image && error.find("more than the limit of") != std::string::npos)
-  {
-    error += " (raise it with --max-samples)";
-  }
-  Require(image != nullptr, error);
+  Require(image != nullptr, WithLimitHint(error));
   return image;
 }
 
@@ -65,11 +74,11 @@ void WriteImageFile(vtkImageData* image, const std::string& path, const std::str
   Require(written, error);
 }
 
-vtkSmartPointer<vtkPolyData> ReadMeshFile(const std::string& path)
+vtkSmartPointer<vtkPolyData> ReadMeshFile(const std::string& path, std::uint64_t maxSamples)
 {
   std::string error;
-  vtkSmartPointer<vtkPolyData> mesh = shockio::ReadMesh(path, error);
-  Require(mesh != nullptr, error.empty() ? path + ": cannot be read" : error);
+  vtkSmartPointer<vtkPolyData> mesh = shockio::ReadMesh(path, error, maxSamples);
+  Require(mesh != nullptr, error.empty() ? path + ": cannot be read" : WithLimitHint(error));
   return mesh;
 }
 
@@ -77,19 +86,6 @@ void WriteMeshFile(vtkPolyData* mesh, const std::string& path)
 {
   std::string error;
   Require(shockio::WriteMesh(mesh, path, error), error.empty() ? path + ": cannot be written" : error);
-}
-
-vtkIdType CountTriangles(vtkPolyData* mesh)
-{
-  vtkIdType triangles = 0;
-  for (vtkCellArray* cells : { mesh->GetPolys(), mesh->GetStrips() })
-  {
-    for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
-    {
-      triangles += std::max<vtkIdType>(0, cells->GetCellSize(c) - 2);
-    }
-  }
-  return triangles;
 }
 
 std::string MeshExtensionsKeeping(shockio::MeshArrays arrays)

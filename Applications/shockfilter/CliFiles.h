@@ -20,7 +20,7 @@
 namespace shockcli
 {
 
-/// --max-samples N: the most samples (pixels, voxels) an input image may declare.
+/// --max-samples N: the most samples (pixels, voxels; mesh points, cells) an input may declare.
 OptionSpec MaxSamplesOptionSpec(std::uint64_t& target);
 
 /// The image format of `path` by its extension; throws if unsupported.
@@ -35,13 +35,12 @@ vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& path, std::uint64
 /// Writes an image (raster formats: the point array `arrayName`); throws on failure, prints conversions.
 void WriteImageFile(vtkImageData* image, const std::string& path, const std::string& arrayName);
 
-/// Reads a mesh file; throws the IO library's message.
-vtkSmartPointer<vtkPolyData> ReadMeshFile(const std::string& path);
+/// Reads a mesh file of at most `maxSamples` points and cells; throws the IO library's message.
+vtkSmartPointer<vtkPolyData> ReadMeshFile(const std::string& path, std::uint64_t maxSamples);
 /// Writes a mesh file; throws the IO library's message.
 void WriteMeshFile(vtkPolyData* mesh, const std::string& path);
 
-/// Number of triangles the filters make of the polygons and strips (n - 2 per cell of n points).
-vtkIdType CountTriangles(vtkPolyData* mesh);
+using shockio::CountTriangles;
 
 /// ".ply, .off, .vtp or .vtk": the extensions of the formats keeping at least `arrays`.
 std::string MeshExtensionsKeeping(shockio::MeshArrays arrays);

@@ -1,13 +1,19 @@
 #include "CliFilters.h"
 
 #include "ShockIOMessages.h"
+#include "ShockImageChecks.h"
 
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
+
+#include <algorithm>
+#include <cmath>
 
 #include <chrono>
+#include <new>
 
 namespace shockcli
 {
@@ -41,13 +47,22 @@ const std::vector<Choice>& TracingChoices()
 }
 
 /**
- * The options setting ShockOptions. Ranges are those of vtkShockAdvectionFilter
- * (whose setters would clamp silently); the defaults shown are those of
+ * The options setting ShockOptions. Ranges are the clamps of vtkShockAdvectionFilter
+ * (whose setters would clamp silently: out of range is refused here); the defaults shown are those of
  * 'defaults', a new filter of the kind the command runs.
  */
 std::vector<OptionSpec> ShockOptionSpecs(
   ShockOptions& target, ShockOptionSet set, vtkShockAdvectionFilter* defaults)
 {
+  // The filter's clamps (vtkSetClampMacro's Min/MaxValue), refused beyond.
+  const int passesLow = defaults->GetSmoothingPassesMinValue();
+  const int passesHigh = defaults->GetSmoothingPassesMaxValue();
+  const int updatesLow = defaults->GetNumberOfFlowUpdatesMinValue();
+  const int updatesHigh = defaults->GetNumberOfFlowUpdatesMaxValue();
+  const double stepLow = defaults->GetStepFractionMinValue();
+  const double stepHigh = defaults->GetStepFractionMaxValue();
+  const int threadsLow = defaults->GetNumberOfThreadsMinValue();
+  const int threadsHigh = defaults->GetNumberOfThreadsMaxValue();
   std::vector<OptionSpec> specs;
   if (set == ShockOptionSet::All)
   {
@@ -56,16 +71,18 @@ std::vector<OptionSpec> ShockOptionSpecs(
       [&target](const std::string& v)
       { target.time = ParseInRange("--time", v, 0.0, std::numeric_limits<double>::max()); } });
     specs.push_back({ "--smoothing", "N",
-      "smoothing passes, 0..10000" +
+      "smoothing passes, " + RangeText(passesLow, passesHigh) +
         DefaultText(std::to_string(defaults->GetSmoothingPasses())),
-      [&target](const std::string& v) { target.smoothingPasses = ParseInRange("--smoothing", v, 0, 10000); } });
+      [&target, passesLow, passesHigh](const std::string& v)
+      { target.smoothingPasses = ParseInRange("--smoothing", v, passesLow, passesHigh); } });
     specs.push_back({ "--flow", "MODE",
       "fixed|composed|naive" + DefaultText(ChoiceName(defaults->GetFlowMode(), FlowModeChoices())),
       [&target](const std::string& v) { target.flowMode = ParseChoice("--flow", v, FlowModeChoices()); } });
     specs.push_back({ "--updates", "K",
-      "flow updates of composed/naive, 1..100000" +
+      "flow updates of composed/naive, " + RangeText(updatesLow, updatesHigh) +
         DefaultText(std::to_string(defaults->GetNumberOfFlowUpdates())),
-      [&target](const std::string& v) { target.flowUpdates = ParseInRange("--updates", v, 1, 100000); } });
+      [&target, updatesLow, updatesHigh](const std::string& v)
+      { target.flowUpdates = ParseInRange("--updates", v, updatesLow, updatesHigh); } });
     specs.push_back({ "--sampling", "MODE",
       "linear|nearest" + DefaultText(ChoiceName(defaults->GetSampling(), SamplingChoices())),
       [&target](const std::string& v) { target.sampling = ParseChoice("--sampling", v, SamplingChoices()); } });
@@ -73,14 +90,15 @@ std::vector<OptionSpec> ShockOptionSpecs(
       "exact (face crossing)|stepped" + DefaultText(ChoiceName(defaults->GetTracingMode(), TracingChoices())),
       [&target](const std::string& v) { target.tracingMode = ParseChoice("--tracing", v, TracingChoices()); } });
     specs.push_back({ "--step-fraction", "F",
-      "step of stepped tracing (edges), 0.001..1" +
+      "step of stepped tracing (edges), " + RangeText(stepLow, stepHigh) +
         DefaultText(NumberText(defaults->GetStepFraction())),
-      [&target](const std::string& v)
-      { target.stepFraction = ParseInRange("--step-fraction", v, 0.001, 1.0); } });
+      [&target, stepLow, stepHigh](const std::string& v)
+      { target.stepFraction = ParseInRange("--step-fraction", v, stepLow, stepHigh); } });
   }
-  specs.push_back({ "--threads", "N", "OpenMP threads, 0..4096, 0 = all cores" +
-      DefaultText(std::to_string(defaults->GetNumberOfThreads())),
-    [&target](const std::string& v) { target.threads = ParseInRange("--threads", v, 0, 4096); } });
+  specs.push_back({ "--threads", "N", "OpenMP threads, " + RangeText(threadsLow, threadsHigh) +
+      ", 0 = all cores" + DefaultText(std::to_string(defaults->GetNumberOfThreads())),
+    [&target, threadsLow, threadsHigh](const std::string& v)
+    { target.threads = ParseInRange("--threads", v, threadsLow, threadsHigh); } });
   return specs;
 }
 
@@ -130,10 +148,28 @@ void UpdateOrThrow(vtkAlgorithm* algorithm, const std::string& context)
   Require(trap->Finish(context, error, shockio::Strictness::Lenient), error);
 }
 
-double TimedUpdate(vtkAlgorithm* filter)
+std::uint64_t ImageFilterBytes(vtkIdType samples, int components)
+{
+  return static_cast<std::uint64_t>(samples) * (40 + 20 * static_cast<std::uint64_t>(components));
+}
+
+std::uint64_t MeshFilterBytes(vtkIdType points)
+{
+  return static_cast<std::uint64_t>(points) * 1200;
+}
+
+double TimedUpdate(vtkAlgorithm* filter, std::uint64_t bytesNeeded)
 {
   const auto start = std::chrono::steady_clock::now();
-  UpdateOrThrow(filter, "shock filter failed");
+  try
+  {
+    UpdateOrThrow(filter, "shock filter failed");
+  }
+  catch (const std::bad_alloc&)
+  {
+    throw CliError("out of memory: the filter needs about " + shockio::BytesText(bytesNeeded) +
+      " for this input (see the memory notes of '" + ProgramName + " COMMAND --help')");
+  }
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
   return elapsed.count();
 }
@@ -229,6 +265,52 @@ SelectedArray SelectArray(vtkDataSet* data, const std::string& requested, std::o
   throw CliError("the input has no " + what + " '" + requested + "' (" + available + ")");
 }
 
+vtkSmartPointer<vtkPolyData> InUnitFrame(vtkPolyData* mesh, MeshFrame& frame)
+{
+  double bounds[6];
+  mesh->GetBounds(bounds);
+  frame.scale = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    frame.centre[a] = 0.5 * bounds[2 * a] + 0.5 * bounds[2 * a + 1];
+    frame.scale = std::max(frame.scale, bounds[2 * a + 1] - bounds[2 * a]);
+  }
+  if (!std::isfinite(frame.scale) || !std::isfinite(frame.centre[0] + frame.centre[1] + frame.centre[2]))
+  {
+    throw CliError("the mesh spans more than the double range (its size is not a finite number)");
+  }
+  frame.scale = frame.scale > 0.0 ? frame.scale : 1.0; // a single point: the filter tells
+  auto unit = vtkSmartPointer<vtkPolyData>::New();
+  unit->ShallowCopy(mesh);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(mesh->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    mesh->GetPoint(p, x);
+    points->SetPoint(p, (x[0] - frame.centre[0]) / frame.scale, (x[1] - frame.centre[1]) / frame.scale,
+      (x[2] - frame.centre[2]) / frame.scale);
+  }
+  unit->SetPoints(points);
+  return unit;
+}
+
+void BackFromUnitFrame(vtkPolyData* mesh, const MeshFrame& frame)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(mesh->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    mesh->GetPoint(p, x);
+    points->SetPoint(p, x[0] * frame.scale + frame.centre[0], x[1] * frame.scale + frame.centre[1],
+      x[2] * frame.scale + frame.centre[2]);
+  }
+  mesh->SetPoints(points);
+}
+
 /// Filters the point array 'arrayName' of 'input'; throws "shock filter failed: ..." on error.
 FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   const ShockOptions& options, const ImageMethodOptions& methodOptions)
@@ -247,12 +329,18 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   {
     filter->SetMaximumIterations(*methodOptions.maximumIterations);
   }
+  if (methodOptions.hierarchyLevels)
+  {
+    filter->SetHierarchyLevels(*methodOptions.hierarchyLevels);
+  }
   filter->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrayName.c_str());
   filter->SetInputData(input);
 
   FilterRun run;
-  run.totalSeconds = TimedUpdate(filter);
+  vtkDataArray* values = input->GetPointData()->GetArray(arrayName.c_str());
+  run.totalSeconds = TimedUpdate(
+    filter, ImageFilterBytes(input->GetNumberOfPoints(), values ? values->GetNumberOfComponents() : 1));
   run.output = vtkSmartPointer<vtkImageData>::New();
   run.output->ShallowCopy(filter->GetOutput());
   run.time = filter->GetFlowTime();
@@ -265,6 +353,7 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   run.traceSteps = filter->GetLastTraceSteps();
   run.method = filter->GetMethod();
   run.iterations = filter->GetLastIterations();
+  run.levels = filter->GetHierarchyLevels();
   return run;
 }
 

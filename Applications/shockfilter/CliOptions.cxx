@@ -161,6 +161,11 @@ std::string DefaultText(const std::string& value)
   return " (default " + value + ")";
 }
 
+std::string RangeText(double low, double high)
+{
+  return NumberText(low) + ".." + NumberText(high);
+}
+
 /// --array NAME (not empty).
 OptionSpec ArrayOptionSpec(std::string& target, const std::string& help)
 {

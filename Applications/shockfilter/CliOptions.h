@@ -101,6 +101,9 @@ std::string FormatOptions(const std::vector<OptionSpec>& options);
 /// " (default <value>)", for option help lines.
 std::string DefaultText(const std::string& value);
 
+/// "low..high", for option help lines (the ranges are the filters' clamps).
+std::string RangeText(double low, double high);
+
 /// --array NAME (not empty).
 OptionSpec ArrayOptionSpec(std::string& target, const std::string& help);
 

@@ -36,7 +36,8 @@ std::string TimingsJson(const std::string& command, vtkImageData* image, const F
     .Add("total", run.totalSeconds)
     .Add("trace_steps", run.traceSteps)
     .Add("method", ChoiceName(run.method, MethodChoices()))
-    .Add("iterations", run.iterations);
+    .Add("iterations", run.iterations)
+    .Add("levels", run.levels);
   return json.Text();
 }
 
@@ -60,15 +61,27 @@ std::vector<OptionSpec> ImageOptionSpecs(ImageSettings& settings)
     [&method](const std::string& v) { method.method = ParseChoice("--method", v, MethodChoices()); } });
   const std::vector<OptionSpec> shared = ShockOptionSpecs(settings.shock, ShockOptionSet::All, defaults);
   specs.insert(specs.end(), shared.begin(), shared.end());
+  const int levelsLow = defaults->GetHierarchyLevelsMinValue();
+  const int levelsHigh = defaults->GetHierarchyLevelsMaxValue();
+  specs.push_back({ "--levels", "N",
+    "advection: coarse-to-fine resolution levels, " + RangeText(levelsLow, levelsHigh) +
+      ", 1 = the paper's single level" + DefaultText(std::to_string(defaults->GetHierarchyLevels())),
+    [&method, levelsLow, levelsHigh](const std::string& v)
+    { method.hierarchyLevels = ParseInRange("--levels", v, levelsLow, levelsHigh); } });
+  const double courantLow = defaults->GetCourantNumberMinValue();
+  const double courantHigh = defaults->GetCourantNumberMaxValue();
   specs.push_back({ "--courant", "C",
-    "pde: Courant number of the explicit step, 0.01..1" +
+    "pde: Courant number of the explicit step, " + RangeText(courantLow, courantHigh) +
       DefaultText(NumberText(defaults->GetCourantNumber())),
-    [&method](const std::string& v) { method.courantNumber = ParseInRange("--courant", v, 0.01, 1.0); } });
+    [&method, courantLow, courantHigh](const std::string& v)
+    { method.courantNumber = ParseInRange("--courant", v, courantLow, courantHigh); } });
+  const int stepsLow = defaults->GetMaximumIterationsMinValue();
+  const int stepsHigh = defaults->GetMaximumIterationsMaxValue();
   specs.push_back({ "--max-iterations", "N",
-    "pde: most explicit steps, 1..100000000" +
+    "pde: most explicit steps, " + RangeText(stepsLow, stepsHigh) +
       DefaultText(std::to_string(defaults->GetMaximumIterations())),
-    [&method](const std::string& v)
-    { method.maximumIterations = ParseInRange("--max-iterations", v, 1, 100000000); } });
+    [&method, stepsLow, stepsHigh](const std::string& v)
+    { method.maximumIterations = ParseInRange("--max-iterations", v, stepsLow, stepsHigh); } });
   specs.push_back(
     ArrayOptionSpec(settings.arrayName, "point array to filter (default: active point scalars)"));
   specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));
@@ -95,14 +108,15 @@ std::string ImageHelp()
           "    jpg bmp pnm  unsigned char, 1 or 3 components, 2D\n"
           "  For png/jpg/bmp/pnm other types are rounded and clamped to 0..255 (a note\n"
           "  on stderr says so); other component counts and volumes are refused.\n"
-          "  Memory: the filter needs about 90 bytes per sample of an RGB image (12 per\n"
-          "  sample and component in float, plus the flow field); an input declaring\n"
+          "  Memory: about 40 bytes per sample plus 20 per sample and component (90 per\n"
+          "  pixel of an RGB image, 60 per voxel of a scalar volume); an input declaring\n"
           "  more samples than --max-samples is refused before it is read.\n"
        << TimingsHelp({ "command", "dimensions", "samples", "components", "time", "flow_mode",
                         "threads", "flow", "advection", "total", "trace_steps", "method",
-                        "iterations" },
+                        "iterations", "levels" },
             "  times in seconds, total = wall time of the filter only (no reading/writing);\n"
-            "  for --method pde, advection = the explicit updates, iterations = their number.\n")
+            "  for --method pde, advection = the explicit updates, iterations = their number;\n"
+            "  levels = --levels.\n")
        << "  Options:\n"
        << FormatOptions(ImageOptionSpecs(unused));
   return text.str();

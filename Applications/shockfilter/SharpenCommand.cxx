@@ -48,42 +48,57 @@ struct SharpenSettings
   std::optional<int> iterations;
   std::optional<double> tolerance;
   bool timings = false;
+  std::uint64_t maxSamples = shockio::DefaultMaxSamples;
 };
 
 std::vector<OptionSpec> SharpenOptionSpecs(SharpenSettings& settings)
 {
   vtkNew<vtkPolyDataShockSharpenFilter> defaults;
   std::vector<OptionSpec> specs = ShockOptionSpecs(settings.shock, ShockOptionSet::All, defaults);
+  const double angleLow = defaults->GetFeatureAngleMinValue();
+  const double angleHigh = defaults->GetFeatureAngleMaxValue();
   specs.push_back({ "--feature-angle", "DEG",
-    "creases sharper than this are kept (180 = the paper), 0..180" +
+    "creases sharper than this are kept (180 = the paper), " + RangeText(angleLow, angleHigh) +
       DefaultText(NumberText(defaults->GetFeatureAngle())),
-    [&settings](const std::string& v)
-    { settings.featureAngle = ParseInRange("--feature-angle", v, 0.0, 180.0); } });
+    [&settings, angleLow, angleHigh](const std::string& v)
+    { settings.featureAngle = ParseInRange("--feature-angle", v, angleLow, angleHigh); } });
   specs.push_back({ "--fit-target", "NAME",
     "central-projection|shear|rotation|projection (the paper)" +
       DefaultText(ChoiceName(defaults->GetFitTarget(), FitTargetChoices())),
     [&settings](const std::string& v)
     { settings.fitTarget = ParseChoice("--fit-target", v, FitTargetChoices()); } });
+  const int normalLow = defaults->GetNormalSmoothingPassesMinValue();
+  const int normalHigh = defaults->GetNormalSmoothingPassesMaxValue();
   specs.push_back({ "--normal-smoothing", "N",
-    "smoothing passes of the normals before, 0..1000" +
+    "smoothing passes of the normals before, " + RangeText(normalLow, normalHigh) +
       DefaultText(std::to_string(defaults->GetNormalSmoothingPasses())),
-    [&settings](const std::string& v)
-    { settings.normalSmoothingPasses = ParseInRange("--normal-smoothing", v, 0, 1000); } });
+    [&settings, normalLow, normalHigh](const std::string& v)
+    { settings.normalSmoothingPasses = ParseInRange("--normal-smoothing", v, normalLow, normalHigh); } });
+  const double screeningLow = defaults->GetScreeningWeightMinValue();
+  const double screeningHigh = defaults->GetScreeningWeightMaxValue();
   specs.push_back({ "--screening", "EPS",
-    "screening weight of the fit, 1e-6..1e6" + DefaultText(NumberText(defaults->GetScreeningWeight())),
-    [&settings](const std::string& v)
-    { settings.screeningWeight = ParseInRange("--screening", v, 1e-6, 1e6); } });
+    "screening weight of the fit, " + RangeText(screeningLow, screeningHigh) +
+      DefaultText(NumberText(defaults->GetScreeningWeight())),
+    [&settings, screeningLow, screeningHigh](const std::string& v)
+    { settings.screeningWeight = ParseInRange("--screening", v, screeningLow, screeningHigh); } });
   specs.push_back({ "--solver", "NAME",
     "cg|cg-tolerance|exact" + DefaultText(ChoiceName(defaults->GetSolver(), SolverChoices())),
     [&settings](const std::string& v) { settings.solver = ParseChoice("--solver", v, SolverChoices()); } });
+  const int iterationsLow = defaults->GetSolverIterationsMinValue();
+  const int iterationsHigh = defaults->GetSolverIterationsMaxValue();
   specs.push_back({ "--iterations", "K",
-    "CG iterations (cap of cg-tolerance), 0..100000" +
+    "CG iterations (cap of cg-tolerance), " + RangeText(iterationsLow, iterationsHigh) +
       DefaultText(std::to_string(defaults->GetSolverIterations())),
-    [&settings](const std::string& v) { settings.iterations = ParseInRange("--iterations", v, 0, 100000); } });
+    [&settings, iterationsLow, iterationsHigh](const std::string& v)
+    { settings.iterations = ParseInRange("--iterations", v, iterationsLow, iterationsHigh); } });
+  const double toleranceLow = defaults->GetSolverToleranceMinValue();
+  const double toleranceHigh = defaults->GetSolverToleranceMaxValue();
   specs.push_back({ "--tolerance", "X",
-    "stop residual of cg-tolerance (implied), 0..1" +
+    "stop residual of cg-tolerance (implied), " + RangeText(toleranceLow, toleranceHigh) +
       DefaultText(NumberText(defaults->GetSolverTolerance())),
-    [&settings](const std::string& v) { settings.tolerance = ParseInRange("--tolerance", v, 0.0, 1.0); } });
+    [&settings, toleranceLow, toleranceHigh](const std::string& v)
+    { settings.tolerance = ParseInRange("--tolerance", v, toleranceLow, toleranceHigh); } });
+  specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));
   specs.push_back(TimingsOptionSpec(settings.timings));
   return specs;
 }
@@ -101,6 +116,8 @@ std::string SharpenHelp()
           "  sharper than --feature-angle are kept. Arrays pass through; active\n"
           "  normals are recomputed for the new geometry.\n"
        << MeshFormatsHelp()
+       << "  Memory: about 1200 bytes per point; a file declaring more points or cells\n"
+          "  than --max-samples is refused before it is read.\n"
        << TimingsHelp({ "command", "points", "triangles", "time", "smoothing", "normal_smoothing",
                         "flow_mode", "solver", "feature_angle", "fit_target", "threads", "preprocessing", "setup", "fit_setup",
                         "flow", "advection", "fitting", "total", "trace_steps", "solver_iterations",
@@ -131,7 +148,7 @@ int RunSharpenCommand(const std::vector<std::string>& args)
   MeshFormatOfPath(inputPath);
   MeshFormatOfPath(outputPath); // before the work
   RequireWritable(outputPath);
-  vtkSmartPointer<vtkPolyData> input = ReadMeshFile(inputPath);
+  vtkSmartPointer<vtkPolyData> input = ReadMeshFile(inputPath, settings.maxSamples);
 
   vtkNew<vtkPolyDataShockSharpenFilter> filter;
   ConfigureFilter(filter, settings.shock);
@@ -163,8 +180,10 @@ int RunSharpenCommand(const std::vector<std::string>& args)
   {
     filter->SetSolverTolerance(*settings.tolerance);
   }
-  filter->SetInputData(input);
-  const double seconds = TimedUpdate(filter);
+  MeshFrame frame;
+  filter->SetInputData(InUnitFrame(input, frame));
+  const double seconds = TimedUpdate(filter, MeshFilterBytes(input->GetNumberOfPoints()));
+  BackFromUnitFrame(filter->GetOutput(), frame);
   WriteMeshFile(filter->GetOutput(), outputPath);
 
   if (settings.timings)

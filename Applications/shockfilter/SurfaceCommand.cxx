@@ -25,6 +25,7 @@ struct SurfaceSettings
   std::string arrayName;
   std::optional<int> association;
   bool timings = false;
+  std::uint64_t maxSamples = shockio::DefaultMaxSamples;
 };
 
 std::vector<OptionSpec> SurfaceOptionSpecs(SurfaceSettings& settings)
@@ -36,6 +37,7 @@ std::vector<OptionSpec> SurfaceOptionSpecs(SurfaceSettings& settings)
     "point|cell data only, for --array and the default scalars",
     [&settings](const std::string& v)
     { settings.association = ParseChoice("--association", v, AssociationChoices()); } });
+  specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));
   specs.push_back(TimingsOptionSpec(settings.timings));
   return specs;
 }
@@ -50,6 +52,8 @@ std::string SurfaceHelp()
           "  Sharpens a point or cell array of a surface mesh (e.g. its vertex colours)\n"
           "  by advection over the surface and writes the mesh with the filtered array.\n"
        << MeshFormatsHelp()
+       << "  Memory: about 1200 bytes per point; a file declaring more points or cells\n"
+          "  than --max-samples is refused before it is read.\n"
        << "  The array: --array NAME is looked for in the point data, then in the cell\n"
           "  data (only in those of --association when given); by default, the active\n"
           "  scalars of the point data (of the cell data with --association cell), e.g.\n"
@@ -111,17 +115,19 @@ int RunSurfaceCommand(const std::vector<std::string>& args)
   const shockio::MeshFormat& outputFormat = MeshFormatOfPath(outputPath); // before the work
   RequireWritable(outputPath);
 
-  vtkSmartPointer<vtkPolyData> input = ReadMeshFile(inputPath);
+  vtkSmartPointer<vtkPolyData> input = ReadMeshFile(inputPath, settings.maxSamples);
   const SelectedArray selected = SelectArray(input, settings.arrayName, settings.association, "Scalars");
   RequireMeshStorable(outputFormat, selected, outputPath);
 
   vtkNew<vtkPolyDataShockAdvectionFilter> filter;
   ConfigureFilter(filter, settings.shock);
   filter->SetInputArrayToProcess(0, 0, 0, selected.association, selected.name.c_str());
-  filter->SetInputData(input);
-  const double seconds = TimedUpdate(filter);
+  MeshFrame frame;
+  filter->SetInputData(InUnitFrame(input, frame));
+  const double seconds = TimedUpdate(filter, MeshFilterBytes(input->GetNumberOfPoints()));
 
   vtkPolyData* output = filter->GetOutput();
+  output->SetPoints(input->GetPoints()); // the filter changes the array only
   // The mesh writers store the active scalars as colours: make them the filtered array.
   vtkDataSetAttributes* attributes = selected.association == vtkDataObject::FIELD_ASSOCIATION_CELLS
     ? static_cast<vtkDataSetAttributes*>(output->GetCellData())

@@ -1,6 +1,7 @@
 #include "GridShockAdvection.h"
 #include "GridAdvect.h"
 #include "GridFlow.h"
+#include "GridHierarchy.h"
 #include "GridTrace.h"
 #include "Timer.h"
 
@@ -196,8 +197,11 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
   {
     naiveBuffer = AllocateLargeArray<double>(count);
   }
+  // Stored trace positions: the Composed flow's, and the coarse-to-fine traces'.
+  const std::vector<GridShape> levels = PyramidShapes(shape, p.hierarchyLevels);
+  report.hierarchyLevels = static_cast<int>(levels.size());
   LargeArray<float> positions;
-  if (advect && p.flowMode == FlowMode::Composed)
+  if (advect && (p.flowMode == FlowMode::Composed || levels.size() > 1))
   {
     positions = InitialTracePositions<D>(L, threads);
   }
@@ -225,6 +229,21 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
     if (!advect)
     {
       continue;
+    }
+    if (levels.size() > 1)
+    {
+      // Coarse-to-fine (GridHierarchy.h): the traces cross the coarser levels first;
+      // a Naive step starts them afresh, as it does without levels.
+      if (p.flowMode == FlowMode::Naive && k > 0)
+      {
+        positions = InitialTracePositions<D>(L, threads);
+      }
+      if (!TraceThroughCoarseLevels<D>(levels, C, signal, range, validSample, p, stepTime,
+            positions.get(), report, progress, progressStart))
+      {
+        report.aborted = true;
+        break;
+      }
     }
 
     const auto advectStart = Clock::now();

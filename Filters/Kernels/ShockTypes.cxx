@@ -23,6 +23,10 @@ Status CheckAdvectionParameters(const AdvectionParameters& parameters)
   {
     return { "the number of flow updates must be >= 1" };
   }
+  if (parameters.hierarchyLevels < 1)
+  {
+    return { "the number of hierarchy levels must be >= 1" };
+  }
   if (!(parameters.valueScale >= 0.0) || !std::isfinite(parameters.valueScale))
   {
     return { "the value scale must be finite and >= 0" };

@@ -68,6 +68,10 @@ struct AdvectionParameters
   /// pieces of a parallel run). 0, the default, uses the data range. Mesh signals carry
   /// their own MeshSignal::valueScale.
   double valueScale = 0.0;
+  /// Resolution levels of the grid kernel's coarse-to-fine tracing (>= 1; GridHierarchy.h):
+  /// 1 is the paper's single level. Levels the grid is too small for are not built.
+  /// Ignored by the mesh kernels.
+  int hierarchyLevels = 1;
 };
 
 /// What a run did, for logs, timings and tests.
@@ -78,6 +82,7 @@ struct AdvectionReport
   std::uint64_t traceSteps = 0;  ///< face crossings (FaceCrossing) or delta-steps (Stepped), all traces
   std::uint64_t truncatedTraces = 0; ///< traces stopped by the step cap (a discrete cycle guard)
   bool aborted = false;          ///< the progress callback asked to stop
+  int hierarchyLevels = 1;       ///< resolution levels the grid kernel used (GridHierarchy.h)
 };
 
 /**

@@ -1,6 +1,7 @@
 // Tests of the mesh file input and output of shockfilter (ShockMeshIO.h): round
 // trips through every format, colours, the OFF reader's syntax and the errors
 // of malformed, missing and unsupported files (never a crash or printed text).
+#include "IOTestSupport.h"
 #include "ShockMeshIO.h"
 #include "TestMeshesVTK.h"
 
@@ -37,27 +38,11 @@ namespace
 {
 using shocktest::FromPolyData;
 using shocktest::Icosphere;
+using shocktest::TempPath;
+using shocktest::TextFile;
 using shocktest::ToPolyData;
 
 const char* const Formats[] = { "ply", "obj", "stl", "vtp", "vtk", "off" };
-
-/// A path for this test's file `name` in the test directory of the build tree.
-std::string TempPath(const std::string& name)
-{
-  const std::filesystem::path directory(SHOCK_IO_TEST_DIR);
-  std::filesystem::create_directories(directory);
-  const auto* test = testing::UnitTest::GetInstance()->current_test_info();
-  return (directory / (std::string(test->test_suite_name()) + "." + test->name() + "." + name))
-    .string();
-}
-
-/// Writes `text` to a new file `name` and returns its path.
-std::string TextFile(const std::string& name, const std::string& text)
-{
-  const std::string path = TempPath(name);
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
 
 /// The corner coordinates of every polygon, in order: compares meshes whose point ids differ.
 std::vector<std::vector<std::array<double, 3>>> PolygonCorners(vtkPolyData* mesh)

@@ -17,7 +17,8 @@ and PYTHONPATH holds the build's Python package shockfilters.
 - cpp: a complete program, compiled against the build tree with
   find_package(ShockFilters) and VTK, then run.
 
-A block passes when it exits with 0 and prints no VTK error ("ERR|") and no
+A block passes when it exits with 0 and prints no VTK error or warning
+("ERR|", "WARN|") and no
 Python traceback. A block that needs a missing tool (xvfb-run, mpirun,
 pvpython) is skipped and says so; a block preceded by the line
 `<!-- snippet: not run: REASON -->` is skipped with that reason (for commands
@@ -42,61 +43,10 @@ NOT_RUN = re.compile(r"<!--\s*snippet:\s*not run:\s*(?P<why>.*?)\s*-->\s*$")
 LANGUAGES = {"python": "python", "py": "python", "sh": "sh", "bash": "sh", "shell": "sh",
              "cpp": "cpp", "c++": "cpp", "cxx": "cpp"}
 RENDERS = re.compile(r"\b(Show|Render|SaveScreenshot|CreateView|GetActiveViewOrCreate)\s*\(")
-FAILURE = re.compile(r"ERR\||Traceback \(most recent call last\)")
+FAILURE = re.compile(r"ERR\||WARN\||Traceback \(most recent call last\)")
 TIMEOUT = 900
+FIXTURE_SCRIPT = pathlib.Path(__file__).resolve().parent.parent / "Python" / "MakeUserFixtures.py"
 
-FIXTURES = r'''
-import math, sys
-from vtkmodules.vtkCommonCore import vtkFloatArray, vtkUnsignedCharArray
-from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkFiltersSources import vtkSphereSource
-from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkIOPLY import vtkPLYWriter
-from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
-
-def blurred_disc(x, y, cx, cy, r, width):
-    return 0.5 + 0.5 * math.tanh((r - math.hypot(x - cx, y - cy)) / width)
-
-# photo.png: RGB, a soft red disc and a soft blue square on grey.
-photo = vtkImageData(); photo.SetDimensions(96, 64, 1)
-rgb = vtkUnsignedCharArray(); rgb.SetNumberOfComponents(3); rgb.SetName("PNGImage")
-for y in range(64):
-    for x in range(96):
-        d = blurred_disc(x, y, 30, 32, 16, 3.0)
-        s = (0.5 + 0.5 * math.tanh((12 - abs(x - 70)) / 3.0)) * (0.5 + 0.5 * math.tanh((12 - abs(y - 32)) / 3.0))
-        rgb.InsertNextTuple3(round(60 + 180 * d), 60, round(60 + 180 * s))
-photo.GetPointData().SetScalars(rgb)
-writer = vtkPNGWriter(); writer.SetInputData(photo); writer.SetFileName("photo.png"); writer.Write()
-
-# ct.vti: a soft ball, point array "density".
-ct = vtkImageData(); ct.SetDimensions(24, 24, 24); ct.SetSpacing(0.5, 0.5, 0.5)
-density = vtkFloatArray(); density.SetName("density")
-for z in range(24):
-    for y in range(24):
-        for x in range(24):
-            r = math.sqrt((x - 11.5) ** 2 + (y - 11.5) ** 2 + (z - 11.5) ** 2)
-            density.InsertNextValue(1000.0 * (0.5 + 0.5 * math.tanh((7.0 - r) / 2.0)))
-ct.GetPointData().AddArray(density)
-writer = vtkXMLImageDataWriter(); writer.SetInputData(ct); writer.SetFileName("ct.vti"); writer.Write()
-
-# scan.ply: a sphere with soft colour bands (red, green, blue per vertex).
-sphere = vtkSphereSource(); sphere.SetThetaResolution(48); sphere.SetPhiResolution(24); sphere.Update()
-mesh = sphere.GetOutput()
-colours = vtkUnsignedCharArray(); colours.SetNumberOfComponents(3); colours.SetName("RGB")
-for i in range(mesh.GetNumberOfPoints()):
-    x, y, z = mesh.GetPoint(i)
-    colours.InsertNextTuple3(round(255 * (0.5 + 0.5 * math.tanh(8 * z))), 80, round(255 * (0.5 + 0.5 * math.tanh(8 * x))))
-mesh.GetPointData().SetScalars(colours)
-writer = vtkPLYWriter(); writer.SetInputData(mesh); writer.SetArrayName("RGB"); writer.SetFileName("scan.ply"); writer.Write()
-
-# script.py: what a user passes to pvbatch.
-with open("script.py", "w") as script:
-    script.write("""from paraview.simple import *
-LoadPlugin("build/lib/paraview-5.11/plugins/ShockFilters/ShockFilters.so", ns=globals())
-shock = ImageShockAdvection(Input=Wavelet())
-SaveData("wavelet_sharp.pvti", proxy=shock)
-""")
-'''
 
 CPP_PROJECT = """cmake_minimum_required(VERSION 3.16)
 project(Snippet LANGUAGES C CXX)
@@ -161,7 +111,8 @@ def command(args, language, code, folder):
         if RENDERS.search(code):
             if not shutil.which("xvfb-run"):
                 return None, "renders, and xvfb-run is not installed"
-            return ["xvfb-run", "-a", args.pvpython, "snippet.py"], None
+            # -noreset: pvpython opens a test window first; a reset would drop the next.
+            return ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24 -noreset", args.pvpython, "snippet.py"], None
         return [args.pvpython, "--force-offscreen-rendering", "snippet.py"], None
     if language == "sh":
         for tool in ("xvfb-run", "mpirun", "pvpython", "pvbatch"):
@@ -192,7 +143,7 @@ def main():
     shutil.rmtree(args.work, ignore_errors=True)
     fixtures = pathlib.Path(args.work) / "fixtures"
     fixtures.mkdir(parents=True)
-    subprocess.run([args.python or sys.executable, "-c", FIXTURES], cwd=fixtures, check=True)
+    subprocess.run([args.python or sys.executable, str(FIXTURE_SCRIPT)], cwd=fixtures, check=True)
 
     counts = {"PASS": 0, "FAIL": 0, "SKIP": 0}
     for index, (line, language, code, not_run) in enumerate(blocks(markdown)):

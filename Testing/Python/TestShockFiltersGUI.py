@@ -104,7 +104,6 @@ try:
 
     # Image Shock Advection on a Wavelet, applied in the GUI session.
     wavelet = simple.Wavelet(WholeExtent=[0, 127, 0, 127, 0, 0])
-    wavelet.UpdatePipeline()
     image = simple.ImageShockAdvection(Input=wavelet, FlowTime=512.0)
     check(list(image.InputArray) == ["POINTS", "RTData"], "GUI image: default input array RTData")
     image.UpdatePipeline()
@@ -114,7 +113,6 @@ try:
     sphere = simple.Sphere(ThetaResolution=128, PhiResolution=64)
     colour = simple.Calculator(Input=sphere, ResultArrayName="Pattern",
                                Function="tanh(12*sin(9*coordsX)*sin(9*coordsY)*sin(9*coordsZ))")
-    colour.UpdatePipeline()
     surface = simple.SurfaceShockAdvection(Input=colour, FlowTime=1024.0)
     check(list(surface.InputArray) == ["POINTS", "Pattern"], "GUI surface: default input array Pattern")
     surface.UpdatePipeline()

@@ -1,0 +1,160 @@
+// Which array the advection filters process when none is named: the active
+// point scalars, else the active cell scalars (also for the empty name that
+// ParaView sends when the input had no arrays yet), said at INFO level.
+#include "vtkImageShockAdvectionFilter.h"
+#include "vtkPolyDataShockAdvectionFilter.h"
+
+#include "TestFilterHelpers.h"
+
+#include "vtkCell.h"
+#include "vtkCellData.h"
+#include "vtkDoubleArray.h"
+#include "vtkImageData.h"
+#include "vtkLogger.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+namespace
+{
+using shock_test::MessageLog;
+using shock_test::UpdateSucceeds;
+
+// A soft step along x, nx by ny samples (points) or cells.
+vtkSmartPointer<vtkDoubleArray> Step(const char* name, int nx, int ny)
+{
+  auto values = vtkSmartPointer<vtkDoubleArray>::New();
+  values->SetName(name);
+  for (int y = 0; y < ny; ++y)
+  {
+    for (int x = 0; x < nx; ++x)
+    {
+      values->InsertNextValue(std::tanh((x - 0.5 * (nx - 1)) / 3.0));
+    }
+  }
+  return values;
+}
+
+// INFO messages of vtkLogger while it lives.
+class InfoLog
+{
+public:
+  InfoLog() { vtkLogger::AddCallback("shock-test-info", &InfoLog::Collect, this, vtkLogger::VERBOSITY_INFO); }
+  ~InfoLog() { vtkLogger::RemoveCallback("shock-test-info"); }
+  std::string Text;
+
+private:
+  static void Collect(void* self, const vtkLogger::Message& message)
+  {
+    static_cast<InfoLog*>(self)->Text += std::string(message.message) + "\n";
+  }
+};
+
+bool Changed(vtkDataArray* before, vtkDataArray* after)
+{
+  double largest = 0.0;
+  for (vtkIdType i = 0; i < before->GetNumberOfTuples(); ++i)
+  {
+    largest = std::fmax(largest, std::fabs(after->GetTuple1(i) - before->GetTuple1(i)));
+  }
+  return largest > 0.05;
+}
+}
+
+TEST(ShockArraySelection, EmptyNameMeansTheActivePointScalars)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(40, 8, 1);
+  image->GetPointData()->AddArray(Step("Other", 40, 8));
+  image->GetPointData()->SetScalars(Step("Active", 40, 8));
+  vtkNew<vtkImageShockAdvectionFilter> filter;
+  filter->SetInputData(image);
+  filter->SetFlowTime(512.0);
+  filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "");
+  InfoLog log;
+  ASSERT_TRUE(UpdateSucceeds(filter));
+  vtkPointData* out = filter->GetOutput()->GetPointData();
+  EXPECT_TRUE(Changed(image->GetPointData()->GetArray("Active"), out->GetArray("Active")));
+  EXPECT_FALSE(Changed(image->GetPointData()->GetArray("Other"), out->GetArray("Other")));
+  EXPECT_NE(log.Text.find("active point scalars 'Active'"), std::string::npos) << log.Text;
+}
+
+TEST(ShockArraySelection, WithoutPointScalarsTheActiveCellScalars)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(41, 9, 1);
+  image->GetPointData()->AddArray(Step("NotScalars", 41, 9));
+  image->GetCellData()->SetScalars(Step("CellStep", 40, 8));
+  vtkNew<vtkImageShockAdvectionFilter> filter; // the default selection: no name
+  filter->SetInputData(image);
+  filter->SetFlowTime(512.0);
+  InfoLog log;
+  ASSERT_TRUE(UpdateSucceeds(filter));
+  EXPECT_TRUE(Changed(image->GetCellData()->GetScalars(), filter->GetOutput()->GetCellData()->GetArray("CellStep")));
+  EXPECT_NE(log.Text.find("active cell scalars 'CellStep'"), std::string::npos) << log.Text;
+}
+
+TEST(ShockArraySelection, SurfacesFallBackToo)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(32);
+  sphere->SetPhiResolution(16);
+  sphere->Update();
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(sphere->GetOutput());
+  mesh->GetPointData()->SetScalars(nullptr);
+  auto band = vtkSmartPointer<vtkDoubleArray>::New();
+  band->SetName("Band");
+  for (vtkIdType c = 0; c < mesh->GetNumberOfCells(); ++c)
+  {
+    double center[3] = { 0, 0, 0 };
+    double point[3];
+    for (vtkIdType k = 0; k < 3; ++k)
+    {
+      mesh->GetPoint(mesh->GetCell(c)->GetPointId(k), point);
+      center[2] += point[2] / 3.0;
+    }
+    band->InsertNextValue(std::tanh(8.0 * center[2]));
+  }
+  mesh->GetCellData()->SetScalars(band);
+  vtkNew<vtkPolyDataShockAdvectionFilter> filter;
+  filter->SetInputData(mesh);
+  filter->SetFlowTime(4096.0);
+  filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "");
+  InfoLog log;
+  ASSERT_TRUE(UpdateSucceeds(filter));
+  EXPECT_TRUE(Changed(band, filter->GetOutput()->GetCellData()->GetArray("Band")));
+  EXPECT_NE(log.Text.find("active cell scalars 'Band'"), std::string::npos) << log.Text;
+}
+
+TEST(ShockArraySelection, NoScalarsAtAllIsAClearError)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(10, 10, 1);
+  image->GetPointData()->AddArray(Step("NotScalars", 10, 10));
+  vtkNew<vtkImageShockAdvectionFilter> filter;
+  filter->SetInputData(image);
+  MessageLog log(filter);
+  EXPECT_FALSE(UpdateSucceeds(filter));
+  EXPECT_NE(log.Errors.find("no active point or cell scalars"), std::string::npos) << log.Errors;
+}
+
+TEST(ShockArraySelection, ANamedArrayThatIsMissingIsStillAnError)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(10, 10, 1);
+  image->GetPointData()->SetScalars(Step("Active", 10, 10));
+  vtkNew<vtkImageShockAdvectionFilter> filter;
+  filter->SetInputData(image);
+  filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Missing");
+  MessageLog log(filter);
+  EXPECT_FALSE(UpdateSucceeds(filter));
+  EXPECT_NE(log.Errors.find("no point or cell array named 'Missing'"), std::string::npos) << log.Errors;
+}

@@ -1,0 +1,229 @@
+// The IO library's image files: the whole-file PNG check (written from the PNG
+// specification, not from the code: chunk CRCs, IHDR rules, Adam7 passes,
+// filter bytes), declared sizes against the limit, PNM headers VTK's reader
+// loops on, and outputs that replace their target only when complete.
+#include "IOTestSupport.h"
+#include "ShockIOFiles.h"
+#include "ShockImageChecks.h"
+#include "ShockImageIO.h"
+
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "vtk_zlib.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace
+{
+using shocktest::FileBytes;
+using shocktest::TempPath;
+
+std::string BigEndian(std::uint32_t value)
+{
+  return { static_cast<char>(value >> 24), static_cast<char>(value >> 16), static_cast<char>(value >> 8),
+    static_cast<char>(value) };
+}
+
+/// A PNG chunk: length, type, data, CRC of type and data (PNG specification, 5.3).
+std::string Chunk(const std::string& type, const std::string& data)
+{
+  const std::string body = type + data;
+  const auto crc = static_cast<std::uint32_t>(
+    crc32(0, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
+  return BigEndian(static_cast<std::uint32_t>(data.size())) + body + BigEndian(crc);
+}
+
+std::string Ihdr(std::uint32_t width, std::uint32_t height, int depth, int colour, int interlace)
+{
+  return BigEndian(width) + BigEndian(height) + std::string{ static_cast<char>(depth), static_cast<char>(colour), 0, 0,
+    static_cast<char>(interlace) };
+}
+
+std::string Deflate(const std::string& raw)
+{
+  uLongf size = compressBound(static_cast<uLong>(raw.size()));
+  std::string out(size, '\0');
+  compress(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
+    static_cast<uLong>(raw.size()));
+  out.resize(size);
+  return out;
+}
+
+/// The image rows of a greyscale 8-bit image, each a filter byte 0 then `width` pixel bytes.
+std::string Rows(std::uint32_t width, std::uint32_t height, char filter = 0)
+{
+  std::string rows;
+  for (std::uint32_t y = 0; y < height; ++y)
+  {
+    rows += filter;
+    for (std::uint32_t x = 0; x < width; ++x)
+    {
+      rows += static_cast<char>(x * 16 + y);
+    }
+  }
+  return rows;
+}
+
+const std::string Signature = "\x89PNG\r\n\x1a\n";
+
+std::string Png(const std::string& ihdr, const std::string& idat)
+{
+  return Signature + Chunk("IHDR", ihdr) + Chunk("IDAT", idat) + Chunk("IEND", "");
+}
+
+bool Check(const std::string& png, std::string& problem, std::uint64_t limit = shockio::DefaultMaxSamples)
+{
+  shockio::ImageHeader header;
+  problem.clear();
+  return shockio::CheckPng(png, header, limit, problem);
+}
+
+TEST(ShockImageIO, CompletePngsPass)
+{
+  std::string problem;
+  EXPECT_TRUE(Check(Png(Ihdr(5, 3, 8, 0, 0), Deflate(Rows(5, 3))), problem)) << problem;
+  // Adam7 (PNG specification, 8.2): pass p covers the pixels from (x0, y0) in steps (dx, dy).
+  const int x0[] = { 0, 4, 0, 2, 0, 1, 0 }, y0[] = { 0, 0, 4, 0, 2, 0, 1 }, dx[] = { 8, 8, 4, 4, 2, 2, 1 },
+            dy[] = { 8, 8, 8, 4, 4, 2, 2 };
+  const int width = 11, height = 6;
+  std::string interlaced;
+  for (int pass = 0; pass < 7; ++pass)
+  {
+    int columns = 0, rows = 0;
+    for (int x = x0[pass]; x < width; x += dx[pass])
+    {
+      ++columns;
+    }
+    for (int y = y0[pass]; y < height; y += dy[pass])
+    {
+      ++rows;
+    }
+    if (columns > 0)
+    {
+      interlaced += Rows(static_cast<std::uint32_t>(columns), static_cast<std::uint32_t>(rows));
+    }
+  }
+  EXPECT_TRUE(Check(Png(Ihdr(width, height, 8, 0, 1), Deflate(interlaced)), problem)) << problem;
+  // The same data read as not interlaced is too long.
+  EXPECT_FALSE(Check(Png(Ihdr(width, height, 8, 0, 0), Deflate(interlaced)), problem));
+}
+
+TEST(ShockImageIO, DamagedPngsAreRefusedWithTheReason)
+{
+  const std::string good = Png(Ihdr(5, 3, 8, 0, 0), Deflate(Rows(5, 3)));
+  std::string problem;
+  std::string crc = good;
+  crc[Signature.size() + 8 + 2] ^= 1; // a byte of IHDR's data
+  EXPECT_FALSE(Check(crc, problem));
+  EXPECT_EQ(problem, "the PNG chunk 'IHDR' is damaged (CRC mismatch)");
+  EXPECT_FALSE(Check(Png(Ihdr(5, 3, 8, 0, 0), Deflate(Rows(5, 3, 5))), problem));
+  EXPECT_EQ(problem, "the PNG image data has an invalid filter byte 5");
+  std::string deflate = Deflate(Rows(5, 3));
+  deflate[0] = 0x7f; // not a zlib header
+  EXPECT_FALSE(Check(Png(Ihdr(5, 3, 8, 0, 0), deflate), problem));
+  EXPECT_NE(problem.find("the compressed PNG image data is damaged"), std::string::npos) << problem;
+  EXPECT_FALSE(Check(Png(Ihdr(5, 3, 8, 0, 0), Deflate(Rows(5, 2))), problem));
+  EXPECT_NE(problem.find("shorter than the image"), std::string::npos) << problem;
+  EXPECT_FALSE(Check(Png(Ihdr(0, 3, 8, 0, 0), Deflate("")), problem));
+  EXPECT_NE(problem.find("declares 0x3 pixels"), std::string::npos) << problem;
+  EXPECT_FALSE(Check(Png(Ihdr(5, 3, 16, 3, 0), Deflate(Rows(5, 3))), problem)); // palette of 16 bits
+  EXPECT_NE(problem.find("invalid PNG header"), std::string::npos) << problem;
+  EXPECT_FALSE(Check(good.substr(0, good.size() - 12), problem));
+  EXPECT_NE(problem.find("truncated"), std::string::npos) << problem;
+}
+
+TEST(ShockImageIO, DeclaredSizesBeyondTheLimitAreRefusedBeforeTheData)
+{
+  // 20000 x 20000 grey pixels in a file of a few hundred bytes (the data is short).
+  const std::string png = Png(Ihdr(20000, 20000, 8, 0, 0), Deflate(std::string(20001, '\0')));
+  std::string problem;
+  EXPECT_FALSE(Check(png, problem));
+  EXPECT_EQ(problem,
+    "declares 20000x20000 samples (381 MiB as read), more than the limit of 100000000 samples");
+  EXPECT_FALSE(Check(png, problem, 400000000)); // within the limit, the short data is found
+  EXPECT_NE(problem.find("shorter than the image"), std::string::npos) << problem;
+
+  const std::string path = TempPath("huge.pgm");
+  std::ofstream(path, std::ios::binary) << "P5\n65000 65000\n255\n" << std::string(64, '\0');
+  std::string error;
+  EXPECT_EQ(shockio::ReadImage(path, shockio::DefaultMaxSamples, error), nullptr);
+  EXPECT_EQ(error, path + ": declares 65000x65000 samples (3.93 GiB as read), more than the limit of 100000000 samples");
+}
+
+TEST(ShockImageIO, PnmHeadersVtkLoopsOnAreRefusedAtOnce)
+{
+  for (const std::string header : { std::string("P6\nx"), std::string("P5\n4 4 \n"), std::string("P6\n-5 x") })
+  {
+    const std::string path = TempPath("loop.ppm");
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << header;
+    std::string error;
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_EQ(shockio::ReadImage(path, shockio::DefaultMaxSamples, error), nullptr);
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+    EXPECT_EQ(error, path + ": malformed PNM header (expected width, height and maximum value as numbers)");
+  }
+}
+
+/// A 16 x 8 RGB test image, its point scalars named "Colour".
+vtkSmartPointer<vtkImageData> TestImage()
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(16, 8, 1);
+  vtkNew<vtkUnsignedCharArray> colour;
+  colour->SetName("Colour");
+  colour->SetNumberOfComponents(3);
+  colour->SetNumberOfTuples(image->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < colour->GetNumberOfValues(); ++i)
+  {
+    colour->SetValue(i, static_cast<unsigned char>(i * 7));
+  }
+  image->GetPointData()->SetScalars(colour);
+  return image;
+}
+
+TEST(ShockImageIO, RasterFilesRoundTripAndAFailedWriteLeavesTheTarget)
+{
+  for (const char* extension : { "png", "jpg", "tif", "bmp", "ppm", "vti", "vtk" })
+  {
+    const std::string path = TempPath(std::string("image.") + extension);
+    const std::string before = "the existing file, which must survive\n";
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << before;
+    std::string error, note;
+    bool written = true;
+    {
+      shocktest::FileSizeLimit fullDisk(64);
+      written = shockio::WriteImage(TestImage(), path, "Colour", error, note);
+    }
+    EXPECT_FALSE(written) << extension;
+    EXPECT_EQ(error.rfind(path + ": ", 0), 0u) << error;
+    EXPECT_EQ(FileBytes(path), before) << extension;
+    EXPECT_TRUE(shocktest::PartialFiles(std::filesystem::path(path).parent_path().string()).empty());
+
+    ASSERT_TRUE(shockio::WriteImage(TestImage(), path, "Colour", error, note)) << error;
+    const vtkSmartPointer<vtkImageData> read = shockio::ReadImage(path, shockio::DefaultMaxSamples, error);
+    ASSERT_NE(read, nullptr) << error;
+    int dims[3];
+    read->GetDimensions(dims);
+    EXPECT_EQ(dims[0], 16) << extension;
+    EXPECT_EQ(dims[1], 8) << extension;
+    if (std::string(extension) != "jpg") // lossy
+    {
+      vtkDataArray* values = read->GetPointData()->GetScalars();
+      for (vtkIdType i = 0; i < values->GetNumberOfValues(); ++i)
+      {
+        ASSERT_EQ(values->GetComponent(i / 3, static_cast<int>(i % 3)), static_cast<unsigned char>(i * 7))
+          << extension << " value " << i;
+      }
+    }
+  }
+}
+
+} // namespace
