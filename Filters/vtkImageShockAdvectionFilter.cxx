@@ -15,6 +15,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkShockFilterInternals.h"
+#include "vtkShockParallel.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
@@ -138,8 +139,31 @@ int vtkImageShockAdvectionFilter::FillInputPortInformation(int, vtkInformation* 
   return 1;
 }
 
+vtkImageShockAdvectionFilter::vtkImageShockAdvectionFilter()
+{
+  // Default array: the active point scalars.
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS,
+    vtkDataSetAttributes::SCALARS);
+}
+
 int vtkImageShockAdvectionFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // Pieces are normalised by the range over all pieces (collective: before anything can fail).
+  bool unknown = false;
+  vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);
+  this->ParallelValueScale = this->GlobalValueScale(controller, inputVector);
+  // Filter the piece with its ghost layers, then hand back what was asked for.
+  const int done = this->FilterImage(inputVector, outputVector, controller || unknown);
+  if (done)
+  {
+    this->CropToUpdateExtent(outputVector);
+  }
+  return done;
+}
+
+int vtkImageShockAdvectionFilter::FilterImage(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool piece)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
@@ -155,7 +179,7 @@ int vtkImageShockAdvectionFilter::RequestData(
   if (input->GetNumberOfPoints() == 0)
   {
     output->ShallowCopy(input);
-    if (this->ParallelPiecesWithData == NOT_A_PIECE) // an empty piece of a parallel run is normal
+    if (!piece) // an empty piece of a parallel run is normal
     {
       vtkWarningMacro("The input image is empty: nothing to filter.");
     }
@@ -330,7 +354,7 @@ int vtkImageShockAdvectionFilter::RequestUpdateExtent(
   {
     return 1;
   }
-  if (this->ExecutingBlock || vtkCompositeDataSet::SafeDownCast(vtkDataObject::GetData(inInfo)))
+  if (vtkShockParallel::UpstreamIsComposite(this))
   {
     return 1; // composite input: each block as it comes (no ghost layers, no crop)
   }
@@ -360,17 +384,6 @@ int vtkImageShockAdvectionFilter::RequestUpdateExtent(
     }
   }
   return 1;
-}
-
-vtkTypeBool vtkImageShockAdvectionFilter::ProcessRequest(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
-  const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
-  if (result && request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
-  {
-    this->CropToUpdateExtent(outputVector);
-  }
-  return result;
 }
 
 void vtkImageShockAdvectionFilter::CropToUpdateExtent(vtkInformationVector* outputVector)

@@ -152,7 +152,7 @@ public:
   ///@}
 
 protected:
-  vtkImageShockAdvectionFilter() = default;
+  vtkImageShockAdvectionFilter();
   ~vtkImageShockAdvectionFilter() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
@@ -161,15 +161,15 @@ protected:
   int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
-  /// The superclass's dispatch, then CropToUpdateExtent after a successful REQUEST_DATA.
-  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
-
   /// Crop the output (filtered on the grown input extent) to the output's UPDATE_EXTENT.
   void CropToUpdateExtent(vtkInformationVector* outputVector);
 
+  /// The data range over all pieces, FilterImage, then CropToUpdateExtent.
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
+
+  /// Filter the input image (with its ghost layers) into the output; `piece`: one of several.
+  int FilterImage(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool piece);
 
   void ResetMeasurements() override;
 

@@ -3,12 +3,15 @@
 #include "MeshShockAdvection.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkMultiProcessController.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkShockFilterInternals.h"
+#include "vtkShockParallel.h"
 #include "vtkShockPolyDataInternals.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -29,49 +32,127 @@ vtkPolyData* vtkPolyDataShockAdvectionFilter::GetOutput(int port)
   return vtkPolyData::SafeDownCast(this->GetOutputDataObject(port));
 }
 
+vtkPolyDataShockAdvectionFilter::vtkPolyDataShockAdvectionFilter()
+{
+  // Default array: the active point scalars.
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS,
+    vtkDataSetAttributes::SCALARS);
+}
+
 int vtkPolyDataShockAdvectionFilter::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUnstructuredGrid");
   return 1;
+}
+
+int vtkPolyDataShockAdvectionFilter::RequestDataObject(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  return vtkShockPolyDataInternals::EnsurePolyDataOutput(inputVector, outputVector)
+    ? 1
+    : this->Superclass::RequestDataObject(request, inputVector, outputVector);
 }
 
 int vtkPolyDataShockAdvectionFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  if (!input || !output)
-  {
-    vtkErrorMacro("Input and output must be vtkPolyData.");
-    return 0;
-  }
-  if (!this->BeginExecution())
+  if (!output || !this->BeginExecution())
   {
     return 0;
   }
+  // The surface (an unstructured grid of polygons is read as polydata) and the array to filter.
+  std::string error;
+  vtkSmartPointer<vtkPolyData> input =
+    vtkShockPolyDataInternals::AsSurface(vtkDataSet::GetData(inputVector[0]), error);
+  int association = -1;
+  vtkDataArray* array = nullptr;
+  if (input && input->GetNumberOfPoints() > 0)
+  {
+    array = this->GetArrayToFilter(inputVector, association);
+    error = array ? error : "no array to filter (see the message above)";
+  }
+  // In parallel: every process agrees, then gets ghost cells (collective).
+  bool unknown = false;
+  vtkShockParallel::SurfacePiece piece;
+  if (!vtkShockParallel::PrepareSurfacePiece(this->PieceController(outputVector, unknown), input,
+        error, this->GhostLevels, piece, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  if (piece.skip)
+  {
+    output->Initialize();
+    return 1; // replicated data: process 0 filters it once
+  }
+  // Normalise like the whole surface: data range and mean edge length over all pieces.
+  this->ParallelValueScale = this->GlobalValueScale(piece.controller, inputVector);
+  this->ParallelLengthScale = this->GlobalMeanEdgeLength(piece.controller, piece.work);
   if (input->GetNumberOfPoints() == 0)
   {
     output->ShallowCopy(input);
-    if (this->ParallelPiecesWithData == NOT_A_PIECE) // an empty piece of a parallel run is normal
+    if (!piece.controller) // an empty piece of a parallel run is normal
     {
       vtkWarningMacro("The input mesh is empty: nothing to filter.");
     }
     return 1;
   }
-  int association = -1;
-  vtkDataArray* array = this->GetArrayToFilter(inputVector, association);
-  if (!array)
+  // Filter the piece with its ghost cells; the output holds each owned cell once.
+  vtkNew<vtkPolyData> filtered;
+  if (!this->FilterSurface(piece.work, array, association, filtered))
   {
     return 0;
   }
-  const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
-  const char* name = array->GetName() ? array->GetName() : "(unnamed)";
-  const vtkIdType expected = cellData ? input->GetNumberOfCells() : input->GetNumberOfPoints();
-  if (array->GetNumberOfTuples() != expected)
+  output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(filtered, input).GetPointer()
+                                       : filtered.GetPointer());
+  return 1;
+}
+
+double vtkPolyDataShockAdvectionFilter::GlobalMeanEdgeLength(
+  vtkMultiProcessController* controller, vtkPolyData* piece)
+{
+  if (!controller)
   {
-    vtkErrorMacro("Array '" << name << "' has " << array->GetNumberOfTuples() << " tuples, the mesh has "
-                            << expected << (cellData ? " cells." : " points."));
-    return 0;
+    return 0.0;
+  }
+  double sums[2] = { 0.0, 0.0 }; // edge lengths, edges
+  vtkShockPolyDataInternals::Triangles triangles;
+  std::string error;
+  if (piece && vtkShockPolyDataInternals::ExtractTriangles(piece, triangles, error))
+  {
+    vtkUnsignedCharArray* ghosts = piece->GetCellGhostArray();
+    for (size_t f = 0; f < triangles.sourceCell.size(); ++f)
+    {
+      if (!ghosts || !(ghosts->GetValue(triangles.sourceCell[f]) & vtkDataSetAttributes::DUPLICATECELL))
+      {
+        sums[0] += shock::TrianglePerimeter(triangles.points.data(), &triangles.triangles[3 * f]);
+        sums[1] += 3.0;
+      }
+    }
+  }
+  vtkShockParallel::Sum(controller, sums, 2);
+  return sums[1] > 0.0 && sums[0] > 0.0 ? sums[0] / sums[1] : 0.0;
+}
+
+bool vtkPolyDataShockAdvectionFilter::FilterSurface(
+  vtkPolyData* input, vtkDataArray* selected, int association, vtkPolyData* output)
+{
+  const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  // The selected array as the piece (with ghost cells) has it.
+  vtkDataSetAttributes* inputAttributes = cellData
+    ? static_cast<vtkDataSetAttributes*>(input->GetCellData()) : input->GetPointData();
+  vtkDataArray* array = selected->GetName() ? inputAttributes->GetArray(selected->GetName())
+                                            : inputAttributes->GetScalars();
+  const char* name = selected->GetName() ? selected->GetName() : "(unnamed)";
+  const vtkIdType expected = cellData ? input->GetNumberOfCells() : input->GetNumberOfPoints();
+  if (!array || array->GetNumberOfTuples() != expected)
+  {
+    vtkErrorMacro("Array '" << name << "' has " << (array ? array->GetNumberOfTuples() : 0)
+                            << " tuples, the mesh has " << expected
+                            << (cellData ? " cells." : " points."));
+    return false;
   }
 
   vtkShockPolyDataInternals::PreparedMesh prepared;
@@ -79,7 +160,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   if (!vtkShockPolyDataInternals::PrepareMesh(input, false, this->NumberOfThreads, prepared, error))
   {
     vtkErrorMacro(<< error);
-    return 0;
+    return false;
   }
   const vtkShockPolyDataInternals::Triangles& triangles = prepared.triangles;
   const shock::TriangleMesh& mesh = prepared.mesh;
@@ -89,7 +170,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
                                  << " polygons with more than 3 points or triangle strips: cell data "
                                     "is only filtered on triangles. Triangulate the mesh first "
                                     "(vtkTriangleFilter, or ParaView's Triangulate filter).");
-    return 0;
+    return false;
   }
   this->LastSetupSeconds = prepared.seconds;
 
@@ -98,7 +179,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   if (mesh.NumberOfTriangles() == 0)
   {
     vtkWarningMacro("The mesh has no polygons: nothing to filter.");
-    return 1;
+    return true;
   }
 
   const int components = array->GetNumberOfComponents();
@@ -129,12 +210,12 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   if (!status.Ok())
   {
     vtkErrorMacro("Shock filter failed: " << status.error);
-    return 0;
+    return false;
   }
   this->RecordRun(report.flowSeconds, report.advectionSeconds, report.traceSteps, report.truncatedTraces);
   if (report.aborted)
   {
-    return 1; // aborted: the output holds the unfiltered input
+    return true; // aborted: the output holds the unfiltered input
   }
   if (cellData)
   {
@@ -154,53 +235,6 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   {
     vtkShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, fields);
   }
-  return 1;
-}
-
-int vtkPolyDataShockAdvectionFilter::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
-  using SDDP = vtkStreamingDemandDrivenPipeline;
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (!inInfo || !outInfo || this->ExecutingBlock)
-  {
-    return 1; // a block of a composite input: the request was made for the whole input
-  }
-  const int pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES())
-    ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES())
-    : 1;
-  if (pieces > 1)
-  {
-    const int requested = outInfo->Has(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
-      ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
-      : 0;
-    inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), requested + this->GhostLevels);
-  }
-  return 1;
-}
-
-bool vtkPolyDataShockAdvectionFilter::LocalEdgeLengthSum(
-  vtkInformationVector** inputVector, double& sum, double& count)
-{
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkShockPolyDataInternals::Triangles triangles;
-  std::string error;
-  if (!input || !vtkShockPolyDataInternals::ExtractTriangles(input, triangles, error))
-  {
-    return false; // RequestData reports the error
-  }
-  vtkUnsignedCharArray* ghosts = input->GetCellGhostArray();
-  sum = count = 0.0;
-  for (size_t f = 0; f < triangles.sourceCell.size(); ++f)
-  {
-    if (ghosts && (ghosts->GetValue(triangles.sourceCell[f]) & vtkDataSetAttributes::DUPLICATECELL))
-    {
-      continue;
-    }
-    sum += shock::TrianglePerimeter(triangles.points.data(), &triangles.triangles[3 * f]);
-    count += 3.0;
-  }
   return true;
 }
 
@@ -208,8 +242,7 @@ bool vtkPolyDataShockAdvectionFilter::LocalValueRange(
   vtkInformationVector** inputVector, double range[2])
 {
   int association = -1;
-  vtkDataArray* array =
-    vtkDataArray::SafeDownCast(this->GetInputAbstractArrayToProcess(0, inputVector, association));
+  vtkDataArray* array = this->FindArrayToFilter(inputVector, association);
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   if (!array || !input || association != vtkDataObject::FIELD_ASSOCIATION_CELLS)
   {

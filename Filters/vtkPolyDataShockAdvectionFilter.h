@@ -43,19 +43,19 @@
  * axes; for a triangulated polygon the area-weighted mean of its triangles;
  * zero on vertex and line cells).
  *
- * In parallel (one piece per process, as in pvbatch or pvserver with MPI)
- * the filter asks for GhostLevels more layers of ghost cells
- * (UPDATE_NUMBER_OF_GHOST_LEVELS) and filters its piece together with the
- * ghost cells it receives; the output keeps all of them with their ghost
- * arrays (vtkGhostType), as the input has them. Sources that cannot make
- * ghost cells (the Sphere source, readers) need a ghost cell generator
- * upstream: in ParaView, Ghost Cells Generator, which builds as many layers
- * as requested. Without ghost cells the piece boundaries act as mesh
- * boundaries (flow lines stop there). Every piece is normalised by the data
- * range over all pieces (ParallelValueScale), but lengths by the mean edge
- * length of the piece (with its ghost cells), which differs slightly from the
- * whole mesh's: parallel results are close to, not equal to, the serial ones
- * (measured in docs/parallel.md).
+ * Surfaces as ParaView distributes them: an unstructured grid whose cells
+ * are vertices, lines, polygons or strips (what RedistributeDataSet and D3
+ * make) is read as polydata, and the output is polydata; other cells are
+ * refused with a message saying to add Extract Surface.
+ *
+ * In parallel (one piece per process, as in pvbatch or pvserver with MPI) the
+ * piece gets GhostLevels layers of its neighbours' cells (vtkGhostCellsGenerator
+ * over the Controller; see vtkShockAdvectionFilter::SetGhostLevels) and is
+ * filtered with them, normalised by the data range and the mean edge length
+ * over all pieces: the result equals the serial one when the flow lines stay
+ * within the layers (measured in docs/parallel.md). The output holds each
+ * owned cell once; shared points are marked in vtkGhostType. A data set that
+ * every process holds whole (replicated) is filtered once, on process 0.
  *
  * @warning Errors (RequestData returns 0): negative or non-finite FlowTime,
  * missing or non-numeric array, field-data array, cell data on non-triangle
@@ -70,6 +70,7 @@
 #include "vtkFiltersShockModule.h" // for export macro
 #include "vtkShockAdvectionFilter.h"
 
+class vtkDataArray;
 class vtkPolyData;
 
 class VTKFILTERSSHOCK_EXPORT vtkPolyDataShockAdvectionFilter : public vtkShockAdvectionFilter
@@ -86,20 +87,23 @@ public:
   ///@}
 
 protected:
-  vtkPolyDataShockAdvectionFilter() = default;
+  vtkPolyDataShockAdvectionFilter();
   ~vtkPolyDataShockAdvectionFilter() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
-  /// For a piece of a parallel run, ask for GhostLevels more ghost levels than the output's.
-  int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
-
   /// Point data: all points; cell data: the polygons and strips only (as the kernel).
   bool LocalValueRange(vtkInformationVector** inputVector, double range[2]) override;
 
-  /// The perimeters of the triangles of the cells this piece owns (not ghost cells).
-  bool LocalEdgeLengthSum(vtkInformationVector** inputVector, double& sum, double& count) override;
+  /// vtkPolyData output, also for an unstructured-grid input.
+  int RequestDataObject(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  /// Mean edge length over the cells all pieces own (collective; 0 without a controller).
+  double GlobalMeanEdgeLength(vtkMultiProcessController* controller, vtkPolyData* piece);
+
+  /// Filter `selected` (as chosen on the input) on `input` into `output`; false after vtkErrorMacro.
+  bool FilterSurface(vtkPolyData* input, vtkDataArray* selected, int association, vtkPolyData* output);
 
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;

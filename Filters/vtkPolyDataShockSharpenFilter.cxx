@@ -13,8 +13,13 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkShockFilterInternals.h"
+#include "vtkShockParallel.h"
 #include "vtkShockPolyDataInternals.h"
 #include "vtkSmartPointer.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkMultiProcessController.h"
+#include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <array>
 #include <chrono>
@@ -198,102 +203,230 @@ vtkPolyData* vtkPolyDataShockSharpenFilter::GetOutput(int port)
 int vtkPolyDataShockSharpenFilter::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUnstructuredGrid");
   return 1;
+}
+
+int vtkPolyDataShockSharpenFilter::RequestDataObject(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  return vtkShockPolyDataInternals::EnsurePolyDataOutput(inputVector, outputVector)
+    ? 1
+    : this->Superclass::RequestDataObject(request, inputVector, outputVector);
+}
+
+namespace
+{
+/// A piece of a distributed mesh as the fit sees it, and the exchange behind it.
+struct Distribution
+{
+  shock::MeshPartition partition;
+  vtkShockParallel::PointExchange exchange;
+  double meanEdgeLength = 0.0;
+};
+
+/**
+ * Ownership from the ghost marks (each point and triangle owned by one
+ * process), the points whose owners' values this piece needs (corners of the
+ * triangles around its owned points and of its owned triangles), the exchange
+ * keyed by global point ids, and the mean edge length over all pieces.
+ */
+void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
+  const vtkShockPolyDataInternals::PreparedMesh& prepared, Distribution& out)
+{
+  const shock::TriangleMesh& mesh = prepared.mesh;
+  const std::int64_t np = mesh.NumberOfPoints();
+  const std::int64_t nt = mesh.NumberOfTriangles();
+  vtkUnsignedCharArray* pointGhosts = vtkShockParallel::PointGhosts(piece);
+  vtkUnsignedCharArray* cellGhosts = piece->GetCellGhostArray();
+  shock::MeshPartition& partition = out.partition;
+  partition.ownedPoints.assign(static_cast<size_t>(np), 1);
+  partition.ownedTriangles.assign(static_cast<size_t>(nt), 1);
+  for (std::int64_t p = 0; pointGhosts && p < np; ++p)
+  {
+    partition.ownedPoints[static_cast<size_t>(p)] =
+      (pointGhosts->GetValue(p) & vtkDataSetAttributes::DUPLICATEPOINT) ? 0 : 1;
+  }
+  double lengths[2] = { 0.0, 0.0 };
+  std::vector<char> needed(static_cast<size_t>(np), 0);
+  for (std::int64_t f = 0; f < nt; ++f)
+  {
+    const vtkIdType cell = prepared.triangles.sourceCell[static_cast<size_t>(f)];
+    const bool owned = !cellGhosts || !(cellGhosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL);
+    partition.ownedTriangles[static_cast<size_t>(f)] = owned ? 1 : 0;
+    const std::int64_t* t = mesh.Corners(f);
+    bool touchesOwned = owned;
+    for (int k = 0; k < 3; ++k)
+    {
+      touchesOwned = touchesOwned || partition.ownedPoints[static_cast<size_t>(t[k])];
+    }
+    for (int k = 0; k < 3 && touchesOwned; ++k)
+    {
+      needed[static_cast<size_t>(t[k])] |= partition.ownedPoints[static_cast<size_t>(t[k])] ? 0 : 1;
+    }
+    if (owned)
+    {
+      lengths[0] += shock::TrianglePerimeter(
+        prepared.triangles.points.data(), &prepared.triangles.triangles[static_cast<size_t>(3 * f)]);
+      lengths[1] += 3.0;
+    }
+  }
+  vtkShockParallel::Sum(controller, lengths, 2);
+  out.meanEdgeLength = lengths[1] > 0.0 ? lengths[0] / lengths[1] : 0.0;
+  vtkDataArray* ids = piece->GetPointData()->GetGlobalIds();
+  std::vector<vtkIdType> globalIds(static_cast<size_t>(np), -1);
+  for (std::int64_t p = 0; ids && p < np; ++p)
+  {
+    globalIds[static_cast<size_t>(p)] = static_cast<vtkIdType>(ids->GetTuple1(p));
+  }
+  out.exchange.Setup(controller, globalIds.data(), partition.ownedPoints, needed);
+  // What a piece costs: its ghost layers, and the traffic of one CG iteration
+  // (one exchange of 3 doubles per point, two global sums of 3 and 6 doubles).
+  std::int64_t ownedPoints = 0;
+  for (char owned : partition.ownedPoints)
+  {
+    ownedPoints += owned;
+  }
+  vtkLogF(INFO,
+    "vtkPolyDataShockSharpenFilter piece %d of %d: %lld points (%lld owned, %lld in ghost "
+    "layers), %lld triangles; per CG iteration %lld bytes sent and %lld received point to "
+    "point, 72 bytes reduced",
+    controller->GetLocalProcessId(), controller->GetNumberOfProcesses(), static_cast<long long>(np),
+    static_cast<long long>(ownedPoints), static_cast<long long>(np - ownedPoints),
+    static_cast<long long>(nt), static_cast<long long>(24 * out.exchange.SentPoints()),
+    static_cast<long long>(24 * out.exchange.ReceivedPoints()));
+  partition.globalSum = [controller](double* values, int count) {
+    vtkShockParallel::Sum(controller, values, count);
+  };
+  partition.exchangePoints = [&out](double* values) { out.exchange.Exchange(values); };
+}
 }
 
 int vtkPolyDataShockSharpenFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  if (!input || !output)
-  {
-    vtkErrorMacro("Input and output must be vtkPolyData.");
-    return 0;
-  }
-  if (!this->BeginExecution())
+  if (!output || !this->BeginExecution())
   {
     return 0;
   }
-  // One piece of a distributed mesh: the global fit cannot be done per piece.
-  if (this->ParallelPiecesWithData > 1 ||
-    (this->ParallelPiecesWithData == UNKNOWN_PIECES && input->GetNumberOfPoints() > 0))
-  {
-    std::ostringstream held;
-    if (this->ParallelPiecesWithData > 1)
-    {
-      held << "the mesh is split over " << this->ParallelPiecesWithData << " processes";
-    }
-    else
-    {
-      held << "this is one of several pieces of the mesh";
-    }
-    vtkErrorMacro("Surface Shock Sharpen cannot run on one piece of a distributed mesh ("
-      << held.str()
-      << "): the screened Poisson fit is global, so pieces fitted separately would not match "
-         "along their boundaries. Give the whole mesh to one process: in ParaView, gather it "
-         "with Aggregate Dataset (Number Of Target Processes 1) before this filter, or read it "
-         "with a serial reader; or run in the builtin session, pvpython or a serial pvbatch.");
-    return 0;
-  }
-  if (input->GetNumberOfPoints() == 0)
-  {
-    output->ShallowCopy(input);
-    if (this->ParallelPiecesWithData == NOT_A_PIECE) // an empty piece of a parallel run is normal
-    {
-      vtkWarningMacro("The input mesh is empty: nothing to sharpen.");
-    }
-    return 1;
-  }
-
-  vtkShockPolyDataInternals::PreparedMesh prepared;
+  // The surface (an unstructured grid of polygons is read as polydata).
   std::string error;
-  if (!vtkShockPolyDataInternals::PrepareMesh(
-        input, this->MergeCoincidentPoints, this->NumberOfThreads, prepared, error))
+  vtkSmartPointer<vtkPolyData> input =
+    vtkShockPolyDataInternals::AsSurface(vtkDataSet::GetData(inputVector[0]), error);
+  // In parallel: all agree, replicated data is recognised, pieces get ghost layers
+  // (collective; at least one: the fit's rows need the one-rings of their points).
+  bool unknown = false;
+  vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);
+  if (unknown && input && input->GetNumberOfPoints() > 0)
+  {
+    error = "This is one of several pieces of the mesh, and no MPI controller with as many "
+            "processes is available to fit them together; give the whole mesh to one process.";
+  }
+  vtkShockParallel::SurfacePiece piece;
+  if (!vtkShockParallel::PrepareSurfacePiece(
+        controller, input, error, std::max(1, this->GhostLevels), piece, error))
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  const vtkShockPolyDataInternals::Triangles& triangles = prepared.triangles;
-  const shock::TriangleMesh& mesh = prepared.mesh;
-  const std::vector<std::int64_t>& representative = prepared.representative;
+  if (piece.skip)
+  {
+    output->Initialize();
+    return 1; // replicated data: process 0 sharpens it once
+  }
+  if (piece.controller && this->Solver == EXACT)
+  {
+    vtkErrorMacro("The EXACT solver factorises the whole system on one process, but the mesh is "
+                  "split over processes: use the CONJUGATE_GRADIENT solvers (solved across them).");
+    return 0;
+  }
+  // The triangle mesh of the piece (with its ghost cells).
+  vtkShockPolyDataInternals::PreparedMesh prepared;
+  const bool empty = piece.work->GetNumberOfPoints() == 0;
+  bool ok = empty ||
+    vtkShockPolyDataInternals::PrepareMesh(
+      piece.work, this->MergeCoincidentPoints, this->NumberOfThreads, prepared, error);
+  if (piece.controller ? vtkShockParallel::AnyFailed(piece.controller, !ok, error) : !ok)
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
   this->LastSetupSeconds = prepared.seconds;
-  if (mesh.NumberOfTriangles() == 0)
+  if (!piece.controller && (empty || prepared.mesh.NumberOfTriangles() == 0))
   {
     output->ShallowCopy(input);
-    vtkWarningMacro("The mesh has no polygons: nothing to sharpen.");
+    vtkWarningMacro(<< (empty ? "The input mesh is empty" : "The mesh has no polygons")
+                    << ": nothing to sharpen.");
     return 1;
   }
+  // A piece: what it owns, what it exchanges, the whole mesh's length unit.
+  Distribution distribution;
+  if (piece.controller)
+  {
+    Distribute(piece.controller, piece.work, prepared, distribution);
+  }
+  // Normals, potential, flow and advection on the piece; the fit across pieces.
+  std::vector<double> positions(prepared.triangles.points.size());
+  std::vector<double> normals(static_cast<size_t>(3 * prepared.mesh.NumberOfTriangles()));
+  shock::SharpeningReport report;
+  shock::MeshFlowFields fields;
+  if (!this->Sharpen(prepared.mesh, piece.controller ? &distribution.partition : nullptr,
+        distribution.meanEdgeLength, positions, normals, report, fields))
+  {
+    return 0;
+  }
+  if (report.advection.aborted || empty)
+  {
+    output->ShallowCopy(input);
+    return 1; // aborted (the output holds the input), or an empty piece
+  }
+  // The output: the piece's own cells with the new positions and the requested arrays.
+  vtkNew<vtkPolyData> sharpened;
+  this->BuildOutput(piece.work, prepared, positions, normals, fields, report, sharpened);
+  output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(sharpened, input).GetPointer()
+                                       : sharpened.GetPointer());
+  return 1;
+}
 
+bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
+  const shock::MeshPartition* partition, double meanEdgeLength, std::vector<double>& positions,
+  std::vector<double>& normals, shock::SharpeningReport& report, shock::MeshFlowFields& fields)
+{
   shock::SharpeningParameters parameters;
   parameters.advection = vtkShockFilterInternals::MakeParameters(this);
   parameters.normalSmoothingPasses = this->NormalSmoothingPasses;
   parameters.featureAngle = this->FeatureAngle;
   parameters.fit.target = static_cast<shock::FitTarget>(this->FitTarget);
+  parameters.lengthScale = meanEdgeLength;
   parameters.fit.screeningWeight = this->ScreeningWeight;
   parameters.fit.solver = static_cast<shock::FitSolver>(this->Solver);
   parameters.fit.iterations = this->SolverIterations;
   parameters.fit.maxIterations = this->SolverIterations;
   parameters.fit.tolerance = this->SolverTolerance;
-  std::vector<double> positions(triangles.points.size());
-  std::vector<double> normals(static_cast<size_t>(3 * mesh.NumberOfTriangles()));
-  shock::SharpeningReport report;
-  shock::MeshFlowFields fields;
-  const shock::Status status = shock::SharpenMeshGeometry(mesh, parameters, positions.data(),
-    normals.data(), &report, this->GenerateFlowArrays ? &fields : nullptr,
-    [this](double fraction) { return this->ReportProgress(0.8 * fraction); });
+  parameters.fit.partition = partition;
+  shock::Status status;
+  if (mesh.NumberOfPoints() == 0)
+  {
+    // An empty piece takes part in the distributed fit's sums and exchanges.
+    status = shock::FitPositionsToNormals(mesh, nullptr, nullptr, parameters.fit, &report.fit);
+    double flipped = 0.0;
+    partition->globalSum(&flipped, 1);
+    report.flippedTriangles = static_cast<std::int64_t>(flipped);
+  }
+  else
+  {
+    status = shock::SharpenMeshGeometry(mesh, parameters, positions.data(), normals.data(),
+      &report, this->GenerateFlowArrays ? &fields : nullptr,
+      [this](double fraction) { return this->ReportProgress(0.8 * fraction); });
+  }
   if (!status.Ok())
   {
     vtkErrorMacro("Geometry sharpening failed: " << status.error);
-    return 0;
+    return false;
   }
   this->RecordRun(report.normalsSeconds + report.advection.flowSeconds,
     report.advection.advectionSeconds, report.advection.traceSteps, report.advection.truncatedTraces);
-  output->ShallowCopy(input);
-  if (report.advection.aborted)
-  {
-    return 1; // aborted: the output holds the input
-  }
   this->UpdateProgress(1.0);
   this->LastFitSetupSeconds = report.fit.setupSeconds;
   this->LastFitSolveSeconds = report.fit.solveSeconds;
@@ -304,10 +437,20 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   this->LastRepeatedTriangles = static_cast<vtkIdType>(report.repeatedTriangles);
   this->LastDegenerateTriangles = static_cast<vtkIdType>(report.degenerateTriangles);
   this->LastFeatureEdges = static_cast<vtkIdType>(report.featureEdges);
-  SetNewPoints(output, input, representative, positions);
+  return true;
+}
+
+void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
+  const vtkShockPolyDataInternals::PreparedMesh& prepared, std::vector<double>& positions,
+  const std::vector<double>& normals, const shock::MeshFlowFields& fields,
+  const shock::SharpeningReport& report, vtkPolyData* output)
+{
+  const shock::TriangleMesh& mesh = prepared.mesh;
+  const vtkShockPolyDataInternals::Triangles& triangles = prepared.triangles;
+  output->ShallowCopy(input);
+  SetNewPoints(output, input, prepared.representative, positions);
   RecomputeActiveNormals(output, triangles, positions);
   ReportRun(this, report, input, output);
-
   if (this->GenerateSharpenedNormals)
   {
     auto cells = vtkShockPolyDataInternals::TrianglesToCells(
@@ -327,7 +470,6 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   {
     vtkShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, fields);
   }
-  return 1;
 }
 
 void vtkPolyDataShockSharpenFilter::ResetMeasurements()

@@ -30,8 +30,8 @@
  * barycentrically, which also smooths the normals (even at FlowTime 0, as the
  * paper's Figure 7 shows); NEAREST copies the normal of the triangle reached, so
  * that FlowTime 0 with the EXACT solver returns the input. The normals are unit
- * vectors, so their intensity scale is fixed (2) instead of the data range. The
- * input array selection of the base class is not used.
+ * vectors, so their intensity scale is fixed (2) instead of the data range: the
+ * filter selects no input array.
  *
  * Meshes as users have them:
  * - closed and open meshes: boundary points are unknowns of the fit like any
@@ -59,26 +59,24 @@
  * verbosity INFO. Optional cell arrays: "ShockNormals" (the sharpened normals);
  * with GenerateFlowArrays, "ShockPotential" (points) and "ShockFlow" (cells).
  *
- * Parallel use: refused. The screened Poisson fit is global: every point's
- * new position depends on the whole surface through the system, and the
- * scale of the fit (unit area) on the whole mesh, so fitting a piece of a
- * distributed mesh by itself, even with ghost cells, would move its points
- * differently from the serial fit and the pieces would tear apart along their
- * boundaries. When the request is for one of several pieces
- * (UPDATE_NUMBER_OF_PIECES > 1 on the output) and more than one process holds
- * part of the mesh (counted with an MPI reduction over the global controller;
- * without a matching controller, any non-empty piece is refused), the filter
- * reports an error and returns 0 on every process. A mesh held whole by one
- * process is sharpened as in serial: in ParaView with MPI, a mesh read by a
- * serial reader (only process 0 reads it), or pieces gathered onto one
- * process with Aggregate Dataset (Number Of Target Processes 1; the default
- * MergeCoincidentPoints joins the pieces' shared points again); otherwise run
- * it in the builtin session, pvpython or a serial pvbatch. GhostLevels is
- * ignored.
+ * Parallel use: a mesh split over MPI processes (e.g. by RedistributeDataSet,
+ * D3 or a partitioned .pvtp file; unstructured grids of polygons are read as
+ * polydata) gives the serial result. Each piece gets GhostLevels layers of
+ * ghost cells (vtkGhostCellsGenerator) and global point ids; normals,
+ * potential, flow and advection run per piece, normalised by the mean edge
+ * length over all pieces; the screened Poisson fit runs across the processes
+ * of the Controller: area and centroid summed over the pieces, the same
+ * Jacobi-preconditioned conjugate gradients with global sums and an exchange
+ * of the points each piece needs from its neighbours (shock::MeshPartition).
+ * The result equals the serial one up to the order of the sums (the fixed 25
+ * iterations are not converged, so that order shows at 1e-7 of the size;
+ * converged solves agree to 1e-13; docs/parallel.md). The EXACT solver is
+ * refused on a split mesh. A mesh every process holds whole (replicated) is
+ * sharpened once, on process 0; the others output nothing.
  *
  * @warning Errors (RequestData returns 0): negative or non-finite FlowTime,
- * non-finite point coordinates, a failed exact factorisation, one piece of a
- * mesh distributed over several processes (see above). An empty input, or
+ * non-finite point coordinates, a failed exact factorisation, the EXACT
+ * solver on a split mesh, a piece request without a matching controller. An empty input, or
  * one without polygons, passes through with a warning.
  *
  * @sa vtkShockAdvectionFilter vtkPolyDataShockAdvectionFilter
@@ -89,7 +87,20 @@
 #include "vtkFiltersShockModule.h" // for export macro
 #include "vtkShockAdvectionFilter.h"
 
+#include <vector> // for the kernels' buffers
+
 class vtkPolyData;
+namespace shock
+{
+class TriangleMesh;
+struct MeshPartition;
+struct SharpeningReport;
+struct MeshFlowFields;
+}
+namespace vtkShockPolyDataInternals
+{
+struct PreparedMesh;
+}
 
 class VTKFILTERSSHOCK_EXPORT vtkPolyDataShockSharpenFilter : public vtkShockAdvectionFilter
 {
@@ -253,11 +264,22 @@ protected:
   ~vtkPolyDataShockSharpenFilter() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  /// vtkPolyData output, also for an unstructured-grid input.
+  int RequestDataObject(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   void ResetMeasurements() override;
-  /// The fit normalises by unit normals, not by a data range: no range reduction.
-  bool UsesParallelValueScale() override { return false; }
+
+  /// Run the kernels (a piece of a distributed mesh with `partition`); false after vtkErrorMacro.
+  bool Sharpen(const shock::TriangleMesh& mesh, const shock::MeshPartition* partition,
+    double meanEdgeLength, std::vector<double>& positions, std::vector<double>& normals,
+    shock::SharpeningReport& report, shock::MeshFlowFields& fields);
+
+  /// `input` with the new positions, the field data of the run and the requested arrays.
+  void BuildOutput(vtkPolyData* input, const vtkShockPolyDataInternals::PreparedMesh& prepared,
+    std::vector<double>& positions, const std::vector<double>& normals,
+    const shock::MeshFlowFields& fields, const shock::SharpeningReport& report, vtkPolyData* output);
 
   double FeatureAngle = 30.0;
   int FitTarget = CENTRAL_PROJECTION;

@@ -5,18 +5,12 @@
 #include "vtkDataSetAttributes.h"
 #include "vtkDataSet.h"
 #include "vtkInformation.h"
-#include "vtkInformationKey.h"
-#include "vtkInformationKeyLookup.h"
 #include "vtkInformationVector.h"
 #include "vtkLogger.h"
 #include "vtkPointData.h"
 #include "vtkCellData.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
-
-#if VTK_MODULE_ENABLE_VTK_ParallelCore
-#include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
-#endif
+#include "vtkShockParallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -25,9 +19,7 @@
 
 vtkShockAdvectionFilter::vtkShockAdvectionFilter()
 {
-  // Default array: the active point scalars.
-  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS,
-    vtkDataSetAttributes::SCALARS);
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
 bool vtkShockAdvectionFilter::ValidateParameters()
@@ -127,29 +119,55 @@ vtkDataArray* vtkShockAdvectionFilter::GetArrayToFilter(
   return array;
 }
 
-vtkTypeBool vtkShockAdvectionFilter::ProcessRequest(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+vtkDataArray* vtkShockAdvectionFilter::FindArrayToFilter(
+  vtkInformationVector** inputVector, int& association)
 {
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()))
+  vtkInformation* selection = this->GetInputArrayInformation(0);
+  if (selection->Has(vtkDataObject::FIELD_NAME()) && *selection->Get(vtkDataObject::FIELD_NAME()))
   {
-    // vtkCompositeDataPipeline runs a simple algorithm block by block and marks
-    // each block's REQUEST_DATA_OBJECT with its (protected) SUPPRESS_RESET_PI key.
-    static vtkInformationKey* const blockKey =
-      vtkInformationKeyLookup::Find("SUPPRESS_RESET_PI", "vtkCompositeDataPipeline");
-    this->ExecutingBlock = blockKey && outInfo && outInfo->Has(blockKey);
+    return vtkDataArray::SafeDownCast(this->GetInputAbstractArrayToProcess(0, inputVector, association));
   }
-  const bool data = request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()) != 0;
-  if (data)
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
+  if (!input)
   {
-    this->PrepareParallelExecution(inputVector, outputVector);
+    return nullptr;
   }
-  const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
-  if (data)
+  association = input->GetPointData()->GetScalars() ? vtkDataObject::FIELD_ASSOCIATION_POINTS
+                                                    : vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  return input->GetPointData()->GetScalars() ? input->GetPointData()->GetScalars()
+                                             : input->GetCellData()->GetScalars();
+}
+
+vtkShockAdvectionFilter::~vtkShockAdvectionFilter()
+{
+  this->SetController(nullptr);
+}
+
+void vtkShockAdvectionFilter::SetController(vtkMultiProcessController* controller)
+{
+  vtkSetObjectBodyMacro(Controller, vtkMultiProcessController, controller);
+}
+
+vtkMultiProcessController* vtkShockAdvectionFilter::PieceController(
+  vtkInformationVector* outputVector, bool& unknown)
+{
+  return vtkShockParallel::PieceController(
+    this, this->Controller, outputVector->GetInformationObject(0), unknown);
+}
+
+double vtkShockAdvectionFilter::GlobalValueScale(
+  vtkMultiProcessController* controller, vtkInformationVector** inputVector)
+{
+  if (!controller)
   {
-    this->ExecutingBlock = false;
+    return 0.0;
   }
-  return result;
+  vtkDataSet* input = inputVector[0]->GetNumberOfInformationObjects() > 0
+    ? vtkDataSet::GetData(inputVector[0], 0)
+    : nullptr;
+  double range[2] = { 0.0, 0.0 };
+  const bool has = input && input->GetNumberOfPoints() > 0 && this->LocalValueRange(inputVector, range);
+  return vtkShockParallel::GlobalRangeWidth(controller, has, range);
 }
 
 bool vtkShockAdvectionFilter::LocalValueRange(vtkInformationVector** inputVector, double range[2])
@@ -157,8 +175,7 @@ bool vtkShockAdvectionFilter::LocalValueRange(vtkInformationVector** inputVector
   range[0] = std::numeric_limits<double>::infinity();
   range[1] = -range[0];
   int association = -1;
-  vtkDataArray* array =
-    vtkDataArray::SafeDownCast(this->GetInputAbstractArrayToProcess(0, inputVector, association));
+  vtkDataArray* array = this->FindArrayToFilter(inputVector, association);
   if (!array)
   {
     return false;
@@ -180,72 +197,6 @@ bool vtkShockAdvectionFilter::LocalValueRange(vtkInformationVector** inputVector
     }
   }
   return range[0] <= range[1];
-}
-
-bool vtkShockAdvectionFilter::LocalEdgeLengthSum(vtkInformationVector**, double&, double&)
-{
-  return false;
-}
-
-void vtkShockAdvectionFilter::PrepareParallelExecution(
-  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
-  this->ParallelValueScale = 0.0;
-  this->ParallelLengthScale = 0.0;
-  this->ParallelPiecesWithData = NOT_A_PIECE;
-  if (this->ExecutingBlock)
-  {
-    // A block of a composite input: the number of blocks differs between
-    // processes, so no collective here; each block keeps its own range.
-    return;
-  }
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int pieces = outInfo && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    : 1;
-  if (pieces <= 1)
-  {
-    return;
-  }
-  this->ParallelPiecesWithData = UNKNOWN_PIECES;
-#if VTK_MODULE_ENABLE_VTK_ParallelCore
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  if (!controller || controller->GetNumberOfProcesses() != pieces)
-  {
-    return;
-  }
-  // Collective from here on: no early return.
-  vtkDataSet* input = inputVector[0]->GetNumberOfInformationObjects() > 0
-    ? vtkDataSet::GetData(inputVector[0], 0)
-    : nullptr;
-  double range[2];
-  const bool hasRange = this->UsesParallelValueScale() && input &&
-    input->GetNumberOfPoints() > 0 && this->LocalValueRange(inputVector, range);
-  double local[2] = { hasRange ? -range[0] : -std::numeric_limits<double>::max(),
-    hasRange ? range[1] : -std::numeric_limits<double>::max() };
-  double global[2] = { 0.0, 0.0 };
-  controller->AllReduce(local, global, 2, vtkCommunicator::MAX_OP);
-  const int withData = input && input->GetNumberOfPoints() > 0 ? 1 : 0;
-  int count = 0;
-  controller->AllReduce(&withData, &count, 1, vtkCommunicator::SUM_OP);
-  this->ParallelPiecesWithData = count;
-  const double scale = global[1] + global[0]; // high - low
-  if (this->UsesParallelValueScale() && std::isfinite(scale) && scale > 0.0)
-  {
-    this->ParallelValueScale = scale;
-  }
-  double lengths[2] = { 0.0, 0.0 }; // sum, count
-  const bool hasLengths = input && input->GetNumberOfPoints() > 0 &&
-    this->LocalEdgeLengthSum(inputVector, lengths[0], lengths[1]);
-  double globalLengths[2] = { 0.0, 0.0 };
-  controller->AllReduce(lengths, globalLengths, 2, vtkCommunicator::SUM_OP);
-  if (hasLengths && globalLengths[1] > 0.0 && globalLengths[0] > 0.0)
-  {
-    this->ParallelLengthScale = globalLengths[0] / globalLengths[1];
-  }
-#else
-  (void)inputVector;
-#endif
 }
 
 void vtkShockAdvectionFilter::RecordRun(double flowSeconds, double advectionSeconds,
@@ -276,6 +227,7 @@ void vtkShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GenerateFlowArrays: " << (this->GenerateFlowArrays ? "On" : "Off") << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "GhostLevels: " << this->GhostLevels << "\n";
+  os << indent << "Controller: " << static_cast<void*>(this->Controller) << "\n";
   os << indent << "ParallelValueScale: " << this->ParallelValueScale << "\n";
   os << indent << "ParallelLengthScale: " << this->ParallelLengthScale << "\n";
   os << indent << "LastSetupSeconds: " << this->LastSetupSeconds << "\n";

@@ -36,6 +36,7 @@
 
 class vtkDataArray;
 class vtkAbstractArray;
+class vtkMultiProcessController;
 
 class VTKFILTERSSHOCK_EXPORT vtkShockAdvectionFilter : public vtkPassInputTypeAlgorithm
 {
@@ -167,7 +168,7 @@ public:
    * Ghost layers requested around each piece in parallel (pvbatch/pvserver
    * with MPI, or any request for one of several pieces), in samples of the
    * grid (images: point samples, which are also cell layers) or in cell
-   * layers (meshes). Range [0, 256], default 16.
+   * layers (meshes). Range [0, 64], default 16.
    *
    * What it changes: a piece is filtered together with GhostLevels layers of
    * its neighbours' data, so that flow lines starting in the piece can be
@@ -192,11 +193,13 @@ public:
    * sample (clamped to the whole extent). The output is cropped back to what
    * was requested, so pieces tile the image exactly. Cell arrays are grown by
    * the same number of layers.
-   * Surfaces: UPDATE_NUMBER_OF_GHOST_LEVELS is raised by GhostLevels; the
-   * ghost cells provided upstream (e.g. by ParaView's Ghost Cells Generator)
-   * are filtered with the piece and kept in the output with their ghost
-   * arrays. Serial runs (one piece) are not affected.
-   * vtkPolyDataShockSharpenFilter ignores it: it refuses pieces.
+   * Surfaces: the piece's own cells get GhostLevels layers of their
+   * neighbours' cells from vtkGhostCellsGenerator (over the Controller), are
+   * filtered with them, and the output holds each owned cell once, shared
+   * points marked in vtkGhostType (DUPLICATEPOINT on all copies but the
+   * owner's). Ghost cells arriving from upstream are replaced: their depth
+   * cannot be checked. vtkPolyDataShockSharpenFilter traces its normals in
+   * the same layers. Serial runs (one piece) are not affected.
    */
   vtkSetClampMacro(GhostLevels, int, 0, 64);
   vtkGetMacro(GhostLevels, int);
@@ -206,10 +209,20 @@ public:
    * Intensity scale used by the last execution instead of the data range of
    * the processed array: 0 for a serial run (the array's own data range), and
    * for one piece of a parallel run the data range of the array over all
-   * pieces (an MPI reduction over the global controller), so that every piece
+   * pieces (an MPI reduction over the Controller), so that every piece
    * is normalised like the whole data set. Read only.
    */
   vtkGetMacro(ParallelValueScale, double);
+
+  ///@{
+  /**
+   * The controller the parallel executions communicate through (reductions of
+   * the data range and the mean edge length, ghost cells, the distributed fit).
+   * Default: the global controller (vtkMultiProcessController::GetGlobalController()).
+   */
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
 
   ///@{
   /**
@@ -232,7 +245,7 @@ public:
 
 protected:
   vtkShockAdvectionFilter();
-  ~vtkShockAdvectionFilter() override = default;
+  ~vtkShockAdvectionFilter() override;
 
   /// Checks the parameters that clamping cannot enforce; vtkErrorMacro and false if invalid.
   bool ValidateParameters();
@@ -258,29 +271,19 @@ protected:
   vtkAbstractArray* GetActiveScalarsToFilter(vtkInformationVector** inputVector, int& association);
 
   /**
-   * Runs the parallel preparation (see PrepareParallelExecution) before every
-   * REQUEST_DATA, then the superclass's dispatch.
+   * The controller of this execution's collectives, or nullptr when the
+   * output request is not for one of several pieces (see
+   * vtkShockParallel::PieceController); `unknown` flags a piece request that
+   * no controller matches.
    */
-  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
+  vtkMultiProcessController* PieceController(vtkInformationVector* outputVector, bool& unknown);
 
   /**
-   * Before each execution: when the output request is for one of several
-   * pieces (UPDATE_NUMBER_OF_PIECES > 1) and the global
-   * vtkMultiProcessController has as many processes, reduce over all
-   * processes the number of pieces holding points and (when
-   * UsesParallelValueScale()) the data range of the array to process, into
-   * ParallelPiecesWithData and ParallelValueScale, and (LocalEdgeLengthSum)
-   * the mean edge length into ParallelLengthScale. Collective: every process
-   * runs it once per execution, before anything can fail, so that an error
-   * on one process cannot leave the others waiting. Not for the blocks of a
-   * composite input (ExecutingBlock), whose number differs between processes:
-   * each block is normalised by its own range, as in serial.
+   * The data range of the array to process over all pieces (0 when not a
+   * parallel piece): every piece is normalised like the whole data set.
+   * Collective on `controller` when it is not null.
    */
-  void PrepareParallelExecution(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
-
-  /// Whether the parallel preparation reduces the data range (advection filters: yes).
-  virtual bool UsesParallelValueScale() { return true; }
+  double GlobalValueScale(vtkMultiProcessController* controller, vtkInformationVector** inputVector);
 
   /**
    * The finite range [low, high] of the array to process on the local input,
@@ -289,19 +292,8 @@ protected:
    */
   virtual bool LocalValueRange(vtkInformationVector** inputVector, double range[2]);
 
-  /**
-   * The sum of the edge lengths that define the mean edge length on the local
-   * piece, and how many edges they are, counting only what this piece owns
-   * (not its ghost cells), so that the sums over all pieces give the serial
-   * mean. Returns false when lengths need no reduction (images: the spacing is
-   * the same on every piece).
-   */
-  virtual bool LocalEdgeLengthSum(vtkInformationVector** inputVector, double& sum, double& count);
-
-  /// Not a piece of a parallel request (one piece, or composite block by block).
-  static constexpr int NOT_A_PIECE = -1;
-  /// A piece request that no controller matches (e.g. serial streaming): unknown.
-  static constexpr int UNKNOWN_PIECES = -2;
+  /// The array GetArrayToFilter would choose, without messages (nullptr when none).
+  vtkDataArray* FindArrayToFilter(vtkInformationVector** inputVector, int& association);
 
   /// Store the measurements of a run; warns when traces were cut at the step limit.
   void RecordRun(double flowSeconds, double advectionSeconds, vtkTypeUInt64 traceSteps,
@@ -318,14 +310,11 @@ protected:
   int NumberOfThreads = 0;
   int GhostLevels = 16;
 
-  /// Set by PrepareParallelExecution for the current execution (see its documentation).
+  /// Data range over all pieces for the current execution (0: the array's own range).
   double ParallelValueScale = 0.0;
-  /// Mean edge length over all pieces (0: not a parallel piece, or not reduced).
+  /// Mean edge length over all pieces for the current execution (0: the mesh's own).
   double ParallelLengthScale = 0.0;
-  /// Pieces holding points over all processes, or NOT_A_PIECE / UNKNOWN_PIECES.
-  int ParallelPiecesWithData = NOT_A_PIECE;
-  /// True while vtkCompositeDataPipeline runs the filter on one block of a composite input.
-  bool ExecutingBlock = false;
+  vtkMultiProcessController* Controller = nullptr;
 
   double LastSetupSeconds = 0.0;
   double LastFlowSeconds = 0.0;

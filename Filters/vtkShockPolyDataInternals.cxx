@@ -3,15 +3,19 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkPointData.h"
 #include "vtkShockAdvectionFilter.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkIdList.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolygon.h"
 #include "vtkShockFilterInternals.h"
+#include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
 #include <array>
@@ -267,6 +271,82 @@ void AttachFlowArrays(vtkPolyData* output, const shock::TriangleMesh& mesh,
   output->GetPointData()->AddArray(potential);
   output->GetCellData()->AddArray(TrianglesToCells(
     vtkShockAdvectionFilter::FlowArrayName(), output->GetNumberOfCells(), mesh, triangles, fields.flow));
+}
+
+vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error)
+{
+  if (vtkPolyData* polyData = vtkPolyData::SafeDownCast(input))
+  {
+    return polyData;
+  }
+  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(input);
+  if (!grid)
+  {
+    error = std::string("The input is a ") + (input ? input->GetClassName() : "null data set") +
+      ", not a surface: add Extract Surface before this filter.";
+    return nullptr;
+  }
+  auto surface = vtkSmartPointer<vtkPolyData>::New();
+  surface->SetPoints(grid->GetPoints());
+  surface->GetPointData()->ShallowCopy(grid->GetPointData());
+  surface->GetFieldData()->ShallowCopy(grid->GetFieldData());
+  vtkNew<vtkCellArray> verts, lines, polys, strips;
+  // vtkPolyData numbers verts, lines, polygons, strips in that order: cell data follows.
+  std::vector<vtkIdType> order[4];
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    const int type = grid->GetCellType(c);
+    const int kind = (type == VTK_VERTEX || type == VTK_POLY_VERTEX) ? 0
+      : (type == VTK_LINE || type == VTK_POLY_LINE)                   ? 1
+      : (type == VTK_TRIANGLE || type == VTK_QUAD || type == VTK_POLYGON) ? 2
+      : type == VTK_TRIANGLE_STRIP                                     ? 3
+                                                                       : -1;
+    if (kind < 0)
+    {
+      error = "The input is an unstructured grid with cells that are not surface polygons (cell " +
+        std::to_string(c) + " is of VTK type " + std::to_string(type) +
+        "): add Extract Surface before this filter.";
+      return nullptr;
+    }
+    order[kind].push_back(c);
+  }
+  vtkCellArray* arrays[4] = { verts, lines, polys, strips };
+  vtkNew<vtkIdList> ids, cells;
+  for (int kind = 0; kind < 4; ++kind)
+  {
+    for (vtkIdType c : order[kind])
+    {
+      grid->GetCellPoints(c, ids);
+      arrays[kind]->InsertNextCell(ids);
+      cells->InsertNextId(c);
+    }
+  }
+  surface->SetVerts(verts);
+  surface->SetLines(lines);
+  surface->SetPolys(polys);
+  surface->SetStrips(strips);
+  surface->GetCellData()->CopyAllocate(grid->GetCellData(), cells->GetNumberOfIds());
+  for (vtkIdType k = 0; k < cells->GetNumberOfIds(); ++k)
+  {
+    surface->GetCellData()->CopyData(grid->GetCellData(), cells->GetId(k), k);
+  }
+  return surface;
+}
+
+bool EnsurePolyDataOutput(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (!inInfo || !outInfo || !vtkDataSet::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
+  {
+    return false;
+  }
+  if (!vtkPolyData::SafeDownCast(outInfo->Get(vtkDataObject::DATA_OBJECT())))
+  {
+    vtkNew<vtkPolyData> output;
+    outInfo->Set(vtkDataObject::DATA_OBJECT(), output);
+  }
+  return true;
 }
 
 }

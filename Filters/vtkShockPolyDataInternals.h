@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+class vtkDataSet;
+class vtkInformationVector;
 class vtkDoubleArray;
 class vtkPolyData;
 
@@ -62,6 +64,22 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
  */
 vtkSmartPointer<vtkDoubleArray> TrianglesToCells(const char* name, vtkIdType numberOfCells,
   const shock::TriangleMesh& mesh, const Triangles& triangles, const std::vector<double>& vectors);
+
+/**
+ * The input of a surface filter as vtkPolyData: a vtkPolyData as it is, or a
+ * vtkUnstructuredGrid whose cells are all vertices, lines, polygons or strips
+ * (what ParaView's RedistributeDataSet and D3 make of a surface) converted
+ * with the same points, point data and cell data. Anything else: nullptr and
+ * a one-sentence `error` that says to add Extract Surface.
+ */
+vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error);
+
+/**
+ * RequestDataObject of the surface filters: for a data-set input, make the
+ * output a vtkPolyData and return true; false for a composite input (the
+ * superclass then copies its structure and the blocks come one by one).
+ */
+bool EnsurePolyDataOutput(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
 /// Add "ShockPotential" (points) and "ShockFlow" (cells) to `output`.
 void AttachFlowArrays(vtkPolyData* output, const shock::TriangleMesh& mesh,

@@ -257,7 +257,7 @@ bool WriteStl(vtkPolyData* mesh, const std::string& path, MessageTrap* trap, std
 /**
  * Whether a file just written reads back as `mesh` written in `format`: as
  * many points (but STL, whose reader merges them) and triangles. VTK's PLY,
- * OBJ, STL and TIFF writers ignore failed writes (a full disk): this finds them.
+ * OBJ and TIFF writers ignore failed writes (a full disk): this finds them.
  */
 WrittenFileCheck ReadsBack(const MeshFormat& format, vtkPolyData* mesh)
 {

@@ -22,6 +22,8 @@ fi
 # ParaView's VTK: the sanitizer and fuzz builds use it without the plugin.
 vtk_dir="$(dirname "$(find /usr/lib -path '*paraview-*/vtk/vtk-config.cmake' -print -quit 2>/dev/null)")"
 sanitizers="-fsanitize=address,undefined -fno-omit-frame-pointer"
+# Leak checks off: VTK 9.2's own writers leak on a failed write (vtkJPEGWriter's
+# file name buffers), which the tests make happen on purpose.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0:abort_on_error=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}"
 
@@ -43,7 +45,8 @@ if [[ " $stages " == *" sanitize "* ]]; then
     -DCMAKE_CXX_FLAGS="$sanitizers -fno-sanitize-recover=all" -DCMAKE_C_FLAGS="$sanitizers" \
     -DCMAKE_EXE_LINKER_FLAGS="$sanitizers" -DCMAKE_SHARED_LINKER_FLAGS="$sanitizers"
   cmake --build "$root/build-asan" --parallel "$jobs"
-  ctest --test-dir "$root/build-asan" --output-on-failure --timeout 1800 -L 'kernels|filters|io|cli|robustness'
+  # As many tests at a time as cores (results do not depend on the thread count): 7 min measured.
+  ctest --test-dir "$root/build-asan" --output-on-failure --timeout 1800 --parallel "$jobs" -L 'kernels|filters|io|cli|robustness'
 fi
 
 if [[ " $stages " == *" fuzz "* ]]; then

@@ -92,13 +92,14 @@ void TriangleNormal(const TriangleMesh& mesh, const double* positions, std::int6
 }
 
 /// Flipped triangles and the largest displacement relative to the bounding-box diagonal.
-void Measure(const TriangleMesh& mesh, const double* positions, int threads, SharpeningReport& report)
+void Measure(const TriangleMesh& mesh, const double* positions, const MeshPartition* partition,
+  int threads, SharpeningReport& report)
 {
   std::int64_t flipped = 0;
 #pragma omp parallel for num_threads(threads) reduction(+ : flipped) schedule(static)
   for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
   {
-    if (mesh.Degenerate(f))
+    if (mesh.Degenerate(f) || (partition && !partition->ownedTriangles[static_cast<size_t>(f)]))
     {
       continue;
     }
@@ -128,6 +129,12 @@ void Measure(const TriangleMesh& mesh, const double* positions, int threads, Sha
   for (int k = 0; k < 3; ++k)
   {
     diagonal2 += mesh.NumberOfPoints() > 0 ? (high[k] - low[k]) * (high[k] - low[k]) : 0.0;
+  }
+  if (partition)
+  {
+    double count = static_cast<double>(flipped);
+    partition->globalSum(&count, 1); // the displacement stays the piece's own
+    flipped = static_cast<std::int64_t>(count);
   }
   report.flippedTriangles = flipped;
   report.maxDisplacement = diagonal2 > 0.0 ? std::sqrt(largest / diagonal2) : 0.0;
@@ -202,7 +209,7 @@ Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& param
   signal.values = input.data();
   signal.valueScale = 2.0; // unit normals: components span [-1, 1]
   signal.sampleAtTimeZero = true;
-  signal.lengthScale = mesh.MeanEdgeLength();
+  signal.lengthScale = parameters.lengthScale > 0.0 ? parameters.lengthScale : mesh.MeanEdgeLength();
   target.resize(input.size());
   const Status status =
     AdvectMeshSignal(advected, signal, target.data(), parameters.advection, &r.advection, fields, progress);
@@ -270,7 +277,7 @@ Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& pa
     std::copy(mesh.Point(0), mesh.Point(0) + 3 * mesh.NumberOfPoints(), positions);
     return fitted;
   }
-  Measure(mesh, positions, threads, r);
+  Measure(mesh, positions, fit.partition, threads, r);
   return {};
 }
 } // namespace
@@ -311,7 +318,9 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
   std::vector<std::int64_t> source;
   Status status;
   const auto cleanStart = Clock::now();
-  const bool removed = WithoutRepeatedTriangles(mesh, threads, reduced, source, r, status);
+  // (Not for a piece of a distributed fit: its partition numbers the piece's triangles.)
+  const bool removed = !parameters.fit.partition &&
+    WithoutRepeatedTriangles(mesh, threads, reduced, source, r, status);
   r.normalsSeconds = SecondsSince(cleanStart);
   if (!status.Ok())
   {

@@ -49,6 +49,9 @@ struct SharpeningParameters
   /// already sharp and are kept (SharpFeatures); [0, 180], 180 = the paper (none).
   double featureAngle = 30.0;
   FitParameters fit;             ///< the screened Poisson fit
+  /// Length unit of the advection (0: the mesh's own mean edge length). A piece of a
+  /// distributed mesh (fit.partition) passes the whole mesh's mean edge length.
+  double lengthScale = 0.0;
 };
 
 /// What a sharpening run did.

@@ -70,7 +70,7 @@ struct Frame
   double scale = 0.0; ///< 0 when the mesh has no area
 };
 
-Frame UnitAreaFrame(const TriangleMesh& mesh, int threads)
+Frame UnitAreaFrame(const TriangleMesh& mesh, const MeshPartition* partition, int threads)
 {
   const std::int64_t nt = mesh.NumberOfTriangles();
   const std::int64_t blocks = (nt + SumBlock - 1) / SumBlock;
@@ -81,6 +81,10 @@ Frame UnitAreaFrame(const TriangleMesh& mesh, int threads)
     double* sum = &partial[static_cast<size_t>(4 * b)];
     for (std::int64_t f = b * SumBlock; f < std::min(nt, (b + 1) * SumBlock); ++f)
     {
+      if (partition && !partition->ownedTriangles[static_cast<size_t>(f)])
+      {
+        continue; // a ghost triangle: its owner adds it
+      }
       const double a = mesh.Area(f); // 0 for degenerate triangles
       const double* c = mesh.Centroid(f);
       sum[0] += a;
@@ -97,6 +101,10 @@ Frame UnitAreaFrame(const TriangleMesh& mesh, int threads)
     {
       total[k] += partial[static_cast<size_t>(4 * b + k)];
     }
+  }
+  if (partition)
+  {
+    partition->globalSum(total, 4);
   }
   Frame frame;
   if (total[0] > 0.0)
@@ -238,10 +246,12 @@ Status Assemble(const TriangleMesh& mesh, const double* targets, FitTarget targe
 /**
  * Count sums over the rows 0..n-1 at once: term(i, sums) adds row i's terms (and
  * may update row i's values). The rows are summed in fixed blocks, so the result
- * does not depend on the number of threads.
+ * does not depend on the number of threads. On a piece (partition), only the
+ * owned rows are visited and the sums are added over all pieces.
  */
 template <int Count, typename Term>
-std::array<double, Count> RowSums(std::int64_t n, int threads, Term term)
+std::array<double, Count> RowSums(
+  std::int64_t n, int threads, const MeshPartition* partition, Term term)
 {
   const std::int64_t blocks = (n + SumBlock - 1) / SumBlock;
   std::vector<std::array<double, Count>> partial(static_cast<size_t>(blocks));
@@ -251,7 +261,10 @@ std::array<double, Count> RowSums(std::int64_t n, int threads, Term term)
     std::array<double, Count> sums{};
     for (std::int64_t i = b * SumBlock; i < std::min(n, (b + 1) * SumBlock); ++i)
     {
-      term(i, sums);
+      if (!partition || partition->ownedPoints[static_cast<size_t>(i)])
+      {
+        term(i, sums);
+      }
     }
     partial[static_cast<size_t>(b)] = sums;
   }
@@ -262,6 +275,10 @@ std::array<double, Count> RowSums(std::int64_t n, int threads, Term term)
     {
       total[k] += sums[k];
     }
+  }
+  if (partition)
+  {
+    partition->globalSum(total.data(), Count);
   }
   return total;
 }
@@ -289,7 +306,7 @@ inline void MultiplyRow(const RowMatrix& A, const Coordinates& y, std::int64_t i
  * returns the number of iterations done.
  */
 int ConjugateGradients(const System& system, int maxIterations, double tolerance, int threads,
-  Coordinates& x)
+  const MeshPartition* partition, Coordinates& x)
 {
   const RowMatrix& A = system.matrix;
   const Coordinates& b = system.rhs;
@@ -300,9 +317,10 @@ int ConjugateGradients(const System& system, int maxIterations, double tolerance
   {
     inverseDiagonal[static_cast<size_t>(i)] = 1.0 / A.coeff(i, i); // > 0: see Assemble
   }
-  Coordinates r(n, 3), p(n, 3), q(n, 3);
+  // Zero start: on a piece, rows it does not own are never computed.
+  Coordinates r = Coordinates::Zero(n, 3), p = Coordinates::Zero(n, 3), q = Coordinates::Zero(n, 3);
   // r = b - A x, p = z = D^-1 r; sums of r.r, r.z and b.b.
-  const auto start = RowSums<9>(n, threads, [&](std::int64_t i, std::array<double, 9>& sums) {
+  const auto start = RowSums<9>(n, threads, partition, [&](std::int64_t i, std::array<double, 9>& sums) {
     double ax[3];
     MultiplyRow(A, x, i, ax);
     for (int k = 0; k < 3; ++k)
@@ -325,8 +343,12 @@ int ConjugateGradients(const System& system, int maxIterations, double tolerance
   int iteration = 0;
   while (iteration < maxIterations && (active[0] || active[1] || active[2]))
   {
+    if (partition)
+    {
+      partition->exchangePoints(p.data()); // the owners' p on the halo of the owned rows
+    }
     // q = A p and p.q.
-    const auto pq = RowSums<3>(n, threads, [&](std::int64_t i, std::array<double, 3>& sums) {
+    const auto pq = RowSums<3>(n, threads, partition, [&](std::int64_t i, std::array<double, 3>& sums) {
       double ap[3];
       MultiplyRow(A, p, i, ap);
       for (int k = 0; k < 3; ++k)
@@ -343,7 +365,7 @@ int ConjugateGradients(const System& system, int maxIterations, double tolerance
       step[k] = active[k] ? rz[k] / pq[k] : 0.0;
     }
     // x += step p, r -= step q; sums of r.r and r.z (z = D^-1 r).
-    const auto sums = RowSums<6>(n, threads, [&](std::int64_t i, std::array<double, 6>& s) {
+    const auto sums = RowSums<6>(n, threads, partition, [&](std::int64_t i, std::array<double, 6>& s) {
       for (int k = 0; k < 3; ++k)
       {
         x(i, k) += step[k] * p(i, k);
@@ -392,15 +414,20 @@ Status Solve(const System& system, const FitParameters& parameters, int threads,
   x = system.original;
   report.iterations = ConjugateGradients(system,
     fixed ? parameters.iterations : parameters.maxIterations,
-    fixed ? 0.0 : parameters.tolerance, threads, x);
+    fixed ? 0.0 : parameters.tolerance, threads, parameters.partition, x);
+  if (parameters.partition)
+  {
+    parameters.partition->exchangePoints(x.data()); // halo points take their owners' result
+  }
   return {};
 }
 
 /// Largest relative residual ||b - A x|| / ||b|| over the coordinates (absolute when b = 0).
-double RelativeResidual(const System& system, const Coordinates& x, int threads)
+double RelativeResidual(
+  const System& system, const Coordinates& x, const MeshPartition* partition, int threads)
 {
   const auto sums = RowSums<6>(
-    system.matrix.rows(), threads, [&](std::int64_t i, std::array<double, 6>& s) {
+    system.matrix.rows(), threads, partition, [&](std::int64_t i, std::array<double, 6>& s) {
       double ax[3];
       MultiplyRow(system.matrix, x, i, ax);
       for (int k = 0; k < 3; ++k)
@@ -532,6 +559,17 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
   {
     return { "iteration counts and tolerance must be >= 0 (tolerance finite)" };
   }
+  const MeshPartition* partition = parameters.partition;
+  if (partition &&
+    (parameters.solver == FitSolver::Exact ||
+      partition->ownedPoints.size() != static_cast<size_t>(np) ||
+      partition->ownedTriangles.size() != static_cast<size_t>(nt) || !partition->globalSum ||
+      !partition->exchangePoints))
+  {
+    return { parameters.solver == FitSolver::Exact
+        ? "the exact solver cannot solve a mesh split into pieces: use conjugate gradients"
+        : "incomplete mesh partition" };
+  }
 
   const auto setupStart = Clock::now();
   FitReport local;
@@ -543,14 +581,21 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
   for (std::int64_t f = 0; f < nt; ++f)
   {
     double n[3];
-    if (!mesh.Degenerate(f) && !TargetNormal(mesh, targetNormals, f, n))
+    if (!mesh.Degenerate(f) && (!partition || partition->ownedTriangles[static_cast<size_t>(f)]) &&
+      !TargetNormal(mesh, targetNormals, f, n))
     {
       ++invalid;
     }
   }
+  if (partition)
+  {
+    double count = static_cast<double>(invalid);
+    partition->globalSum(&count, 1);
+    invalid = static_cast<std::int64_t>(count);
+  }
   out.invalidTargets = invalid;
 
-  const Frame frame = UnitAreaFrame(mesh, threads);
+  const Frame frame = UnitAreaFrame(mesh, partition, threads);
   if (frame.scale == 0.0)
   {
     // No area, nothing to fit: every point keeps its position.
@@ -572,7 +617,7 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
   status = Solve(system, parameters, threads, x, out);
   if (status.Ok())
   {
-    out.residual = RelativeResidual(system, x, threads);
+    out.residual = RelativeResidual(system, x, parameters.partition, threads);
     out.converged = out.residual <= parameters.tolerance;
   }
   out.solveSeconds = SecondsSince(solveStart);

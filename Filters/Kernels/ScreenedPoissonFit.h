@@ -65,6 +65,7 @@
 #ifndef ScreenedPoissonFit_h
 #define ScreenedPoissonFit_h
 
+#include "MeshPartition.h"
 #include "ShockTypes.h"
 #include "TriangleMesh.h"
 
@@ -121,6 +122,12 @@ struct FitParameters
   /// Meshes with fewer than 16384 points per thread use fewer threads. The result
   /// does not depend on the number of threads (the parallel sums are ordered).
   int numberOfThreads = 0;
+  /// When set, the mesh is one piece of a distributed mesh: normalisation, sums and
+  /// the conjugate gradients run over all pieces (same preconditioner and iterations
+  /// as serial; the result equals the serial one up to summation order). Only the
+  /// owned points' positions are fitted; the others (ghosts) are set from their owners
+  /// where the piece needs them. Not for FitSolver::Exact.
+  const MeshPartition* partition = nullptr;
 };
 
 /// What a fit did. The residual is that of the normalised system (unit area).

@@ -134,8 +134,7 @@ EXPECTED_NAMES = {
         "GhostLevels"},
 }
 EXPECTED_NAMES["SurfaceShockAdvection"] = set(EXPECTED_NAMES["ImageShockAdvection"])
-# GhostLevels: the sharpen filter refuses pieces, so its proxy does not show it.
-EXPECTED_NAMES["SurfaceShockSharpen"] = (EXPECTED_NAMES["ImageShockAdvection"] - {"InputArray", "GhostLevels"}) | {
+EXPECTED_NAMES["SurfaceShockSharpen"] = (EXPECTED_NAMES["ImageShockAdvection"] - {"InputArray"}) | {
     "FeatureAngle", "FitTarget", "LastRepeatedTriangles", "LastDegenerateTriangles", "LastFeatureEdges",
     "NormalSmoothingPasses", "ScreeningWeight", "Solver", "SolverIterations", "SolverTolerance",
     "MergeCoincidentPoints", "GenerateSharpenedNormals", "LastFitSetupSeconds",
@@ -153,7 +152,7 @@ EXPECTED_PANEL = {
                             "Measurements"],
     "SurfaceShockAdvection": ["Input", "Flow", "Tracing", "Output", "Performance", "Parallel",
                               "Measurements"],
-    "SurfaceShockSharpen": ["Input", "Flow", "Tracing", "Fitting", "Output", "Performance",
+    "SurfaceShockSharpen": ["Input", "Flow", "Tracing", "Fitting", "Output", "Performance", "Parallel",
                             "Measurements"],
 }
 
@@ -272,7 +271,7 @@ if SOURCE_XML:
     check(set(definitions) == set(LABELS), "source XML: one flat definition per filter, %s" % sorted(definitions))
     # Deliberately different texts (what is sharpened, what is measured).
     OWN_TEXT = {"Sampling", "GenerateFlowArrays", "LastSetupSeconds", "LastFlowSeconds",
-                "LastAdvectionSeconds", "LastTraceSteps"}
+                "LastAdvectionSeconds", "LastTraceSteps", "GhostLevels"}
 
     def shape(prop, with_text):
         rows = [(prop.tag, tuple(sorted(prop.attrib.items())))]

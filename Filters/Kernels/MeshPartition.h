@@ -1,0 +1,38 @@
+/**
+ * @file MeshPartition.h
+ * @brief One piece of a mesh distributed over processes, as the kernels see it.
+ *
+ * A piece holds the triangles it owns plus ghost layers of its neighbours'
+ * triangles. Every point and every triangle of the whole mesh is owned by
+ * exactly one piece. A kernel that sums over the mesh sums what its piece
+ * owns and adds the pieces' sums with globalSum; a kernel that needs values
+ * of points owned elsewhere (the halo of an owned point's one-ring) gets them
+ * with exchangePoints. The callbacks hide the transport (MPI through a
+ * vtkMultiProcessController in the VTK layer), so the kernels stay VTK-free.
+ */
+#ifndef MeshPartition_h
+#define MeshPartition_h
+
+#include <functional>
+#include <vector>
+
+namespace shock
+{
+
+struct MeshPartition
+{
+  /// Per point of the piece: 1 when this piece owns it (its matrix row, its terms of sums).
+  std::vector<char> ownedPoints;
+  /// Per triangle of the piece: 1 when this piece owns it (its area and centroid).
+  std::vector<char> ownedTriangles;
+  /// Replace values[0..count) by their sums over all pieces (collective).
+  std::function<void(double* values, int count)> globalSum;
+  /// values holds 3 doubles per point of the piece: overwrite those of the points
+  /// this piece does not own but needs (the one-rings of its owned points) with
+  /// the owners' values (collective).
+  std::function<void(double* values)> exchangePoints;
+};
+
+} // namespace shock
+
+#endif
