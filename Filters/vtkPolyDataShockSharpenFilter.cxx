@@ -102,9 +102,9 @@ void ReportRun(vtkPolyDataShockSharpenFilter* self, const shock::SharpeningRepor
   }
   if (report.degenerateTriangles > 0)
   {
-    vtkWarningWithObjectMacro(self, << report.degenerateTriangles
-                    << " degenerate (zero-area) triangles were ignored: the result is that of the "
-                       "mesh without them.");
+    // Removed, they no longer change the result (they used to stop traces): no warning.
+    vtkLogF(INFO, "vtkPolyDataShockSharpenFilter: %lld degenerate (zero-area) triangles ignored",
+      static_cast<long long>(report.degenerateTriangles));
   }
 
   vtkNew<vtkFieldData> field;

@@ -40,8 +40,9 @@
  *   the output keeps the input's cells (with the new point positions);
  * - degenerate (zero-area) triangles and triangles that repeat another
  *   triangle's vertex set (a mesh appended to itself, in either orientation)
- *   are removed for the computation, with a warning that counts them, so the
- *   result is that of the mesh without them; points used by no triangle keep
+ *   are removed for the computation, so the result is that of the mesh without
+ *   them (repeated triangles with a warning that counts them; both counts in
+ *   LastRepeatedTriangles and LastDegenerateTriangles); points used by no triangle keep
  *   their position; vertex and line cells pass through;
  * - exactly coincident points (e.g. the seams of STL files) are merged for the
  *   computation when MergeCoincidentPoints is on (default), so the surface is
