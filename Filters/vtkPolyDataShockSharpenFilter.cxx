@@ -2,6 +2,8 @@
 
 #include "MeshSharpening.h"
 #include "vtkCellData.h"
+#include "vtkIdList.h"
+#include "vtkPointData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
@@ -13,6 +15,7 @@
 #include "vtkShockFilterInternals.h"
 #include "vtkShockParallel.h"
 #include "vtkShockPolyDataInternals.h"
+#include "vtkSmartPointer.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkMultiProcessController.h"
 #include "vtkPointData.h"
@@ -36,6 +39,154 @@ vtkSmartPointer<vtkDataArray> SingleValue(const char* name, T value)
   array->SetName(name);
   array->InsertNextValue(static_cast<double>(value));
   return array;
+}
+
+/// Unit normal of every cell of `output` with its new points: the normalised sum of its triangles' area vectors.
+std::vector<double> CellNormals(vtkPolyData* output, const vtkShockPolyDataInternals::Triangles& triangles,
+  const std::vector<double>& positions)
+{
+  std::vector<double> normals(static_cast<size_t>(3 * output->GetNumberOfCells()), 0.0);
+  for (size_t f = 0; f < triangles.sourceCell.size(); ++f)
+  {
+    const std::int64_t* t = &triangles.triangles[3 * f];
+    const double* a = &positions[static_cast<size_t>(3 * t[0])];
+    const double* b = &positions[static_cast<size_t>(3 * t[1])];
+    const double* c = &positions[static_cast<size_t>(3 * t[2])];
+    const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    double* n = &normals[static_cast<size_t>(3 * triangles.sourceCell[f])];
+    n[0] += u[1] * v[2] - u[2] * v[1];
+    n[1] += u[2] * v[0] - u[0] * v[2];
+    n[2] += u[0] * v[1] - u[1] * v[0];
+  }
+  for (size_t c = 0; c < normals.size(); c += 3)
+  {
+    const double length = std::sqrt(normals[c] * normals[c] + normals[c + 1] * normals[c + 1] +
+      normals[c + 2] * normals[c + 2]);
+    for (int k = 0; k < 3 && length > 0.0; ++k)
+    {
+      normals[c + static_cast<size_t>(k)] /= length;
+    }
+  }
+  return normals;
+}
+
+/// Give `output` new points of the input's type; coincident copies take their representative's position.
+void SetNewPoints(vtkPolyData* output, vtkPolyData* input, const std::vector<std::int64_t>& representative,
+  std::vector<double>& positions)
+{
+  for (size_t p = 0; p < representative.size(); ++p)
+  {
+    const size_t r = static_cast<size_t>(representative[p]);
+    std::copy(&positions[3 * r], &positions[3 * r] + 3, &positions[3 * p]);
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataType(input->GetPoints()->GetDataType());
+  points->SetNumberOfPoints(input->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+  {
+    points->SetPoint(p, &positions[static_cast<size_t>(3 * p)]);
+  }
+  output->SetPoints(points);
+}
+
+/// The warnings, field data and log line of a completed run.
+void ReportRun(vtkPolyDataShockSharpenFilter* self, const shock::SharpeningReport& report,
+  vtkPolyData* input, vtkPolyData* output)
+{
+  if (report.repeatedTriangles > 0)
+  {
+    vtkWarningWithObjectMacro(self, << report.repeatedTriangles
+                    << " triangles repeat the points of another triangle and were ignored (a mesh "
+                       "appended to itself?): the result is that of the mesh without them.");
+  }
+  if (report.degenerateTriangles > 0)
+  {
+    // Removed, they no longer change the result (they used to stop traces): no warning.
+    vtkLogF(INFO, "vtkPolyDataShockSharpenFilter: %lld degenerate (zero-area) triangles ignored",
+      static_cast<long long>(report.degenerateTriangles));
+  }
+
+  vtkNew<vtkFieldData> field;
+  field->ShallowCopy(input->GetFieldData());
+  field->AddArray(SingleValue("ShockSolverIterations", report.fit.iterations));
+  field->AddArray(SingleValue("ShockSolverResidual", report.fit.residual));
+  field->AddArray(SingleValue("ShockFlippedTriangles", report.flippedTriangles));
+  field->AddArray(SingleValue("ShockMaxDisplacement", report.maxDisplacement));
+  output->SetFieldData(field);
+  vtkLogF(INFO,
+    "vtkPolyDataShockSharpenFilter: %d solver iterations, relative residual %.3g%s, %lld flipped "
+    "triangles, max displacement %.3g of the bounding-box diagonal",
+    report.fit.iterations, report.fit.residual,
+    // The paper's fixed 25 iterations do not aim at a tolerance: only flag the modes that do.
+    (self->GetSolver() == vtkPolyDataShockSharpenFilter::CONJUGATE_GRADIENT || report.fit.converged) ? "" : " (above the tolerance)",
+    static_cast<long long>(report.flippedTriangles), report.maxDisplacement);
+  if (report.fit.invalidTargets > 0)
+  {
+    vtkWarningWithObjectMacro(self, << report.fit.invalidTargets
+                    << " triangles had no valid sharpened normal and kept their own.");
+  }
+}
+
+/**
+ * Replace the active point and cell normals of `output` (if any) by those of its
+ * new geometry, in a new array of the same type and name: cell normals are the
+ * cells' unit normals, point normals the normalised sum of the unit normals of
+ * the cells around each point (points without cells keep theirs).
+ */
+void RecomputeActiveNormals(vtkPolyData* output, const vtkShockPolyDataInternals::Triangles& triangles,
+  const std::vector<double>& positions)
+{
+  vtkDataArray* pointNormals = output->GetPointData()->GetNormals();
+  vtkDataArray* cellNormals = output->GetCellData()->GetNormals();
+  if (!pointNormals && !cellNormals)
+  {
+    return;
+  }
+  const std::vector<double> cells = CellNormals(output, triangles, positions);
+  if (cellNormals)
+  {
+    vtkSmartPointer<vtkDataArray> fresh = vtk::TakeSmartPointer(cellNormals->NewInstance());
+    fresh->DeepCopy(cellNormals);
+    for (vtkIdType c = 0; c < output->GetNumberOfCells(); ++c)
+    {
+      if (cells[static_cast<size_t>(3 * c)] != 0.0 || cells[static_cast<size_t>(3 * c + 1)] != 0.0 ||
+        cells[static_cast<size_t>(3 * c + 2)] != 0.0)
+      {
+        fresh->SetTuple(c, &cells[static_cast<size_t>(3 * c)]);
+      }
+    }
+    output->GetCellData()->SetNormals(fresh);
+  }
+  if (pointNormals)
+  {
+    std::vector<double> sums(static_cast<size_t>(3 * output->GetNumberOfPoints()), 0.0);
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < output->GetNumberOfCells(); ++c)
+    {
+      output->GetCellPoints(c, ids);
+      for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          sums[static_cast<size_t>(3 * ids->GetId(i) + k)] += cells[static_cast<size_t>(3 * c + k)];
+        }
+      }
+    }
+    vtkSmartPointer<vtkDataArray> fresh = vtk::TakeSmartPointer(pointNormals->NewInstance());
+    fresh->DeepCopy(pointNormals);
+    for (vtkIdType p = 0; p < output->GetNumberOfPoints(); ++p)
+    {
+      double* n = &sums[static_cast<size_t>(3 * p)];
+      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (length > 0.0)
+      {
+        const double unit[3] = { n[0] / length, n[1] / length, n[2] / length };
+        fresh->SetTuple(p, unit);
+      }
+    }
+    output->GetPointData()->SetNormals(fresh);
+  }
 }
 }
 
@@ -245,6 +396,8 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   shock::SharpeningParameters parameters;
   parameters.advection = vtkShockFilterInternals::MakeParameters(this);
   parameters.normalSmoothingPasses = this->NormalSmoothingPasses;
+  parameters.featureAngle = this->FeatureAngle;
+  parameters.fit.target = static_cast<shock::FitTarget>(this->FitTarget);
   parameters.lengthScale = meanEdgeLength;
   parameters.fit.screeningWeight = this->ScreeningWeight;
   parameters.fit.solver = static_cast<shock::FitSolver>(this->Solver);
@@ -281,6 +434,9 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   this->LastSolverResidual = report.fit.residual;
   this->LastFlippedTriangles = static_cast<vtkIdType>(report.flippedTriangles);
   this->LastMaxDisplacement = report.maxDisplacement;
+  this->LastRepeatedTriangles = static_cast<vtkIdType>(report.repeatedTriangles);
+  this->LastDegenerateTriangles = static_cast<vtkIdType>(report.degenerateTriangles);
+  this->LastFeatureEdges = static_cast<vtkIdType>(report.featureEdges);
   return true;
 }
 
@@ -292,41 +448,9 @@ void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
   const shock::TriangleMesh& mesh = prepared.mesh;
   const vtkShockPolyDataInternals::Triangles& triangles = prepared.triangles;
   output->ShallowCopy(input);
-  // Coincident copies take the position computed for their representative.
-  const std::vector<std::int64_t>& representative = prepared.representative;
-  for (size_t p = 0; p < representative.size(); ++p)
-  {
-    const size_t r = static_cast<size_t>(representative[p]);
-    std::copy(&positions[3 * r], &positions[3 * r] + 3, &positions[3 * p]);
-  }
-  vtkNew<vtkPoints> points;
-  points->SetDataType(input->GetPoints()->GetDataType());
-  points->SetNumberOfPoints(input->GetNumberOfPoints());
-  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
-  {
-    points->SetPoint(p, &positions[static_cast<size_t>(3 * p)]);
-  }
-  output->SetPoints(points);
-
-  vtkNew<vtkFieldData> field;
-  field->ShallowCopy(input->GetFieldData());
-  field->AddArray(SingleValue("ShockSolverIterations", report.fit.iterations));
-  field->AddArray(SingleValue("ShockSolverResidual", report.fit.residual));
-  field->AddArray(SingleValue("ShockFlippedTriangles", report.flippedTriangles));
-  field->AddArray(SingleValue("ShockMaxDisplacement", report.maxDisplacement));
-  output->SetFieldData(field);
-  vtkLogF(INFO,
-    "vtkPolyDataShockSharpenFilter: %d solver iterations, relative residual %.3g%s, %lld flipped "
-    "triangles, max displacement %.3g of the bounding-box diagonal",
-    report.fit.iterations, report.fit.residual,
-    // The paper's fixed 25 iterations do not aim at a tolerance: only flag the modes that do.
-    (this->Solver == CONJUGATE_GRADIENT || report.fit.converged) ? "" : " (above the tolerance)",
-    static_cast<long long>(report.flippedTriangles), report.maxDisplacement);
-  if (report.fit.invalidTargets > 0)
-  {
-    vtkWarningMacro(<< report.fit.invalidTargets
-                    << " triangles had no valid sharpened normal and kept their own.");
-  }
+  SetNewPoints(output, input, prepared.representative, positions);
+  RecomputeActiveNormals(output, triangles, positions);
+  ReportRun(this, report, input, output);
   if (this->GenerateSharpenedNormals)
   {
     auto cells = vtkShockPolyDataInternals::TrianglesToCells(
@@ -355,12 +479,16 @@ void vtkPolyDataShockSharpenFilter::ResetMeasurements()
   this->LastSolverIterations = 0;
   this->LastSolverResidual = this->LastMaxDisplacement = 0.0;
   this->LastFlippedTriangles = 0;
+  this->LastRepeatedTriangles = this->LastDegenerateTriangles = this->LastFeatureEdges = 0;
 }
 
 void vtkPolyDataShockSharpenFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   static const char* solverNames[] = { "ConjugateGradient", "ConjugateGradientTolerance", "Exact" };
+  os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
+  static const char* targetNames[] = { "Projection", "Rotation", "Shear", "CentralProjection" };
+  os << indent << "FitTarget: " << targetNames[this->FitTarget] << "\n";
   os << indent << "NormalSmoothingPasses: " << this->NormalSmoothingPasses << "\n";
   os << indent << "ScreeningWeight: " << this->ScreeningWeight << "\n";
   os << indent << "Solver: " << solverNames[this->Solver] << "\n";
@@ -375,4 +503,7 @@ void vtkPolyDataShockSharpenFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastSolverResidual: " << this->LastSolverResidual << "\n";
   os << indent << "LastFlippedTriangles: " << this->LastFlippedTriangles << "\n";
   os << indent << "LastMaxDisplacement: " << this->LastMaxDisplacement << "\n";
+  os << indent << "LastRepeatedTriangles: " << this->LastRepeatedTriangles << "\n";
+  os << indent << "LastDegenerateTriangles: " << this->LastDegenerateTriangles << "\n";
+  os << indent << "LastFeatureEdges: " << this->LastFeatureEdges << "\n";
 }

@@ -9,14 +9,23 @@
  * the squared principal curvatures, so normals flow towards the extrema of total
  * curvature and become discontinuous there. The points are then moved so that
  * the surface's normals match the sharpened ones, by solving the screened
- * Poisson equation (eps M + S) c1 = eps M c0 + div w, with w the gradients of
- * the coordinates with their component along the target normal removed, M the
- * finite-element mass matrix and S the cotangent stiffness matrix. Creases and
- * corners come out sharp; flat and smooth parts stay as they are.
+ * Poisson equation (eps M + S) c1 = eps M c0 + div w, with w the target
+ * gradients of the coordinates (FitTarget), M the finite-element mass matrix and
+ * S the cotangent stiffness matrix. Creases and corners come out sharp; flat and
+ * smooth parts stay as they are.
  *
- * Parameters specific to this filter: NormalSmoothingPasses (pre-mollification
- * of noisy normals), ScreeningWeight (eps), Solver, SolverIterations,
- * SolverTolerance, MergeCoincidentPoints, GenerateSharpenedNormals. Of the base
+ * Two departures from the paper, each with a value that reproduces it
+ * (docs/sharpening.md has the evaluation): creases sharper than FeatureAngle are
+ * kept as they are (the paper's per-point normals round them: 180 reproduces
+ * it), and the fit maps each triangle onto its target plane by a central
+ * projection from the centre of curvature instead of an orthogonal
+ * projection, so that sharpening does not shrink the shape (FitTarget
+ * PROJECTION reproduces the paper).
+ *
+ * Parameters specific to this filter: FeatureAngle, FitTarget,
+ * NormalSmoothingPasses (pre-mollification of noisy normals), ScreeningWeight
+ * (eps), Solver, SolverIterations, SolverTolerance, MergeCoincidentPoints,
+ * GenerateSharpenedNormals. Of the base
  * class, Sampling LINEAR (default) interpolates the per-point normals
  * barycentrically, which also smooths the normals (even at FlowTime 0, as the
  * paper's Figure 7 shows); NEAREST copies the normal of the triangle reached, so
@@ -29,15 +38,23 @@
  *   other (natural boundary conditions); only the screening anchors them;
  * - polygons with more than three points and strips are triangulated internally;
  *   the output keeps the input's cells (with the new point positions);
- * - degenerate (zero-area) triangles carry no normal and take no part; points
- *   used by no triangle keep their position; vertex and line cells pass through;
+ * - degenerate (zero-area) triangles and triangles that repeat another
+ *   triangle's vertex set (a mesh appended to itself, in either orientation)
+ *   are removed for the computation, so the result is that of the mesh without
+ *   them (repeated triangles with a warning that counts them; both counts in
+ *   LastRepeatedTriangles and LastDegenerateTriangles); points used by no triangle keep
+ *   their position; vertex and line cells pass through;
  * - exactly coincident points (e.g. the seams of STL files) are merged for the
  *   computation when MergeCoincidentPoints is on (default), so the surface is
  *   treated as connected; every copy receives the same new position;
  * - several components are sharpened together (independently in effect).
  *
  * Output: the input's points (new coordinates, same type), cells and arrays
- * (all passed through). Field data gets "ShockSolverIterations",
+ * (passed through), except the active normals: active point normals become the
+ * mean of the unit normals of the cells around each point and active cell
+ * normals the cells' unit normals, both of the new geometry (as
+ * vtkPolyDataNormals computes them without splitting), in the same array type
+ * and name. Field data gets "ShockSolverIterations",
  * "ShockSolverResidual", "ShockFlippedTriangles" and "ShockMaxDisplacement"
  * (largest displacement / bounding-box diagonal), which are also logged at
  * verbosity INFO. Optional cell arrays: "ShockNormals" (the sharpened normals);
@@ -100,6 +117,51 @@ public:
     CONJUGATE_GRADIENT_TOLERANCE = 1, ///< CG until the relative residual is below SolverTolerance
     EXACT = 2                         ///< sparse Cholesky (LDL^T) factorisation
   };
+
+  /// What the fit asks each triangle's edges to become (see FitTarget).
+  enum FitTargets
+  {
+    PROJECTION = 0, ///< their projection onto the target plane (the paper); shortens edges
+    ROTATION = 1,   ///< their rotation onto the target plane: lengths kept
+    SHEAR = 2,      ///< moved along the triangle's normal onto the target plane
+    CENTRAL_PROJECTION = 3 ///< projected from the centre of curvature onto the target plane (default)
+  };
+
+  ///@{
+  /**
+   * Creases whose face normals differ by more than this angle (degrees) across
+   * an edge are already sharp and are kept: the normals are neither averaged
+   * nor advected across them (as vtkPolyDataNormals splits at its FeatureAngle).
+   * A blurred crease turns by small angles from edge to edge and is still
+   * sharpened. Measured on the normals after NormalSmoothingPasses. Range
+   * [0, 180], default 30; 180 (no feature edge) reproduces the paper.
+   */
+  vtkSetClampMacro(FeatureAngle, double, 0.0, 180.0);
+  vtkGetMacro(FeatureAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * What the fit asks each triangle's edges to become, all with the sharpened
+   * normal N. CENTRAL_PROJECTION (default): the image of the edge under the
+   * central projection onto the target plane from the centre of curvature,
+   * which maps a crease rounded with a constant radius exactly onto the sharp
+   * crease it was rounded from; SHEAR: moved along the triangle's own normal
+   * onto the target plane (its footprint kept); ROTATION: turned by the
+   * smallest rotation taking the triangle's normal to N (lengths kept);
+   * PROJECTION: the paper's w = grad c0 - N <N, grad c0>, projected onto the
+   * target plane (shortened). A rounded crease is shorter than the corner it
+   * was rounded from, so the shorter the edges come out, the more the shape
+   * shrinks as it sharpens (docs/sharpening.md has the evaluation). SHEAR and
+   * CENTRAL_PROJECTION rotate triangles tilted by more than 45 degrees.
+   */
+  vtkSetClampMacro(FitTarget, int, PROJECTION, CENTRAL_PROJECTION);
+  vtkGetMacro(FitTarget, int);
+  void SetFitTargetToProjection() { this->SetFitTarget(PROJECTION); }
+  void SetFitTargetToRotation() { this->SetFitTarget(ROTATION); }
+  void SetFitTargetToShear() { this->SetFitTarget(SHEAR); }
+  void SetFitTargetToCentralProjection() { this->SetFitTarget(CENTRAL_PROJECTION); }
+  ///@}
 
   ///@{
   /**
@@ -182,6 +244,13 @@ public:
   vtkGetMacro(LastMaxDisplacement, double);
   ///@}
 
+  ///@{
+  /// Of the last execution: triangles removed as repeats or degenerate, and feature edges kept.
+  vtkGetMacro(LastRepeatedTriangles, vtkIdType);
+  vtkGetMacro(LastDegenerateTriangles, vtkIdType);
+  vtkGetMacro(LastFeatureEdges, vtkIdType);
+  ///@}
+
   /// Name of the optional sharpened-normals cell array.
   static const char* NormalsArrayName() { return "ShockNormals"; }
 
@@ -213,6 +282,8 @@ protected:
     std::vector<double>& positions, const std::vector<double>& normals,
     const shock::MeshFlowFields& fields, const shock::SharpeningReport& report, vtkPolyData* output);
 
+  double FeatureAngle = 30.0;
+  int FitTarget = CENTRAL_PROJECTION;
   int NormalSmoothingPasses = 0;
   double ScreeningWeight = 1.0;
   int Solver = CONJUGATE_GRADIENT;
@@ -227,6 +298,9 @@ protected:
   double LastSolverResidual = 0.0;
   vtkIdType LastFlippedTriangles = 0;
   double LastMaxDisplacement = 0.0;
+  vtkIdType LastRepeatedTriangles = 0;
+  vtkIdType LastDegenerateTriangles = 0;
+  vtkIdType LastFeatureEdges = 0;
 
 private:
   vtkPolyDataShockSharpenFilter(const vtkPolyDataShockSharpenFilter&) = delete;

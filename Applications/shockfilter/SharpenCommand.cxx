@@ -26,9 +26,22 @@ const std::vector<Choice>& SolverChoices()
   return choices;
 }
 
+const std::vector<Choice>& FitTargetChoices()
+{
+  static const std::vector<Choice> choices = {
+    { "projection", vtkPolyDataShockSharpenFilter::PROJECTION },
+    { "rotation", vtkPolyDataShockSharpenFilter::ROTATION },
+    { "shear", vtkPolyDataShockSharpenFilter::SHEAR },
+    { "central-projection", vtkPolyDataShockSharpenFilter::CENTRAL_PROJECTION },
+  };
+  return choices;
+}
+
 struct SharpenSettings
 {
   ShockOptions shock;
+  std::optional<double> featureAngle;
+  std::optional<int> fitTarget;
   std::optional<int> normalSmoothingPasses;
   std::optional<double> screeningWeight;
   std::optional<int> solver;
@@ -42,6 +55,18 @@ std::vector<OptionSpec> SharpenOptionSpecs(SharpenSettings& settings)
 {
   vtkNew<vtkPolyDataShockSharpenFilter> defaults;
   std::vector<OptionSpec> specs = ShockOptionSpecs(settings.shock, ShockOptionSet::All, defaults);
+  const double angleLow = defaults->GetFeatureAngleMinValue();
+  const double angleHigh = defaults->GetFeatureAngleMaxValue();
+  specs.push_back({ "--feature-angle", "DEG",
+    "creases sharper than this are kept (180 = the paper), " + RangeText(angleLow, angleHigh) +
+      DefaultText(NumberText(defaults->GetFeatureAngle())),
+    [&settings, angleLow, angleHigh](const std::string& v)
+    { settings.featureAngle = ParseInRange("--feature-angle", v, angleLow, angleHigh); } });
+  specs.push_back({ "--fit-target", "NAME",
+    "central-projection|shear|rotation|projection (the paper)" +
+      DefaultText(ChoiceName(defaults->GetFitTarget(), FitTargetChoices())),
+    [&settings](const std::string& v)
+    { settings.fitTarget = ParseChoice("--fit-target", v, FitTargetChoices()); } });
   const int normalLow = defaults->GetNormalSmoothingPassesMinValue();
   const int normalHigh = defaults->GetNormalSmoothingPassesMaxValue();
   specs.push_back({ "--normal-smoothing", "N",
@@ -87,14 +112,17 @@ std::string SharpenHelp()
   text << "shockfilter sharpen INPUT OUTPUT [options]\n"
           "  Sharpens the geometry of a surface mesh: its face normals are shock-filtered,\n"
           "  then the points are fitted to them (screened Poisson equation). Creases\n"
-          "  and corners become sharp; flat and smooth parts stay. Arrays pass through.\n"
+          "  and corners become sharp; flat and smooth parts stay; creases already\n"
+          "  sharper than --feature-angle are kept. Arrays pass through; active\n"
+          "  normals are recomputed for the new geometry.\n"
        << MeshFormatsHelp()
        << "  Memory: about 1200 bytes per point; a file declaring more points or cells\n"
           "  than --max-samples is refused before it is read.\n"
        << TimingsHelp({ "command", "points", "triangles", "time", "smoothing", "normal_smoothing",
-                        "flow_mode", "solver", "threads", "preprocessing", "setup", "fit_setup",
+                        "flow_mode", "solver", "feature_angle", "fit_target", "threads", "preprocessing", "setup", "fit_setup",
                         "flow", "advection", "fitting", "total", "trace_steps", "solver_iterations",
-                        "solver_residual", "flipped_triangles", "max_displacement" },
+                        "solver_residual", "flipped_triangles", "max_displacement", "feature_edges",
+                        "repeated_triangles", "degenerate_triangles" },
             "  times in seconds, the phases of the paper's Table 3: preprocessing = setup\n"
             "  (mesh preparation) + fit_setup (system set-up), flow = normals, smoothing,\n"
             "  potential and flow, advection, fitting = solve; total = wall time of the\n"
@@ -124,6 +152,14 @@ int RunSharpenCommand(const std::vector<std::string>& args)
 
   vtkNew<vtkPolyDataShockSharpenFilter> filter;
   ConfigureFilter(filter, settings.shock);
+  if (settings.featureAngle)
+  {
+    filter->SetFeatureAngle(*settings.featureAngle);
+  }
+  if (settings.fitTarget)
+  {
+    filter->SetFitTarget(*settings.fitTarget);
+  }
   if (settings.normalSmoothingPasses)
   {
     filter->SetNormalSmoothingPasses(*settings.normalSmoothingPasses);
@@ -161,6 +197,8 @@ int RunSharpenCommand(const std::vector<std::string>& args)
       .Add("normal_smoothing", filter->GetNormalSmoothingPasses())
       .Add("flow_mode", ChoiceName(filter->GetFlowMode(), FlowModeChoices()))
       .Add("solver", ChoiceName(filter->GetSolver(), SolverChoices()))
+      .Add("feature_angle", filter->GetFeatureAngle())
+      .Add("fit_target", ChoiceName(filter->GetFitTarget(), FitTargetChoices()))
       .Add("threads", filter->GetNumberOfThreads())
       .Add("preprocessing", filter->GetLastSetupSeconds() + filter->GetLastFitSetupSeconds())
       .Add("setup", filter->GetLastSetupSeconds())
@@ -173,7 +211,10 @@ int RunSharpenCommand(const std::vector<std::string>& args)
       .Add("solver_iterations", filter->GetLastSolverIterations())
       .Add("solver_residual", filter->GetLastSolverResidual())
       .Add("flipped_triangles", filter->GetLastFlippedTriangles())
-      .Add("max_displacement", filter->GetLastMaxDisplacement());
+      .Add("max_displacement", filter->GetLastMaxDisplacement())
+      .Add("feature_edges", filter->GetLastFeatureEdges())
+      .Add("repeated_triangles", filter->GetLastRepeatedTriangles())
+      .Add("degenerate_triangles", filter->GetLastDegenerateTriangles());
     std::cout << json.Text() << std::endl;
   }
   std::cerr << "sharpen: " << input->GetNumberOfPoints() << " points, " << CountTriangles(input)

@@ -19,6 +19,13 @@
  * with the positions fixed: each normal becomes the renormalised area-weighted
  * mean of itself and its edge neighbours.
  *
+ * What is left alone (SharpFeatures): triangles that repeat another triangle's
+ * vertex set and degenerate triangles are removed first (counted in the report),
+ * so the result is that of the mesh without them. Creases already sharper than
+ * the feature angle keep their normals: the points on feature edges are split
+ * for the advection, so normals are neither averaged nor traced across them
+ * (featureAngle 180, no split, reproduces the paper).
+ *
  * With Sampling::Linear, the advected normal is the barycentric interpolation of
  * the per-point normals, which smooths the normals even at t = 0 (the paper's
  * Figure 7); Sampling::Nearest copies the normal of the triangle reached, so
@@ -38,6 +45,9 @@ struct SharpeningParameters
 {
   AdvectionParameters advection; ///< advection of the normals (time, smoothing, sampling, ...)
   int normalSmoothingPasses = 0; ///< Laplacian smoothing passes of the face normals (>= 0)
+  /// Edges whose (smoothed) face normals differ by more than this many degrees are
+  /// already sharp and are kept (SharpFeatures); [0, 180], 180 = the paper (none).
+  double featureAngle = 30.0;
   FitParameters fit;             ///< the screened Poisson fit
   /// Length unit of the advection (0: the mesh's own mean edge length). A piece of a
   /// distributed mesh (fit.partition) passes the whole mesh's mean edge length.
@@ -49,11 +59,15 @@ struct SharpeningReport
 {
   AdvectionReport advection; ///< flow and advection of the normals
   FitReport fit;             ///< solver iterations, residual, set-up and solve times
-  double normalsSeconds = 0.0; ///< face normals and their optional smoothing
+  /// Face normals, their optional smoothing, the search for repeated triangles and the feature split.
+  double normalsSeconds = 0.0;
   /// Non-degenerate triangles whose normal points against the input normal after the fit.
   std::int64_t flippedTriangles = 0;
   /// Largest point displacement divided by the diagonal of the input's bounding box.
   double maxDisplacement = 0.0;
+  std::int64_t repeatedTriangles = 0;   ///< triangles repeating another's vertex set: removed
+  std::int64_t degenerateTriangles = 0; ///< degenerate triangles (see TriangleMesh): removed
+  std::int64_t featureEdges = 0;        ///< edges sharper than the feature angle: kept
 };
 
 /**
@@ -63,9 +77,13 @@ struct SharpeningReport
  * @param parameters see SharpeningParameters.
  * @param positions  output: 3 coordinates per point (points without triangles keep theirs).
  * @param normals    optional output: the sharpened unit normal per triangle (3 each;
- *                   zero for degenerate triangles).
+ *                   zero for degenerate triangles; a repeated triangle gets that of
+ *                   its first occurrence).
  * @param report     optional: timings, solver figures, flips, displacement.
- * @param fields     optional: potential and flow of the normals' advection.
+ * @param fields     optional: potential and flow of the normals' advection (the
+ *                   potential of a point split at feature edges is the mean over
+ *                   its copies, weighted by their triangles; repeated and
+ *                   degenerate triangles get zero flow).
  * @param progress   optional: progress/abort callback (advection part).
  * @return an error for invalid parameters or a failed solve; when aborted
  *         (report->advection.aborted), positions hold the input positions.

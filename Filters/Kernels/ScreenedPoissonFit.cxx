@@ -21,6 +21,9 @@ using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 using Coordinates = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using Clock = std::chrono::steady_clock;
 
+/// FitTarget::Shear and CentralProjection up to this tilt (cosine of 45 degrees: edges
+/// stretched at most sqrt(2) and 2 times); more tilted triangles are rotated instead.
+constexpr double MinShearCosine = 0.7071;
 /// Target normals shorter than this are treated as missing.
 constexpr double MinTargetLength = 1e-8;
 /// Triangles or rows per block of the parallel sums; fixed so that the sums,
@@ -124,8 +127,8 @@ struct System
   std::vector<char> fitted; ///< per point: used by a non-degenerate triangle
 };
 
-Status Assemble(const TriangleMesh& mesh, const double* targets, const Frame& frame,
-  double screening, int threads, System& system)
+Status Assemble(const TriangleMesh& mesh, const double* targets, FitTarget target,
+  const Frame& frame, double screening, int threads, System& system)
 {
   const std::int64_t np = mesh.NumberOfPoints();
   const CompressedLists& ring = mesh.OneRing();
@@ -207,23 +210,10 @@ Status Assemble(const TriangleMesh& mesh, const double* targets, const Frame& fr
         entry(t[c]) += (c == self ? 2.0 : 1.0) * mass + beta * area * gg[c];
       }
 
-      // grad(phi_p) . v_k for the coordinate gradients v_k = sum_c x_c[k] grad(phi_c)
-      // (written with differences to corner 0, as grad(phi_0) = -grad(phi_1) - grad(phi_2)).
-      const double* x0 = mesh.Point(t[0]);
-      const double* x1 = mesh.Point(t[1]);
-      const double* x2 = mesh.Point(t[2]);
-      double gv[3];
-      for (int k = 0; k < 3; ++k)
-      {
-        gv[k] = (x1[k] - x0[k]) * gg[1] + (x2[k] - x0[k]) * gg[2];
-      }
-      // w = v - N <N, v>: the normal part is removed from the values of the position
-      // gradient (the 3x3 Jacobian), so edges map to their projection onto the
-      // target plane. (Projecting each v_k within space instead would keep every
-      // triangle in its own plane: a flat mesh could not bend.)
-      double n[3];
+      // The target gradients w_k enter through (D w)_p = sum_f A_f grad(phi_p) . w_k.
+      double n[3], w[9];
       TargetNormal(mesh, targets, f, n);
-      const double gu = Dot(n, gv); // grad(phi_p) . <N, v>
+      FitTargetGradients(mesh, f, n, target, w);
       for (int k = 0; k < 3; ++k)
       {
         double massSum = 0.0;
@@ -231,7 +221,7 @@ Status Assemble(const TriangleMesh& mesh, const double* targets, const Frame& fr
         {
           massSum += (c == self ? 2.0 : 1.0) * system.original(t[c], k);
         }
-        b[k] += mass * massSum + beta * s * area * (gv[k] - n[k] * gu);
+        b[k] += mass * massSum + beta * s * area * Dot(gp, w + 3 * k);
       }
     }
     if (!fitted)
@@ -458,6 +448,81 @@ double RelativeResidual(
 }
 } // namespace
 
+void FitTargetGradients(const TriangleMesh& mesh, std::int64_t f, const double normal[3],
+  FitTarget target, double gradients[9])
+{
+  std::fill(gradients, gradients + 9, 0.0);
+  if (mesh.Degenerate(f))
+  {
+    return;
+  }
+  // W maps each edge e (a tangent vector) to its target W e; its rows are the
+  // target gradients, w_k = P W^T e_k with P = I - n n^T the projector onto the plane.
+  const double* n = mesh.Normal(f);
+  const double* N = normal;
+  double W[3][3];
+  const double c = Dot(n, N);
+  const bool sheared = target == FitTarget::Shear || target == FitTarget::CentralProjection;
+  if (sheared && c >= MinShearCosine)
+  {
+    // Shear: e -> e - n <N, e> / <N, n>, along n onto the target plane (the footprint in
+    // the own plane is kept). The central projection from the centre of curvature
+    // stretches that by 1 / <N, n> more.
+    const double scale = target == FitTarget::CentralProjection ? 1.0 / c : 1.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        W[i][j] = scale * ((i == j ? 1.0 : 0.0) - n[i] * N[j] / c);
+      }
+    }
+  }
+  else if (target != FitTarget::Projection && c > -1.0 + 1e-12)
+  {
+    // Rotation (and Shear beyond its tilt limit). Rodrigues: R = c I + [a]x + a a^T / (1 + c),
+    // a = n x N, the smallest rotation taking n to N.
+    const double a[3] = { n[1] * N[2] - n[2] * N[1], n[2] * N[0] - n[0] * N[2],
+      n[0] * N[1] - n[1] * N[0] };
+    const double cross[3][3] = { { 0.0, -a[2], a[1] }, { a[2], 0.0, -a[0] }, { -a[1], a[0], 0.0 } };
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        W[i][j] = (i == j ? c : 0.0) + cross[i][j] + a[i] * a[j] / (1.0 + c);
+      }
+    }
+  }
+  else if (target == FitTarget::Projection)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        W[i][j] = (i == j ? 1.0 : 0.0) - N[i] * N[j];
+      }
+    }
+  }
+  else
+  {
+    // N = -n: no smallest rotation; the triangle keeps its own gradients.
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        W[i][j] = i == j ? 1.0 : 0.0;
+      }
+    }
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    const double along = Dot(W[k], n);
+    for (int j = 0; j < 3; ++j)
+    {
+      gradients[3 * k + j] = W[k][j] - along * n[j];
+    }
+  }
+}
+
 Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNormals,
   double* positions, const FitParameters& parameters, FitReport* report)
 {
@@ -477,6 +542,11 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
   if (!(std::isfinite(parameters.screeningWeight) && parameters.screeningWeight > 0.0))
   {
     return { "the screening weight must be finite and > 0" };
+  }
+  if (parameters.target != FitTarget::Projection && parameters.target != FitTarget::Rotation &&
+    parameters.target != FitTarget::Shear && parameters.target != FitTarget::CentralProjection)
+  {
+    return { "unknown fit target" };
   }
   if (parameters.solver != FitSolver::ConjugateGradient &&
     parameters.solver != FitSolver::ConjugateGradientTolerance &&
@@ -535,7 +605,7 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
   }
   System system;
   Status status =
-    Assemble(mesh, targetNormals, frame, parameters.screeningWeight, threads, system);
+    Assemble(mesh, targetNormals, parameters.target, frame, parameters.screeningWeight, threads, system);
   out.setupSeconds = SecondsSince(setupStart);
   if (!status.Ok())
   {

@@ -10,12 +10,35 @@
  *  1. v = grad c0 on each triangle: the gradients v_x, v_y, v_z of the three
  *     coordinates (vectors in the triangle's plane), i.e. the 3x3 Jacobian of
  *     the position;
- *  2. w = v - N <N, v>, i.e. w_k = v_k - N_k (N_x v_x + N_y v_y + N_z v_z): the
- *     component along N is removed from the position's values, so that each
- *     edge e is asked to become its projection e - <e, N> N onto the target
- *     plane (whose normal is N). Removing <v_k, N> N from each v_k separately
- *     would only shrink the triangles within their own planes (a flat mesh could
- *     never bend), so the paper's <v, N> is read as this contraction;
+ *  2. the target gradients w (FitTargetGradients), chosen by FitParameters::target:
+ *     - FitTarget::Projection, the paper's w = v - N <N, v>, i.e.
+ *       w_k = v_k - N_k (N_x v_x + N_y v_y + N_z v_z): the component along N is
+ *       removed from the position's values, so that each edge e is asked to
+ *       become its projection e - <e, N> N onto the target plane (whose normal
+ *       is N). Removing <v_k, N> N from each v_k separately would only shrink the
+ *       triangles within their own planes (a flat mesh could never bend), so the
+ *       paper's <v, N> is read as this contraction. A projection shortens every
+ *       edge that is not parallel to the target plane: a rounded crease
+ *       sharpens to its chord and the shape shrinks;
+ *     - FitTarget::Rotation: each edge e is asked to become R e, with R the
+ *       smallest rotation taking the triangle's own normal n to N (about the
+ *       axis n x N). The target has the normal N, like the projection, but
+ *       every edge keeps its length. When N = -n the rotation is not defined
+ *       and the triangle keeps its gradients (w = v);
+ *     - FitTarget::Shear: each edge e is moved along the triangle's own normal
+ *       n onto the target plane, e - n <N, e> / <N, n>: its component in the
+ *       triangle's plane (its footprint) is kept and only its height changes,
+ *       so an edge lengthens by up to 1 / cos of the tilt between n and N;
+ *     - FitTarget::CentralProjection (the default): the shear divided by
+ *       <N, n>, which is the differential of the central projection onto the
+ *       target plane from the centre of curvature. A crease rounded with a
+ *       constant radius (the offset of a sharp crease, a Minkowski rounding)
+ *       is mapped exactly onto the two planes of the sharp crease: each half
+ *       of a rounded right angle of radius r becomes a leg of length r, where
+ *       a projection gives 0.71 r, a rotation 0.79 r and the shear 0.88 r, so
+ *       those shrink the shape as they sharpen it (docs/sharpening.md).
+ *     Shear and CentralProjection rotate triangles tilted by more than 45
+ *     degrees (whose edges would stretch more than sqrt(2) or 2 times);
  *  3. c1 = argmin_c  eps ||c - c0||^2_M + ||grad c - w||^2, i.e.
  *         (eps M + S) c1 = eps M c0 + D w,
  *     with M the consistent finite-element mass matrix (A/12 [2 1 1; 1 2 1; 1 1 2]
@@ -69,9 +92,20 @@ enum class FitSolver : int
   Exact = 2
 };
 
+/// What each triangle's edges are asked to become in the fit (see the file comment).
+enum class FitTarget : int
+{
+  Projection = 0, ///< projected onto the target plane: the paper's w = v - N <N, v>
+  Rotation = 1,    ///< rotated onto the target plane: lengths kept
+  Shear = 2,       ///< moved along the own normal onto the target plane: footprint kept
+  CentralProjection = 3 ///< centrally projected from the centre of curvature (the default)
+};
+
 /// Parameters of FitPositionsToNormals.
 struct FitParameters
 {
+  /// The target gradients; FitTarget::Projection reproduces the paper.
+  FitTarget target = FitTarget::CentralProjection;
   /// Screening weight eps (> 0, finite), for the mesh normalised to unit area
   /// (eps / total area in the mesh's own units). Larger values keep the positions
   /// closer to the original ones; the paper uses 1.
@@ -112,6 +146,17 @@ struct FitReport
   /// Non-degenerate triangles whose target normal was invalid (replaced by their own normal).
   std::int64_t invalidTargets = 0;
 };
+
+/**
+ * The target gradients w of non-degenerate triangle f for the unit target normal
+ * N (step 2 of the file comment): gradients[3 k .. 3 k + 2] = w_k, the target
+ * gradient of coordinate k, a vector in the triangle's plane. Equivalently, the
+ * 3x3 matrix W with rows w_k maps each edge e of the triangle to its target
+ * W e (R e for Rotation, e - <e, N> N for Projection). Zero for degenerate
+ * triangles.
+ */
+void FitTargetGradients(const TriangleMesh& mesh, std::int64_t f, const double normal[3],
+  FitTarget target, double gradients[9]);
 
 /**
  * Fit the positions of a mesh to target normals (see the file comment).

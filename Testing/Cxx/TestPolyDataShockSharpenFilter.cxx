@@ -726,6 +726,8 @@ TEST(PolyDataShockSharpenFilter, ScreeningWeightAnchorsThePoints)
     auto out = Sharpen(box, 1024.0, [weight](Filter* f) {
       f->SetSolverToExact();
       f->SetScreeningWeight(weight);
+      f->SetFitTargetToProjection(); // the paper's fit: its displacement falls as eps grows
+      f->SetFeatureAngle(180.0);
     });
     const double displacement = FieldValue(out, "ShockMaxDisplacement");
     EXPECT_LT(displacement, previous) << "weight " << weight;
@@ -781,8 +783,15 @@ TEST(PolyDataShockSharpenFilter, QuadsSharpenAsWellAsAUniformTriangulation)
     triangles->InsertNextCell(3, second);
   }
   uniform->SetPolys(triangles);
-  auto fromQuads = Sharpen(quads, 2048.0, Exact);
-  auto fromTriangles = Sharpen(uniform, 2048.0, Exact);
+  // Measured with the paper's fit (the default central projection stretches each
+  // triangle along its tilt, so the choice of diagonal matters more: 0.023 against 0.010).
+  const Configure paper = [](Filter* f) {
+    f->SetSolverToExact();
+    f->SetFitTargetToProjection();
+    f->SetFeatureAngle(180.0);
+  };
+  auto fromQuads = Sharpen(quads, 2048.0, paper);
+  auto fromTriangles = Sharpen(uniform, 2048.0, paper);
   auto asQuads = DeepCopy(quads);
   asQuads->SetPoints(fromTriangles->GetPoints());
   const double quadError = MeanCubeNormalError(fromQuads, quads);
@@ -931,10 +940,13 @@ TEST(PolyDataShockSharpenFilter, CubeSourceCornersStayTogether)
     {
       const std::string what = std::string(sampling == Filter::LINEAR ? "linear" : "nearest") +
         (merge ? ", merged" : ", not merged");
+      // The paper's settings (no feature angle, projection).
       auto out = Sharpen(input, 256.0, [merge, sampling](Filter* f) {
         f->SetSolverToExact();
         f->SetSampling(sampling);
         f->SetMergeCoincidentPoints(merge);
+        f->SetFeatureAngle(180.0);
+        f->SetFitTargetToProjection();
       });
       ExpectSameCells(out, input, what);
       ASSERT_TRUE(AllFinite(Coordinates(out))) << what;
@@ -950,11 +962,22 @@ TEST(PolyDataShockSharpenFilter, CubeSourceCornersStayTogether)
       {
         // Unmerged: six separate flat squares, nothing to sharpen. Merged with
         // nearest sampling: the cube, already sharp, is a fixed point. (Merged with
-        // linear sampling, the default, the 12 targets are interpolated from
-        // corner normals 55 degrees off the faces and the unit cube is visibly
-        // deformed: coordinates change by about 0.29.)
+        // linear sampling, the paper's per-point normals, the 12 targets are
+        // interpolated from corner normals 55 degrees off the faces and the unit
+        // cube is visibly deformed: coordinates change by about 0.09 at t = 256.)
         EXPECT_LT(moved, 1e-9) << what;
       }
+      else
+      {
+        EXPECT_GT(moved, 0.05) << what;
+      }
+      // The default feature angle keeps the cube's creases: nothing moves.
+      auto kept = Sharpen(input, 256.0, [merge, sampling](Filter* f) {
+        f->SetSolverToExact();
+        f->SetSampling(sampling);
+        f->SetMergeCoincidentPoints(merge);
+      });
+      EXPECT_LT(MaxDifference(Coordinates(kept), Coordinates(input)), 1e-9) << what << ", default feature angle";
     }
   }
 }
@@ -1295,7 +1318,17 @@ TEST(PolyDataShockSharpenFilter, DefaultsClampingAndPrintSelf)
   EXPECT_TRUE(filter->GetMergeCoincidentPoints());
   EXPECT_FALSE(filter->GetGenerateSharpenedNormals());
   EXPECT_EQ(filter->GetSampling(), Filter::LINEAR);
+  EXPECT_EQ(filter->GetFeatureAngle(), 30.0);
+  EXPECT_EQ(filter->GetFitTarget(), Filter::CENTRAL_PROJECTION);
 
+  filter->SetFeatureAngle(-5.0);
+  EXPECT_EQ(filter->GetFeatureAngle(), 0.0);
+  filter->SetFeatureAngle(500.0);
+  EXPECT_EQ(filter->GetFeatureAngle(), 180.0);
+  filter->SetFitTarget(9);
+  EXPECT_EQ(filter->GetFitTarget(), Filter::CENTRAL_PROJECTION);
+  filter->SetFitTarget(-1);
+  EXPECT_EQ(filter->GetFitTarget(), Filter::PROJECTION);
   filter->SetScreeningWeight(0.0);
   EXPECT_EQ(filter->GetScreeningWeight(), 1e-6);
   filter->SetSolver(7);
@@ -1315,19 +1348,24 @@ TEST(PolyDataShockSharpenFilter, DefaultsClampingAndPrintSelf)
   filter->MergeCoincidentPointsOff();
   filter->GenerateSharpenedNormalsOn();
   filter->SetFlowTime(123.25);
+  filter->SetFeatureAngle(42.5);
+  filter->SetFitTargetToShear();
   std::ostringstream os;
   filter->Print(os);
   for (const char* key : { "vtkPolyDataShockSharpenFilter", "FlowTime: 123.25", "NormalSmoothingPasses: 3",
          "ScreeningWeight: 2.5", "Solver: ConjugateGradientTolerance", "SolverIterations: 40",
          "SolverTolerance: 1e-07", "MergeCoincidentPoints: Off", "GenerateSharpenedNormals: On",
-         "LastSolverResidual", "LastMaxDisplacement" })
+         "LastSolverResidual", "LastMaxDisplacement", "FeatureAngle: 42.5", "FitTarget: Shear",
+         "LastRepeatedTriangles", "LastDegenerateTriangles", "LastFeatureEdges" })
   {
     EXPECT_NE(os.str().find(key), std::string::npos) << key << "\n" << os.str();
   }
   filter->SetSolverToExact();
+  filter->SetFitTargetToCentralProjection();
   std::ostringstream exact;
   filter->Print(exact);
   EXPECT_NE(exact.str().find("Solver: Exact"), std::string::npos) << exact.str();
+  EXPECT_NE(exact.str().find("FitTarget: CentralProjection"), std::string::npos) << exact.str();
 }
 
 } // namespace

@@ -101,9 +101,10 @@ double MeanCubeNormalError(const MeshData& box, const std::vector<double>& posit
 /**
  * How far the points are from forming a cube centred at the origin, whatever its
  * size: the mean deviation of their max-norm |x|_inf from its mean, relative to
- * that mean (0 for points on a cube's surface). The fit sharpens rounded creases
- * to a corner at about the crease's chord, so the sharpened cube is a little
- * smaller than the one the rounding started from; this measure ignores size.
+ * that mean (0 for points on a cube's surface). With the paper's projection the
+ * fit sharpens rounded creases to a corner at about the crease's chord, so the
+ * sharpened cube is smaller than the one the rounding started from; this measure
+ * ignores size (SharpeningKeeps tests the distance to the cube itself).
  */
 double CubeDeviation(const std::vector<double>& positions)
 {

@@ -541,11 +541,16 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
 {
   // Two random triangles sharing an edge, random targets: the exact fit must equal
   // the solution of the system built here from the classical cotangent formula,
-  // barycentric gradients from the Gram matrix, and the unit-area screening weight.
+  // barycentric gradients from the Gram matrix, and the unit-area screening weight,
+  // for each fit target T: the target Jacobian is T J (J the position's Jacobian),
+  // with T = I - N N^T (the paper's projection), the rotation about n x N by the
+  // angle between them (axis-angle form), or (I - n N^T / c) / c^p for the shear
+  // (p = 0) and the central projection (p = 1), c = <n, N> (tilts below 45 degrees).
   std::mt19937 random(12345);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  for (int trial = 0; trial < 20; ++trial)
+  for (int trial = 0; trial < 80; ++trial)
   {
+    const FitTarget target = static_cast<FitTarget>(trial % 4);
     Mesh m;
     for (int i = 0; i < 12; ++i)
     {
@@ -554,10 +559,14 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
     m.triangles = { 0, 1, 2, 0, 2, 3 };
     const TriangleMesh mesh = Build(m);
     ASSERT_FALSE(mesh.Degenerate(0) || mesh.Degenerate(1));
+    // Targets tilted from the triangles' normals by less than 45 degrees.
     std::vector<double> targets;
-    for (int i = 0; i < 6; ++i)
+    for (int f = 0; f < 2; ++f)
     {
-      targets.push_back(uniform(random));
+      for (int k = 0; k < 3; ++k)
+      {
+        targets.push_back(mesh.Normal(f)[k] + 0.4 * uniform(random));
+      }
     }
     const double weight = trial % 2 ? 1.0 : 0.1 + 10.0 * (uniform(random) + 1.0);
 
@@ -607,7 +616,42 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
       {
         v /= length;
       }
-      // Jacobian of the position, J[k] = grad x_k, with the N part of its values removed.
+      // Jacobian of the position, J[k] = grad x_k, and the target map T.
+      const Vec3 own = [&] {
+        const Vec3 c = Cross(e1, e2);
+        const double l = std::sqrt(Dot(c, c));
+        return Vec3{ c[0] / l, c[1] / l, c[2] / l };
+      }();
+      const double cosine = Dot(own, n);
+      double map[3][3];
+      const Vec3 axis = Cross(own, n);
+      const double sine = std::sqrt(Dot(axis, axis));
+      for (int i = 0; i < 3; ++i)
+      {
+        for (int j = 0; j < 3; ++j)
+        {
+          const double delta = i == j ? 1.0 : 0.0;
+          switch (target)
+          {
+            case FitTarget::Projection:
+              map[i][j] = delta - n[i] * n[j];
+              break;
+            case FitTarget::Rotation:
+            {
+              const double u[3] = { axis[0] / sine, axis[1] / sine, axis[2] / sine };
+              const double k[3][3] = { { 0, -u[2], u[1] }, { u[2], 0, -u[0] }, { -u[1], u[0], 0 } };
+              map[i][j] = cosine * delta + sine * k[i][j] + (1.0 - cosine) * u[i] * u[j];
+              break;
+            }
+            case FitTarget::Shear:
+              map[i][j] = delta - own[i] * n[j] / cosine;
+              break;
+            case FitTarget::CentralProjection:
+              map[i][j] = (delta - own[i] * n[j] / cosine) / cosine;
+              break;
+          }
+        }
+      }
       Vec3 jacobian[3] = {};
       for (int k = 0; k < 3; ++k)
       {
@@ -621,12 +665,12 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
       }
       for (int k = 0; k < 3; ++k)
       {
-        Vec3 w = jacobian[k];
+        Vec3 w = {};
         for (int j = 0; j < 3; ++j)
         {
           for (int d = 0; d < 3; ++d)
           {
-            w[d] -= n[k] * n[j] * jacobian[j][d];
+            w[d] += map[k][j] * jacobian[j][d];
           }
         }
         for (int c = 0; c < 3; ++c)
@@ -647,6 +691,7 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
     }
     FitParameters p = WithSolver(FitSolver::Exact);
     p.screeningWeight = weight;
+    p.target = target;
     const auto fitted = Fit(mesh, targets, p);
     for (int k = 0; k < 3; ++k)
     {
@@ -662,7 +707,7 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
       const auto expected = SolveDense(a, b);
       for (int i = 0; i < 4; ++i)
       {
-        EXPECT_NEAR(fitted[3 * i + k], expected[i], 1e-9) << "trial " << trial;
+        EXPECT_NEAR(fitted[3 * i + k], expected[i], 1e-9) << "trial " << trial << ", target " << static_cast<int>(target);
       }
     }
   }

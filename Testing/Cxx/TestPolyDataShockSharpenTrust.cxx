@@ -1,0 +1,274 @@
+// vtkPolyDataShockSharpenFilter as a new user runs it, on shapes with known answers:
+// already sharp shapes stay where they are, rounded and blurred shapes move towards
+// their sharp originals, a mesh given twice gives the result of the mesh given once,
+// and the active normals of the output belong to the output's geometry.
+#include "vtkPolyDataShockSharpenFilter.h"
+
+#include "TestFilterHelpers.h"
+#include "TestMeshesVTK.h"
+#include "TestSharpShapes.h"
+
+#include "vtkAppendPolyData.h"
+#include "vtkCellData.h"
+#include "vtkCellLocator.h"
+#include "vtkCleanPolyData.h"
+#include "vtkCubeSource.h"
+#include "vtkCylinderSource.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkGenericCell.h"
+#include "vtkLinearSubdivisionFilter.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkSmartPointer.h"
+#include "vtkTriangle.h"
+#include "vtkTriangleFilter.h"
+#include "vtkWindowedSincPolyDataFilter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <tuple>
+
+namespace
+{
+using shock_test::MessageLog;
+using Filter = vtkPolyDataShockSharpenFilter;
+using Mesh = vtkSmartPointer<vtkPolyData>;
+
+Mesh Output(vtkAlgorithm* algorithm)
+{
+  algorithm->Update();
+  Mesh copy = Mesh::New();
+  copy->DeepCopy(vtkPolyData::SafeDownCast(algorithm->GetOutputDataObject(0)));
+  return copy;
+}
+
+/// Triangulate and clean a source (what ParaView's Triangulate + Clean do), then subdivide linearly.
+Mesh Prepared(vtkAlgorithm* source, int subdivisions)
+{
+  vtkNew<vtkTriangleFilter> triangulate;
+  triangulate->SetInputConnection(source->GetOutputPort());
+  vtkNew<vtkCleanPolyData> clean;
+  clean->SetInputConnection(triangulate->GetOutputPort());
+  if (subdivisions == 0)
+  {
+    return Output(clean);
+  }
+  vtkNew<vtkLinearSubdivisionFilter> subdivide;
+  subdivide->SetInputConnection(clean->GetOutputPort());
+  subdivide->SetNumberOfSubdivisions(subdivisions);
+  return Output(subdivide);
+}
+
+double Diagonal(vtkPolyData* mesh)
+{
+  return mesh->GetLength(); // of the bounding box
+}
+
+double LargestMove(vtkPolyData* a, vtkPolyData* b)
+{
+  double worst = 0.0;
+  for (vtkIdType p = 0; p < a->GetNumberOfPoints(); ++p)
+  {
+    double x[3], y[3];
+    a->GetPoint(p, x);
+    b->GetPoint(p, y);
+    worst = std::max(worst, std::sqrt(vtkMath::Distance2BetweenPoints(x, y)));
+  }
+  return worst;
+}
+
+/// Mean angle (degrees, area-weighted) to the original's normal at the closest point,
+/// and RMS distance of the points to the original surface.
+std::pair<double, double> Errors(vtkPolyData* mesh, vtkPolyData* original)
+{
+  vtkNew<vtkCellLocator> locator;
+  locator->SetDataSet(original);
+  locator->BuildLocator();
+  vtkNew<vtkGenericCell> cell;
+  auto normal = [](vtkPolyData* m, vtkIdType c, double n[3], double centre[3]) {
+    double a[3], b[3], d[3];
+    vtkIdType count;
+    const vtkIdType* ids;
+    m->GetCellPoints(c, count, ids);
+    m->GetPoint(ids[0], a);
+    m->GetPoint(ids[1], b);
+    m->GetPoint(ids[2], d);
+    vtkTriangle::ComputeNormal(a, b, d, n);
+    for (int k = 0; k < 3; ++k)
+    {
+      centre[k] = (a[k] + b[k] + d[k]) / 3.0;
+    }
+    return vtkTriangle::TriangleArea(a, b, d);
+  };
+  double angle = 0.0, area = 0.0, squares = 0.0;
+  for (vtkIdType c = 0; c < mesh->GetNumberOfCells(); ++c)
+  {
+    double n[3], centre[3], closest[3], reference[3], unused[3], d2;
+    vtkIdType at;
+    int sub;
+    const double a = normal(mesh, c, n, centre);
+    locator->FindClosestPoint(centre, closest, cell, at, sub, d2);
+    normal(original, at, reference, unused);
+    angle += a * std::acos(std::max(-1.0, std::min(1.0, vtkMath::Dot(n, reference)))) * 180.0 / vtkMath::Pi();
+    area += a;
+  }
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double x[3], closest[3], d2;
+    vtkIdType at;
+    int sub;
+    mesh->GetPoint(p, x);
+    locator->FindClosestPoint(x, closest, cell, at, sub, d2);
+    squares += d2;
+  }
+  return { angle / area, std::sqrt(squares / mesh->GetNumberOfPoints()) };
+}
+
+TEST(SharpenTrust, AlreadySharpShapesStayWithinOnePercentAtDefaults)
+{
+  vtkNew<vtkCubeSource> box; // ParaView's Box()
+  vtkNew<vtkCylinderSource> cylinder; // ParaView's Cylinder(): resolution 6, capped
+  vtkNew<vtkCylinderSource> round;
+  round->SetResolution(32);
+  const std::vector<std::pair<std::string, Mesh>> shapes = { { "Box, triangulated, cleaned", Prepared(box, 0) },
+    { "Box subdivided 3 times", Prepared(box, 3) }, { "Cylinder subdivided twice", Prepared(cylinder, 2) },
+    { "Cylinder (resolution 32) subdivided twice", Prepared(round, 2) },
+    { "slotted L block", shocktest::ToPolyData(shocktest::SlottedLBlock()) } };
+  for (const auto& shape : shapes)
+  {
+    vtkNew<Filter> sharpen; // defaults left alone
+    MessageLog log(sharpen);
+    sharpen->SetInputData(shape.second);
+    const Mesh out = Output(sharpen);
+    EXPECT_TRUE(log.Errors.empty() && log.Warnings.empty()) << log.Errors << log.Warnings;
+    EXPECT_LT(LargestMove(out, shape.second), 0.01 * Diagonal(shape.second)) << shape.first;
+    EXPECT_GT(sharpen->GetLastFeatureEdges(), 0) << shape.first;
+    // The paper's settings round them (what the defaults keep from happening).
+    sharpen->SetFeatureAngle(180.0);
+    sharpen->SetFitTargetToProjection();
+    const Mesh paper = Output(sharpen);
+    EXPECT_GT(LargestMove(paper, shape.second), 0.01 * Diagonal(shape.second)) << shape.first;
+  }
+}
+
+TEST(SharpenTrust, RoundedAndBlurredShapesMoveTowardsTheirOriginals)
+{
+  const shocktest::MeshData cube = shocktest::BoxSurface(24, 2.0, 2.0, 2.0);
+  const Mesh block = shocktest::ToPolyData(shocktest::SlottedLBlock());
+  vtkNew<vtkWindowedSincPolyDataFilter> blur;
+  blur->SetInputData(block);
+  blur->SetNumberOfIterations(20);
+  blur->SetPassBand(0.005);
+  blur->NormalizeCoordinatesOn();
+  // (input, sharp original, flow time): the windowed-sinc blur is narrower.
+  const std::vector<std::tuple<Mesh, Mesh, double>> shapes = {
+    { shocktest::ToPolyData(shocktest::RoundedBox(24, 2.0, 0.3)), shocktest::ToPolyData(cube), 1024.0 },
+    { Output(blur), block, 256.0 } };
+  for (const auto& [input, original, time] : shapes)
+  {
+    const auto before = Errors(input, original);
+    for (int solver : { Filter::CONJUGATE_GRADIENT, Filter::EXACT })
+    {
+      vtkNew<Filter> sharpen;
+      sharpen->SetInputData(input);
+      sharpen->SetFlowTime(time);
+      sharpen->SetSolver(solver);
+      const Mesh out = Output(sharpen);
+      const auto after = Errors(out, original);
+      std::cout << "normal error " << before.first << " -> " << after.first << " degrees, RMS distance "
+                << before.second << " -> " << after.second << " (solver " << solver << ")\n";
+      EXPECT_LT(after.first, 0.5 * before.first) << "solver " << solver;
+      EXPECT_LT(after.second, 0.8 * before.second) << "solver " << solver;
+      EXPECT_EQ(sharpen->GetLastFlippedTriangles(), 0);
+    }
+  }
+}
+
+TEST(SharpenTrust, AMeshGivenTwiceGivesTheResultOfTheMeshGivenOnce)
+{
+  const Mesh mesh = shocktest::ToPolyData(shocktest::RoundedBox(10, 2.0, 0.4));
+  vtkNew<vtkCleanPolyData> cleanOnce; // Clean numbers the points as the cells use them
+  cleanOnce->SetInputData(mesh);
+  const Mesh once = Output(cleanOnce);
+  vtkNew<vtkAppendPolyData> append; // AppendDatasets(m, m) + Clean
+  append->AddInputData(mesh);
+  append->AddInputData(mesh);
+  vtkNew<vtkCleanPolyData> clean;
+  clean->SetInputConnection(append->GetOutputPort());
+  const Mesh twice = Output(clean);
+  ASSERT_EQ(twice->GetNumberOfPoints(), once->GetNumberOfPoints());
+  ASSERT_EQ(twice->GetNumberOfCells(), 2 * once->GetNumberOfCells());
+
+  vtkNew<Filter> sharpen;
+  sharpen->SetFlowTime(512);
+  sharpen->SetInputData(once);
+  const Mesh expected = Output(sharpen);
+  ASSERT_GT(LargestMove(expected, once), 1e-3);
+  MessageLog log(sharpen);
+  sharpen->SetInputData(twice);
+  const Mesh doubled = Output(sharpen);
+  EXPECT_EQ(LargestMove(doubled, expected), 0.0);
+  EXPECT_EQ(sharpen->GetLastRepeatedTriangles(), once->GetNumberOfCells());
+  EXPECT_NE(log.Warnings.find(std::to_string(once->GetNumberOfCells()) + " triangles repeat"), std::string::npos)
+    << log.Warnings;
+  EXPECT_TRUE(log.Errors.empty()) << log.Errors;
+}
+
+TEST(SharpenTrust, OutputNormalsBelongToTheOutputGeometry)
+{
+  vtkNew<vtkPolyDataNormals> normals; // Generate Surface Normals before sharpening
+  normals->SetInputData(shocktest::ToPolyData(shocktest::RoundedBox(16, 2.0, 0.4)));
+  normals->SplittingOff();
+  normals->ComputeCellNormalsOn();
+  Mesh input = Output(normals);
+  vtkNew<vtkFloatArray> other;
+  other->SetName("Other");
+  other->SetNumberOfTuples(input->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+  {
+    other->SetValue(p, static_cast<float>(p) * 0.5f);
+  }
+  input->GetPointData()->AddArray(other);
+
+  vtkNew<Filter> sharpen;
+  sharpen->SetInputData(input);
+  sharpen->SetFlowTime(1024);
+  const Mesh out = Output(sharpen);
+  ASSERT_GT(LargestMove(out, input), 1e-2);
+  vtkNew<vtkPolyDataNormals> reference; // the normals of the output's geometry
+  reference->SetInputData(out);
+  reference->SplittingOff();
+  reference->ConsistencyOff();
+  reference->ComputeCellNormalsOn();
+  const Mesh expected = Output(reference);
+  for (const bool cells : { false, true })
+  {
+    vtkDataArray* got = cells ? out->GetCellData()->GetNormals() : out->GetPointData()->GetNormals();
+    vtkDataArray* want = cells ? expected->GetCellData()->GetNormals() : expected->GetPointData()->GetNormals();
+    vtkDataArray* old = cells ? input->GetCellData()->GetNormals() : input->GetPointData()->GetNormals();
+    ASSERT_NE(got, nullptr);
+    EXPECT_STREQ(got->GetName(), old->GetName());
+    EXPECT_EQ(got->GetDataType(), old->GetDataType());
+    double worst = 0.0, changed = 0.0;
+    for (vtkIdType i = 0; i < got->GetNumberOfTuples(); ++i)
+    {
+      double a[3], b[3], c[3];
+      got->GetTuple(i, a);
+      want->GetTuple(i, b);
+      old->GetTuple(i, c);
+      worst = std::max(worst, std::sqrt(vtkMath::Distance2BetweenPoints(a, b)));
+      changed = std::max(changed, std::sqrt(vtkMath::Distance2BetweenPoints(a, c)));
+    }
+    EXPECT_LT(worst, 1e-5) << (cells ? "cell" : "point") << " normals";
+    EXPECT_GT(changed, 0.05) << (cells ? "cell" : "point") << " normals must have changed";
+  }
+  EXPECT_EQ(shock_test::Values(out->GetPointData()->GetArray("Other")), shock_test::Values(other))
+    << "other arrays pass through";
+}
+
+} // namespace
