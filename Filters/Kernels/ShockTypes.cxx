@@ -49,6 +49,12 @@ int ResolveThreadCount(int requested)
   return requested > 0 ? requested : std::max(1, omp_get_num_procs());
 }
 
+int ThreadsForWork(int requested, std::int64_t work)
+{
+  const std::int64_t useful = std::max<std::int64_t>(1, work / MinimumWorkPerThread);
+  return static_cast<int>(std::min<std::int64_t>(ResolveThreadCount(requested), useful));
+}
+
 void ParallelFor(std::int64_t count, int threads,
   const std::function<void(std::int64_t begin, std::int64_t end)>& body)
 {

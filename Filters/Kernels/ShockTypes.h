@@ -101,6 +101,18 @@ struct Status
 /// Resolve a thread-count parameter: values <= 0 mean all available cores.
 int ResolveThreadCount(int requested);
 
+/// Work units (samples, vertices, faces, trace starts) below which a second thread
+/// costs more to start and synchronise than it saves (measured in Benchmarks/RESULTS.md).
+constexpr std::int64_t MinimumWorkPerThread = 16384;
+
+/**
+ * The threads worth using for `work` units of roughly equal cost:
+ * ResolveThreadCount(requested), but at most one per MinimumWorkPerThread units and
+ * at least one, so that small inputs do not get slower with more threads. Kernel
+ * results never depend on the thread count, so this changes only the time.
+ */
+int ThreadsForWork(int requested, std::int64_t work);
+
 /// Check the ranges documented in AdvectionParameters; an empty Status when valid.
 Status CheckAdvectionParameters(const AdvectionParameters& parameters);
 
