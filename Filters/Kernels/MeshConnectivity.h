@@ -1,0 +1,92 @@
+/**
+ * @file MeshConnectivity.h
+ * @brief The connectivity of a triangle mesh, built once from its point ids
+ * alone (no coordinates): the triangles, the triangles around each point, the
+ * one-ring of each point and the triangle across each edge.
+ *
+ * Geometry (areas, normals, gradients, the mean edge length) is computed from
+ * the positions over it (MeshGeometry.h), so a mesh whose points move keeps its
+ * connectivity (the split of geometry-central's SurfaceMesh and Geometry).
+ *
+ * Conventions:
+ *  - An edge shared by exactly two triangles (by point ids) joins them; an edge
+ *    with one triangle (boundary) or more (non-manifold) joins nothing.
+ *    Duplicate points are distinct vertices: a seam of duplicates is a boundary.
+ *  - A triangle with a repeated id is listed once around each of its points.
+ *  - Points used by no triangle have no neighbours and no adjacent triangles.
+ *
+ * Every list is in increasing order, so nothing depends on the thread count.
+ */
+#ifndef MeshConnectivity_h
+#define MeshConnectivity_h
+
+#include "ShockTypes.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace shock
+{
+
+/// Compressed lists: the items of entry i are items[offsets[i] .. offsets[i+1]).
+struct CompressedLists
+{
+  std::vector<std::int64_t> offsets;
+  std::vector<std::int64_t> items;
+  std::int64_t Begin(std::int64_t i) const { return this->offsets[static_cast<size_t>(i)]; }
+  std::int64_t End(std::int64_t i) const { return this->offsets[static_cast<size_t>(i) + 1]; }
+};
+
+/// Triangles, point-to-triangle lists, one-rings and edge neighbours (see the file comment).
+class MeshConnectivity
+{
+public:
+  /**
+   * Build from `triangles` (3 point ids per triangle, taken over) on
+   * `numberOfPoints` points. Fails when an id is outside [0, numberOfPoints)
+   * or the mesh is too large for the index types.
+   * @param threads OpenMP threads (0 = all cores; fewer for small meshes).
+   */
+  Status Build(std::int64_t numberOfPoints, std::vector<std::int64_t> triangles, int threads);
+
+  std::int64_t NumberOfPoints() const { return this->numberOfPoints; }
+  std::int64_t NumberOfTriangles() const
+  {
+    return static_cast<std::int64_t>(this->triangles.size() / 3);
+  }
+  const std::int64_t* Corners(std::int64_t f) const
+  {
+    return &this->triangles[static_cast<size_t>(3 * f)];
+  }
+  /// Triangles that use point p, in increasing order.
+  const CompressedLists& PointTriangles() const { return this->pointTriangles; }
+  /// Points joined to p by an edge, each once, in increasing order.
+  const CompressedLists& OneRing() const { return this->oneRing; }
+  /**
+   * Triangle across edge e of triangle f (from corner e to corner (e+1)%3) when
+   * exactly one other triangle has both its end points; -1 otherwise.
+   */
+  std::int64_t Neighbour(std::int64_t f, int e) const
+  {
+    return this->neighbour[static_cast<size_t>(3 * f + e)];
+  }
+  /// Number of unique edges.
+  std::int64_t NumberOfEdges() const { return this->numberOfEdges; }
+
+private:
+  // The steps of Build, in order.
+  void BuildPointTriangles(int threads);
+  void BuildOneRing(int threads);
+  void BuildNeighbours(int threads);
+
+  std::int64_t numberOfPoints = 0;
+  std::int64_t numberOfEdges = 0;
+  std::vector<std::int64_t> triangles;
+  CompressedLists pointTriangles;
+  CompressedLists oneRing;
+  std::vector<std::int64_t> neighbour;
+};
+
+} // namespace shock
+
+#endif
