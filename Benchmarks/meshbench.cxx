@@ -3,7 +3,9 @@
  *
  * Measures, like shockbench, the time "inside the filter": the wall time of
  * Update() on a filter whose input mesh is prepared beforehand and given with
- * SetInputData, Modified() between repetitions; best and median of N runs,
+ * SetInputData, Modified() between repetitions (and its points' Modified(), so that
+ * every run prepares the mesh as a first execution does; --keep-mesh measures
+ * re-executions with the kept mesh instead); best and median of N runs,
  * runs disturbed by other processes (CPU time of other processes > 5 % of the
  * run's wall time, from /proc/stat) replaced by extra runs. The filters' own
  * timers split each run into phases.
@@ -129,6 +131,7 @@ struct Options
   double maxLoad = 0.5;    ///< wait for a 1-minute load average below this before starting
   double waitMinutes = 15; ///< at most this long
   std::string dump;        ///< write the input and the target result as DUMP-input.ply, DUMP-output.ply
+  bool keepMesh = false;   ///< re-executions keep the prepared mesh (input unchanged between runs)
 };
 
 std::string DefaultMeshDir()
@@ -471,6 +474,11 @@ Measurement Measure(vtkShockAdvectionFilter* filter, const Options& options, con
       baseline = ResetPeakResidentSet() ? StatusBytes("VmRSS") : -1;
     }
     filter->Modified();
+    vtkPolyData* input = vtkPolyData::SafeDownCast(filter->GetInputDataObject(0, 0));
+    if (!options.keepMesh && input && input->GetPoints())
+    {
+      input->GetPoints()->Modified(); // a new mesh for the filter: prepared again
+    }
     const CpuClock cpu = CpuClock::Read();
     const double start = Now();
     filter->Update();
@@ -844,6 +852,8 @@ void Usage()
        "  --smoothing a,b,...   sharpen: smoothing passes of the phase table (default 0,1,2,4,8,16)\n"
        "  --max-load L          wait for a 1-minute load average below L first (default 0.5)\n"
        "  --wait-minutes M      ... for at most M minutes, then run anyway (default 15)\n"
+       "  --keep-mesh           do not mark the input modified between runs: re-executions\n"
+       "                        with the kept mesh (what changing only a parameter costs)\n"
        "  --dump PREFIX         write the input mesh and the target result as PREFIX-*.ply\n"
        "Markdown on stdout, progress on stderr.\n";
 }
@@ -935,6 +945,10 @@ bool ParseOptions(int argc, char* argv[], Options& options)
     else if (arg == "--wait-minutes")
     {
       options.waitMinutes = std::atof(value().c_str());
+    }
+    else if (arg == "--keep-mesh")
+    {
+      options.keepMesh = true;
     }
     else if (arg == "--dump")
     {

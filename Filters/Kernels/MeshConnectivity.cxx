@@ -80,71 +80,100 @@ void MeshConnectivity::BuildPointTriangles(int threads)
   this->pointTriangles = repeated ? Compact(lists, counts, threads) : std::move(lists);
 }
 
-/// One-ring of each point, sorted once, from its triangles' corners (at most
-/// two per triangle), and the number of unique edges.
-void MeshConnectivity::BuildOneRing(int threads)
+/// An edge of a triangle around a point: its other end, the triangle, the edge's index in it.
+struct MeshConnectivity::EdgeEnd
+{
+  std::int64_t other;
+  std::int64_t triangle;
+  int edge;
+  bool operator<(const EdgeEnd& e) const
+  {
+    return this->other != e.other ? this->other < e.other : this->triangle < e.triangle;
+  }
+};
+
+/**
+ * One pass over the points: the edges of the triangles around p, sorted by their
+ * other end, give p's one-ring (the distinct other ends) and, for the edges
+ * whose other end is larger (each edge is seen once there), the edge
+ * neighbours: the triangles that have both ends join when they are exactly two.
+ */
+void MeshConnectivity::BuildOneRingAndNeighbours(int threads)
 {
   const std::int64_t np = this->numberOfPoints;
   const CompressedLists& around = this->pointTriangles;
   std::vector<std::int64_t> counts(static_cast<size_t>(np));
   for (std::int64_t p = 0; p < np; ++p)
   {
-    counts[static_cast<size_t>(p)] = 2 * (around.End(p) - around.Begin(p));
+    counts[static_cast<size_t>(p)] = 2 * (around.End(p) - around.Begin(p)); // an upper bound
   }
   CompressedLists bound;
   SetOffsets(counts, bound);
+  this->neighbour.resize(this->triangles.size());
   std::int64_t edges = 0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : edges)
-  for (std::int64_t p = 0; p < np; ++p)
+#pragma omp parallel num_threads(threads) reduction(+ : edges)
   {
-    std::int64_t* ring = bound.items.data() + bound.Begin(p);
-    std::int64_t size = 0;
-    for (std::int64_t k = around.Begin(p); k < around.End(p); ++k)
+    std::vector<EdgeEnd> ends;
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < np; ++p)
     {
-      const std::int64_t* t = this->Corners(around.items[static_cast<size_t>(k)]);
-      for (int c = 0; c < 3; ++c)
+      this->CollectEdgeEnds(p, ends);
+      std::int64_t* ring = bound.items.data() + bound.Begin(p);
+      std::int64_t size = 0;
+      for (size_t i = 0; i < ends.size();)
       {
-        if (t[c] != p && size < counts[static_cast<size_t>(p)])
+        size_t j = i + 1; // [i, j): the edges from p to ends[i].other
+        std::int64_t sharing = 1;
+        for (; j < ends.size() && ends[j].other == ends[i].other; ++j)
         {
-          ring[size++] = t[c];
+          sharing += ends[j].triangle != ends[j - 1].triangle ? 1 : 0;
         }
+        if (ends[i].other != p)
+        {
+          ring[size++] = ends[i].other;
+        }
+        if (ends[i].other >= p) // an edge from p to p (a repeated id) joins nothing
+        {
+          edges += ends[i].other > p ? 1 : 0;
+          this->JoinAcross(ends.data() + i, ends.data() + j, ends[i].other > p && sharing == 2);
+        }
+        i = j;
       }
+      counts[static_cast<size_t>(p)] = size;
     }
-    size = SortUnique(ring, ring + size);
-    counts[static_cast<size_t>(p)] = size;
-    edges += std::count_if(ring, ring + size, [p](std::int64_t w) { return w > p; });
   }
   this->oneRing = Compact(bound, counts, threads);
   this->numberOfEdges = edges;
 }
 
-/// Edge neighbours: the other triangle that has both end points, if it is the only one.
-void MeshConnectivity::BuildNeighbours(int threads)
+void MeshConnectivity::CollectEdgeEnds(std::int64_t p, std::vector<EdgeEnd>& ends) const
 {
-  const std::int64_t nt = this->NumberOfTriangles();
-  this->neighbour.resize(static_cast<size_t>(3 * nt));
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t f = 0; f < nt; ++f)
+  ends.clear();
+  for (std::int64_t k = this->pointTriangles.Begin(p); k < this->pointTriangles.End(p); ++k)
   {
+    const std::int64_t f = this->pointTriangles.items[static_cast<size_t>(k)];
     const std::int64_t* t = this->Corners(f);
     for (int e = 0; e < 3; ++e)
     {
       const std::int64_t a = t[e];
       const std::int64_t b = t[(e + 1) % 3];
-      std::int64_t other = -1;
-      int sharing = 0;
-      for (std::int64_t k = this->pointTriangles.Begin(a); k < this->pointTriangles.End(a); ++k)
+      if (a == p || b == p)
       {
-        const std::int64_t g = this->pointTriangles.items[static_cast<size_t>(k)];
-        const std::int64_t* s = this->Corners(g);
-        if (g != f && (s[0] == b || s[1] == b || s[2] == b))
-        {
-          other = g;
-          ++sharing;
-        }
+        ends.push_back({ a == p ? b : a, f, e });
       }
-      this->neighbour[static_cast<size_t>(3 * f + e)] = sharing == 1 ? other : -1;
     }
+  }
+  std::sort(ends.begin(), ends.end());
+}
+
+void MeshConnectivity::JoinAcross(const EdgeEnd* begin, const EdgeEnd* end, bool join)
+{
+  const std::int64_t first = begin->triangle;
+  const std::int64_t last = (end - 1)->triangle;
+  for (const EdgeEnd* e = begin; e != end; ++e)
+  {
+    this->neighbour[static_cast<size_t>(3 * e->triangle + e->edge)] =
+      join ? (e->triangle == first ? last : first) : -1;
   }
 }
 
@@ -174,8 +203,7 @@ Status MeshConnectivity::Build(
   this->numberOfPoints = numberOfPoints;
   this->triangles = std::move(ids);
   this->BuildPointTriangles(team);
-  this->BuildOneRing(team);
-  this->BuildNeighbours(team);
+  this->BuildOneRingAndNeighbours(team);
   return {};
 }
 

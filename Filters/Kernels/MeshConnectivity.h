@@ -64,7 +64,8 @@ public:
   const CompressedLists& OneRing() const { return this->oneRing; }
   /**
    * Triangle across edge e of triangle f (from corner e to corner (e+1)%3) when
-   * exactly one other triangle has both its end points; -1 otherwise.
+   * exactly one other triangle has both its end points; -1 otherwise, and for
+   * an edge whose end points are the same point (a repeated id).
    */
   std::int64_t Neighbour(std::int64_t f, int e) const
   {
@@ -76,8 +77,11 @@ public:
 private:
   // The steps of Build, in order.
   void BuildPointTriangles(int threads);
-  void BuildOneRing(int threads);
-  void BuildNeighbours(int threads);
+  void BuildOneRingAndNeighbours(int threads);
+  // Parts of BuildOneRingAndNeighbours.
+  struct EdgeEnd;
+  void CollectEdgeEnds(std::int64_t p, std::vector<EdgeEnd>& ends) const;
+  void JoinAcross(const EdgeEnd* begin, const EdgeEnd* end, bool join);
 
   std::int64_t numberOfPoints = 0;
   std::int64_t numberOfEdges = 0;

@@ -10,9 +10,34 @@ namespace shock
 
 namespace
 {
+/// A copy of the first n items of `from` (null when it is null).
+template <typename T>
+std::unique_ptr<T[]> CopyOf(const std::unique_ptr<T[]>& from, std::int64_t n)
+{
+  std::unique_ptr<T[]> to(from ? new T[static_cast<size_t>(n)] : nullptr);
+  std::copy(from.get(), from.get() + (from ? n : 0), to.get());
+  return to;
+}
+
 /// Below this area (relative to l-bar^2) a triangle has no reliable normal or gradient.
 constexpr double DegenerateAreaFraction = 1e-12;
 } // namespace
+
+MeshGeometry& MeshGeometry::operator=(const MeshGeometry& other)
+{
+  const std::int64_t np = other.numberOfPoints;
+  const std::int64_t nt = other.numberOfTriangles;
+  this->numberOfPoints = np;
+  this->numberOfTriangles = nt;
+  this->meanEdgeLength = other.meanEdgeLength;
+  this->points = CopyOf(other.points, 3 * np);
+  this->area = CopyOf(other.area, nt);
+  this->degenerate = CopyOf(other.degenerate, nt);
+  this->normal = CopyOf(other.normal, 3 * nt);
+  this->centroid = CopyOf(other.centroid, 3 * nt);
+  this->hatGradient = CopyOf(other.hatGradient, 9 * nt);
+  return *this;
+}
 
 double TrianglePerimeter(const double* points, const std::int64_t* corners)
 {
@@ -37,7 +62,7 @@ void MeshGeometry::ComputeMeanEdgeLength(const MeshConnectivity& connectivity, i
   for (std::int64_t f = 0; f < nt; ++f)
   {
     perimeter[static_cast<size_t>(f)] =
-      TrianglePerimeter(this->points.data(), connectivity.Corners(f));
+      TrianglePerimeter(this->points.get(), connectivity.Corners(f));
   }
   const double total = std::accumulate(perimeter.begin(), perimeter.end(), 0.0);
   this->meanEdgeLength = nt > 0 ? total / (3.0 * static_cast<double>(nt)) : 0.0;
@@ -48,11 +73,11 @@ void MeshGeometry::ComputeMeanEdgeLength(const MeshConnectivity& connectivity, i
 void MeshGeometry::ComputeTriangles(const MeshConnectivity& connectivity, int threads)
 {
   const std::int64_t nt = connectivity.NumberOfTriangles();
-  this->area.assign(static_cast<size_t>(nt), 0.0);
-  this->degenerate.assign(static_cast<size_t>(nt), 1);
-  this->normal.assign(static_cast<size_t>(3 * nt), 0.0);
-  this->centroid.assign(static_cast<size_t>(3 * nt), 0.0);
-  this->hatGradient.assign(static_cast<size_t>(9 * nt), 0.0);
+  this->area.reset(new double[static_cast<size_t>(nt)]);
+  this->degenerate.reset(new unsigned char[static_cast<size_t>(nt)]);
+  this->normal.reset(new double[static_cast<size_t>(3 * nt)]);
+  this->centroid.reset(new double[static_cast<size_t>(3 * nt)]);
+  this->hatGradient.reset(new double[static_cast<size_t>(9 * nt)]);
   const double minArea = DegenerateAreaFraction * this->meanEdgeLength * this->meanEdgeLength;
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t f = 0; f < nt; ++f)
@@ -71,6 +96,11 @@ void MeshGeometry::ComputeTriangles(const MeshConnectivity& connectivity, int th
     const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
     if (repeated || !(0.5 * twiceArea > minArea) || this->meanEdgeLength <= 0.0)
     {
+      // Degenerate: no area, normal or gradients.
+      this->area[f] = 0.0;
+      this->degenerate[f] = 1;
+      std::fill(&this->normal[3 * f], &this->normal[3 * f] + 3, 0.0);
+      std::fill(&this->hatGradient[9 * f], &this->hatGradient[9 * f] + 9, 0.0);
       continue;
     }
     this->area[f] = 0.5 * twiceArea;
@@ -103,7 +133,9 @@ Status MeshGeometry::Compute(const MeshConnectivity& connectivity, const double*
     return { "invalid mesh arrays" };
   }
   const int team = ThreadsForWork(threads, std::max(np, connectivity.NumberOfTriangles()));
-  this->points.resize(static_cast<size_t>(3 * np));
+  this->numberOfPoints = np;
+  this->numberOfTriangles = connectivity.NumberOfTriangles();
+  this->points.reset(new double[static_cast<size_t>(3 * np)]);
   bool finite = true;
 #pragma omp parallel for num_threads(team) reduction(&& : finite) schedule(static)
   for (std::int64_t i = 0; i < 3 * np; ++i)

@@ -20,6 +20,7 @@
 #include "ShockTypes.h"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace shock
@@ -32,6 +33,12 @@ double TrianglePerimeter(const double* points, const std::int64_t* corners);
 class MeshGeometry
 {
 public:
+  MeshGeometry() = default;
+  MeshGeometry(MeshGeometry&&) = default;
+  MeshGeometry& operator=(MeshGeometry&&) = default;
+  MeshGeometry(const MeshGeometry& other) { *this = other; }
+  MeshGeometry& operator=(const MeshGeometry& other);
+
   /**
    * Compute from `points` (3 coordinates per point of `connectivity`, copied).
    * Fails when a coordinate is not finite.
@@ -61,13 +68,16 @@ private:
   void ComputeMeanEdgeLength(const MeshConnectivity& connectivity, int threads);
   void ComputeTriangles(const MeshConnectivity& connectivity, int threads);
 
+  // Arrays allocated without zero-filling: the parallel loops write (first touch) them all.
+  std::int64_t numberOfPoints = 0;
+  std::int64_t numberOfTriangles = 0;
   double meanEdgeLength = 0.0;
-  std::vector<double> points;
-  std::vector<double> area;
-  std::vector<unsigned char> degenerate;
-  std::vector<double> normal;
-  std::vector<double> centroid;
-  std::vector<double> hatGradient;
+  std::unique_ptr<double[]> points;
+  std::unique_ptr<double[]> area;
+  std::unique_ptr<unsigned char[]> degenerate;
+  std::unique_ptr<double[]> normal;
+  std::unique_ptr<double[]> centroid;
+  std::unique_ptr<double[]> hatGradient;
 };
 
 } // namespace shock

@@ -205,7 +205,9 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
   const AdvectionParameters& p, AdvectionReport& report, MeshFlowFields* fields,
   const ProgressFunction& progress)
 {
-  MeshRun run{ mesh, signal, p, signal.components, ResolveThreadCount(p.numberOfThreads) };
+  // Threads by work size: a small mesh is not slower on more threads.
+  MeshRun run{ mesh, signal, p, signal.components,
+    ThreadsForWork(p.numberOfThreads, std::max(mesh.NumberOfPoints(), mesh.NumberOfTriangles())) };
   const std::int64_t count = (run.CellSignal() ? run.Triangles() : run.Points()) * run.C;
   const double* input = signal.values;
   std::copy(input, input + count, output);
@@ -242,6 +244,9 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
 
   std::vector<double> flow;
   std::vector<double> velocity;
+  const std::int64_t traces = run.CellSignal() ? run.Triangles()
+                                               : static_cast<std::int64_t>(mesh.PointTriangles().items.size());
+  const int traceThreads = ThreadsForWork(p.numberOfThreads, traces);
   for (int k = 0; k < updates; ++k)
   {
     const auto flowStart = Clock::now();
@@ -264,7 +269,7 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
     }
     const auto advectStart = Clock::now();
     const SurfaceTracer tracer(mesh, velocity.data(), p, run.length);
-    AdvectionPass pass{ mesh, tracer, p.time / updates, p.sampling, run.threads, progress,
+    AdvectionPass pass{ mesh, tracer, p.time / updates, p.sampling, traceThreads, progress,
       progressStart, 0.9 / updates, report };
     const bool completed = AdvectStep(run, steps, pass, output);
     report.advectionSeconds += SecondsSince(advectStart);
