@@ -8,8 +8,9 @@ MESH: a PLY with vertex colours, e.g. the armadillo of
 `meshbench colors --flows none --dump /tmp/arma` (/tmp/arma-input.ply).
 
 Prints one JSON object: the first Apply (reading excluded: the reader is
-updated first) and each re-Apply with a new Flow Time, wall time of
-UpdatePipeline and the filter's own Last Setup Seconds, and their medians.
+updated first) and each re-Apply with a new Flow Time: wall time of
+UpdatePipeline and the filter's own phase timers (Last Setup/Flow/Advection
+Seconds), and the re-Applies' medians.
 """
 import json
 import statistics
@@ -40,7 +41,9 @@ def apply():
     shock.UpdatePipeline()
     wall = time.perf_counter() - start
     shock.UpdatePipelineInformation()
-    return {"wall": wall, "setup": shock.GetProperty("LastSetupSeconds").GetData()}
+    phases = {k: shock.GetProperty("Last%sSeconds" % k.capitalize()).GetData()
+              for k in ("setup", "flow", "advection")}
+    return dict(wall=wall, **phases)
 
 
 first = apply()

@@ -70,22 +70,20 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   {
     return 0;
   }
-  // The surface (an unstructured grid of polygons is read as polydata) and the array to filter.
-  std::string error;
-  vtkSmartPointer<vtkPolyData> input =
-    vtkShockPolyDataInternals::AsSurface(vtkDataSet::GetData(inputVector[0]), error);
+  // The surface (an unstructured grid of polygons is read as polydata) and the
+  // array to filter; in parallel, every process agrees, then gets ghost cells.
   int association = -1;
   vtkDataArray* array = nullptr;
-  if (input && input->GetNumberOfPoints() > 0)
-  {
-    array = this->GetArrayToFilter(inputVector, association);
-    error = array ? error : "no array to filter (see the message above)";
-  }
-  // In parallel: every process agrees, then gets ghost cells (collective).
+  auto findArray = [&](vtkPolyData* surface) -> std::string {
+    array = surface->GetNumberOfPoints() > 0 ? this->GetArrayToFilter(inputVector, association) : nullptr;
+    return array || surface->GetNumberOfPoints() == 0 ? "" : "no array to filter (see the message above)";
+  };
   bool unknown = false;
+  vtkSmartPointer<vtkPolyData> input;
   vtkShockParallel::SurfacePiece piece;
-  if (!vtkShockParallel::PrepareSurfacePiece(this->PieceController(outputVector, unknown), input,
-        error, this->GhostLevels, piece, error))
+  std::string error;
+  if (!vtkShockPolyDataInternals::BeginSurface(inputVector,
+        this->PieceController(outputVector, unknown), this->GhostLevels, findArray, input, piece, error))
   {
     vtkErrorMacro(<< error);
     return 0;

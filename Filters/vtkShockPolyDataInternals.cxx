@@ -15,6 +15,7 @@
 #include "vtkPolyData.h"
 #include "vtkPolygon.h"
 #include "vtkShockFilterInternals.h"
+#include "vtkShockParallel.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
@@ -383,6 +384,20 @@ vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error)
     surface->GetCellData()->CopyData(grid->GetCellData(), cells->GetId(k), k);
   }
   return surface;
+}
+
+bool BeginSurface(vtkInformationVector** inputVector, vtkMultiProcessController* controller,
+  int ghostLevels, const std::function<std::string(vtkPolyData* surface)>& check,
+  vtkSmartPointer<vtkPolyData>& input, vtkShockParallel::SurfacePiece& piece, std::string& error)
+{
+  error.clear();
+  input = AsSurface(vtkDataSet::GetData(inputVector[0]), error);
+  if (input && check)
+  {
+    error = check(input);
+  }
+  // In parallel: every process agrees on failure, then gets ghost cells (collective).
+  return vtkShockParallel::PrepareSurfacePiece(controller, input, error, ghostLevels, piece, error);
 }
 
 bool EnsurePolyDataOutput(vtkInformationVector** inputVector, vtkInformationVector* outputVector)

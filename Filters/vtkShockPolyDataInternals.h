@@ -10,10 +10,16 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
 class vtkDataSet;
+class vtkMultiProcessController;
+namespace vtkShockParallel
+{
+struct SurfacePiece;
+}
 class vtkInformationVector;
 class vtkDoubleArray;
 class vtkPolyData;
@@ -105,6 +111,21 @@ vtkSmartPointer<vtkDoubleArray> TrianglesToCells(const char* name, vtkIdType num
  * a one-sentence `error` that says to add Extract Surface.
  */
 vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error);
+
+/**
+ * The first steps of a surface filter's RequestData (both surface filters):
+ * the input as a surface (AsSurface), the filter's own checks on it
+ * (`check` returns an error message, or "" when the surface is usable; it is
+ * not called without a surface), then, with a `controller`, the agreement of
+ * every process and the piece's ghost layers
+ * (vtkShockParallel::PrepareSurfacePiece, collective: call it on every
+ * process). Returns false with a one-sentence `error` to report; on success,
+ * `piece.skip` says the output stays empty (replicated data: process 0
+ * filters it) and `piece.work` is what to filter.
+ */
+bool BeginSurface(vtkInformationVector** inputVector, vtkMultiProcessController* controller,
+  int ghostLevels, const std::function<std::string(vtkPolyData* surface)>& check,
+  vtkSmartPointer<vtkPolyData>& input, vtkShockParallel::SurfacePiece& piece, std::string& error);
 
 /**
  * RequestDataObject of the surface filters: for a data-set input, make the
