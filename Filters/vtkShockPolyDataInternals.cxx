@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <numeric>
@@ -77,6 +78,57 @@ bool ConvexQuad(vtkPoints* points, const vtkIdType* ids)
   const double d2 = m1[0] * m2[0] + m1[1] * m2[1] + m1[2] * m2[2];
   return d1 > 0.0 && d2 > 0.0;
 }
+
+/**
+ * The common case of ExtractTriangles: polygons that are all triangles, no
+ * strips. The cell array's connectivity then is the triangle list: copied in
+ * parallel. False (nothing kept) when the case does not apply or an id is out
+ * of range (the general path then reports it).
+ */
+template <typename IdArray>
+bool CopyTriangles(IdArray* ids, vtkIdType firstPolygon, vtkIdType numberOfPoints,
+  std::vector<std::int64_t>& triangles, std::vector<vtkIdType>& sourceCell)
+{
+  const auto* from = ids->GetPointer(0);
+  const std::int64_t n = ids->GetNumberOfValues() / 3;
+  triangles.resize(static_cast<size_t>(3 * n));
+  sourceCell.resize(static_cast<size_t>(n));
+  std::atomic<bool> valid{ true };
+  shock::ParallelFor(n, shock::ThreadsForWork(0, n), [&](std::int64_t begin, std::int64_t end) {
+    bool ok = true;
+    for (std::int64_t f = begin; f < end; ++f)
+    {
+      for (std::int64_t k = 3 * f; k < 3 * f + 3; ++k)
+      {
+        triangles[static_cast<size_t>(k)] = from[k];
+        ok = ok && from[k] >= 0 && from[k] < numberOfPoints;
+      }
+      sourceCell[static_cast<size_t>(f)] = firstPolygon + f;
+    }
+    if (!ok)
+    {
+      valid = false;
+    }
+  });
+  return valid;
+}
+
+bool OnlyTriangles(vtkPolyData* input, std::vector<std::int64_t>& triangles,
+  std::vector<vtkIdType>& sourceCell)
+{
+  vtkCellArray* polys = input->GetPolys();
+  const vtkIdType n = polys->GetNumberOfCells();
+  if (input->GetNumberOfStrips() > 0 || n == 0 || polys->GetNumberOfConnectivityIds() != 3 * n ||
+    polys->GetMaxCellSize() != 3)
+  {
+    return false;
+  }
+  const vtkIdType first = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  const vtkIdType points = input->GetNumberOfPoints();
+  return polys->IsStorage64Bit()
+    ? CopyTriangles(polys->GetConnectivityArray64(), first, points, triangles, sourceCell)
+    : CopyTriangles(polys->GetConnectivityArray32(), first, points, triangles, sourceCell);
+}
 }
 
 namespace vtkShockPolyDataInternals
@@ -98,8 +150,16 @@ bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error)
   vtkPoints* points = input->GetPoints();
   if (points && points->GetNumberOfPoints() > 0)
   {
-    out.points = vtkShockFilterInternals::ToDoubles(points->GetData());
+    out.points.resize(static_cast<size_t>(3 * points->GetNumberOfPoints()));
+    vtkShockFilterInternals::ToDoubles(
+      points->GetData(), out.points.data(), shock::ThreadsForWork(0, points->GetNumberOfPoints()));
   }
+  if (OnlyTriangles(input, out.triangles, out.sourceCell))
+  {
+    return true;
+  }
+  out.triangles.clear();
+  out.sourceCell.clear();
   const vtkIdType numberOfPoints = input->GetNumberOfPoints();
   const vtkIdType firstPolygon = input->GetNumberOfVerts() + input->GetNumberOfLines();
   out.triangles.reserve(static_cast<size_t>(3 * input->GetNumberOfPolys()));

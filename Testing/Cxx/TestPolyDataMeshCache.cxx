@@ -1,7 +1,8 @@
 // The prepared mesh that vtkPolyDataShockAdvectionFilter keeps between executions:
 // kept when only a parameter changes (ParaView's Apply after a new FlowTime),
 // prepared again when the input's points or cells change, and the results
-// always equal those of a fresh filter.
+// always equal those of a fresh filter; and the triangles read from either
+// storage of a cell array (64- or 32-bit ids) give the same result.
 #include "vtkPolyDataShockAdvectionFilter.h"
 
 #include "TestFilterHelpers.h"
@@ -203,6 +204,28 @@ TEST(PolyDataMeshCache, AnUnusableInputKeepsNothing)
   filter->Update();
   EXPECT_EQ(filter->GetNumberOfMeshPreparations(), 3);
   EXPECT_EQ(Result(filter), good);
+}
+
+TEST(PolyDataMeshCache, TrianglesIn32BitCellArraysGiveTheSameResult)
+{
+  vtkSmartPointer<vtkPolyData> mesh = StepSphere(40);
+  const std::vector<double> reference = FreshResult(mesh, 64);
+  vtkNew<vtkCellArray> polys;
+  polys->DeepCopy(mesh->GetPolys());
+  ASSERT_TRUE(polys->ConvertTo32BitStorage());
+  ASSERT_FALSE(polys->IsStorage64Bit());
+  mesh->SetPolys(polys);
+  EXPECT_EQ(FreshResult(mesh, 64), reference);
+  // An id out of range in 32-bit storage: the same clear error as in 64-bit storage.
+  vtkNew<vtkIdList> ids;
+  polys->GetCellAtId(7, ids);
+  ids->SetId(1, mesh->GetNumberOfPoints());
+  polys->ReplaceCellAtId(7, ids);
+  vtkNew<Filter> filter;
+  filter->SetInputData(mesh);
+  shock_test::MessageLog log(filter);
+  EXPECT_FALSE(shock_test::UpdateSucceeds(filter));
+  EXPECT_NE(log.Errors.find("refers to point"), std::string::npos) << log.Errors;
 }
 
 } // namespace
