@@ -132,6 +132,7 @@ struct Options
   double waitMinutes = 15; ///< at most this long
   std::string dump;        ///< write the input and the target result as DUMP-input.ply, DUMP-output.ply
   bool keepMesh = false;   ///< re-executions keep the prepared mesh (input unchanged between runs)
+  std::string writeInput;  ///< write the mode's input mesh there and exit (for Benchmarks/userbench.sh)
 };
 
 std::string DefaultMeshDir()
@@ -825,6 +826,28 @@ std::vector<double> ParseList(const std::string& text)
   return values;
 }
 
+/// --write-input: the mesh the mode would measure (colors: with its colours), written to a file.
+int WriteInput(const Options& options)
+{
+  const bool colours = options.mode == "colors";
+  const std::string name =
+    !options.mesh.empty() ? options.mesh : (colours ? "armadillo" : "ChineseDragon-10kv");
+  const int levels = options.levels >= 0 ? options.levels : (colours ? 2 : 3);
+  BenchMesh bench = PrepareMesh(name, levels, options.meshDir);
+  if (colours)
+  {
+    PaintBlurredColours(bench.mesh, options.blurPasses);
+  }
+  std::string error;
+  if (!shockio::WriteMesh(bench.mesh, options.writeInput, error))
+  {
+    std::cerr << "cannot write " << options.writeInput << ": " << error << "\n";
+    return 2;
+  }
+  std::cerr << "wrote " << options.writeInput << "\n";
+  return 0;
+}
+
 void Usage()
 {
   std::cerr
@@ -855,6 +878,8 @@ void Usage()
        "  --keep-mesh           do not mark the input modified between runs: re-executions\n"
        "                        with the kept mesh (what changing only a parameter costs)\n"
        "  --dump PREFIX         write the input mesh and the target result as PREFIX-*.ply\n"
+       "  --write-input FILE    write the mode's input mesh (colors: with its colours) to FILE\n"
+       "                        (any format of shockfilter, e.g. .ply) and exit, measuring nothing\n"
        "Markdown on stdout, progress on stderr.\n";
 }
 
@@ -954,6 +979,10 @@ bool ParseOptions(int argc, char* argv[], Options& options)
     {
       options.dump = value();
     }
+    else if (arg == "--write-input")
+    {
+      options.writeInput = value();
+    }
     else
     {
       if (arg != "-h" && arg != "--help")
@@ -993,6 +1022,10 @@ int main(int argc, char* argv[])
   {
     Usage();
     return argc > 1 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help") ? 0 : 2;
+  }
+  if (!options.writeInput.empty())
+  {
+    return WriteInput(options);
   }
   std::ostringstream command;
   for (int i = 0; i < argc; ++i)
