@@ -57,6 +57,12 @@
  * owned cell once; shared points are marked in vtkGhostType. A data set that
  * every process holds whole (replicated) is filtered once, on process 0.
  *
+ * The prepared mesh (triangles, connectivity, geometry) is kept between
+ * executions and prepared again only when the input's points or cells change
+ * (vtkShockPolyDataInternals::MeshCache): changing only a parameter (e.g.
+ * FlowTime) and updating again skips the preparation
+ * (GetNumberOfMeshPreparations counts them).
+ *
  * @warning Errors (RequestData returns 0): negative or non-finite FlowTime,
  * missing or non-numeric array, field-data array, cell data on non-triangle
  * polygons or strips, non-finite point coordinates. An empty input, or an input

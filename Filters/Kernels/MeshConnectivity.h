@@ -73,6 +73,8 @@ public:
   }
   /// Number of unique edges.
   std::int64_t NumberOfEdges() const { return this->numberOfEdges; }
+  /// Neighbour(f, e) for all f and e, 3 per triangle.
+  const std::int64_t* Neighbours() const { return this->neighbour.data(); }
 
 private:
   // The steps of Build, in order.

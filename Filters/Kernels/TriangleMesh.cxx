@@ -46,7 +46,9 @@ Status TriangleMesh::Build(
     return status;
   }
   this->connectivity = std::move(shared);
-  this->corners = this->connectivity->NumberOfTriangles() > 0 ? this->connectivity->Corners(0) : nullptr;
+  const bool any = this->connectivity->NumberOfTriangles() > 0;
+  this->corners = any ? this->connectivity->Corners(0) : nullptr;
+  this->neighbours = any ? this->connectivity->Neighbours() : nullptr;
   return {};
 }
 

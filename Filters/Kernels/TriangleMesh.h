@@ -88,7 +88,7 @@ public:
    */
   std::int64_t Neighbour(std::int64_t f, int e) const
   {
-    const std::int64_t g = this->connectivity->Neighbour(f, e);
+    const std::int64_t g = this->neighbours[3 * f + e];
     return g >= 0 && !this->Degenerate(f) && !this->Degenerate(g) ? g : -1;
   }
   /// Triangles that use point p.
@@ -102,7 +102,9 @@ public:
 
 private:
   std::shared_ptr<const MeshConnectivity> connectivity;
-  const std::int64_t* corners = nullptr; ///< connectivity->Corners(0), read in every loop
+  // The connectivity's arrays read in every loop (tracing above all).
+  const std::int64_t* corners = nullptr;    ///< connectivity->Corners(0)
+  const std::int64_t* neighbours = nullptr; ///< the raw edge neighbours of triangle 0, 1, ...
   MeshGeometry geometry;
 };
 

@@ -171,10 +171,15 @@ MUTANTS = [
          replacement="return Advect(pass, run, fromInput, steps.current.data(), nullptr);",
          bug="Composed flow does not compose: traces restart at every update"),
     # --- mesh geometry ---------------------------------------------------------
-    dict(id="mesh-area-twice", file=K + "TriangleMesh.cxx",
+    dict(id="mesh-area-twice", file=K + "MeshGeometry.cxx",
          original="this->area[f] = 0.5 * twiceArea;",
          replacement="this->area[f] = twiceArea;",
          bug="triangle area off by a factor of 2"),
+    # --- mesh connectivity -------------------------------------------------------
+    dict(id="mesh-join-non-manifold", file=K + "MeshConnectivity.cxx",
+         original="ends[i].other > p && sharing == 2",
+         replacement="ends[i].other > p && sharing >= 2",
+         bug="an edge of three or more triangles joins two of them"),
     # --- screened Poisson fit ----------------------------------------------------
     dict(id="fit-lumped-mass", file=K + "ScreenedPoissonFit.cxx",
          original="entry(t[c]) += (c == self ? 2.0 : 1.0) * mass + beta * area * gg[c];",
