@@ -310,22 +310,22 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   {
     return 0;
   }
-  // The surface (an unstructured grid of polygons is read as polydata).
-  std::string error;
-  vtkSmartPointer<vtkPolyData> input =
-    vtkShockPolyDataInternals::AsSurface(vtkDataSet::GetData(inputVector[0]), error);
-  // In parallel: all agree, replicated data is recognised, pieces get ghost layers
+  // The surface (an unstructured grid of polygons is read as polydata); in
+  // parallel, all agree, replicated data is recognised, pieces get ghost layers
   // (collective; at least one: the fit's rows need the one-rings of their points).
   bool unknown = false;
+  auto wholeOrPieces = [&unknown](vtkPolyData* surface) -> std::string {
+    return unknown && surface->GetNumberOfPoints() > 0
+      ? "This is one of several pieces of the mesh, and no MPI controller with as many "
+        "processes is available to fit them together; give the whole mesh to one process."
+      : "";
+  };
   vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);
-  if (unknown && input && input->GetNumberOfPoints() > 0)
-  {
-    error = "This is one of several pieces of the mesh, and no MPI controller with as many "
-            "processes is available to fit them together; give the whole mesh to one process.";
-  }
+  vtkSmartPointer<vtkPolyData> input;
   vtkShockParallel::SurfacePiece piece;
-  if (!vtkShockParallel::PrepareSurfacePiece(
-        controller, input, error, std::max(1, this->GhostLevels), piece, error))
+  std::string error;
+  if (!vtkShockPolyDataInternals::BeginSurface(inputVector, controller,
+        std::max(1, this->GhostLevels), wholeOrPieces, input, piece, error))
   {
     vtkErrorMacro(<< error);
     return 0;
