@@ -357,19 +357,22 @@ public:
     , ValidSample(validSample)
     , ValidFace(validFace)
     , Threads(threads)
-    , Smoothed(AllocateLargeArray<double>(lattice.numSamples * components))
-    , PotentialField(AllocateLargeArray<double>(lattice.numSamples))
     , VelocityField(AllocateLargeArray<float>(lattice.numFaces * D))
   {
-    if (smoothingPasses >= 2)
-    {
-      this->Scratch = AllocateLargeArray<double>(lattice.numSamples * components);
-    }
   }
 
   /// Compute the flow of `signal`, intensities divided by `range`.
   void Compute(const double* signal, double range)
   {
+    if (!this->Smoothed)
+    {
+      this->Smoothed = AllocateLargeArray<double>(L.numSamples * C);
+      this->PotentialField = AllocateLargeArray<double>(L.numSamples);
+      if (this->Passes >= 2)
+      {
+        this->Scratch = AllocateLargeArray<double>(L.numSamples * C);
+      }
+    }
     UmbrellaSmooth<D>(L, C, signal, 1.0 / range, this->Smoothed.get(), this->Scratch.get(),
       this->ValidSample, this->Passes, this->Threads);
     // Each buffer serves twice, to save memory and first-touch page faults: the
@@ -384,6 +387,18 @@ public:
       this->ValidSample, this->Passes, this->Threads);
     BackTraceVelocity<D>(L, this->PotentialField.get(), this->ValidFace, this->VelocityField.get(),
       this->Threads);
+  }
+
+  /**
+   * Release the smoothing and potential buffers (the velocity stays): after the
+   * last flow of a run, so that the advection's output reuses their memory
+   * instead of raising the peak. Potential() is null until the next Compute.
+   */
+  void ReleaseWorkspace()
+  {
+    this->Smoothed.reset();
+    this->Scratch.reset();
+    this->PotentialField.reset();
   }
 
   /// Potential P per sample, normalised units.

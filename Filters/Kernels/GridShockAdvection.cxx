@@ -67,7 +67,7 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
   const ProgressFunction& progress)
 {
   const Lattice<D> L(shape);
-  const int threads = ResolveThreadCount(p.numberOfThreads);
+  const int threads = ThreadsForWork(p.numberOfThreads, L.numSamples);
   const std::int64_t count = L.numSamples * C;
 
   const SignalRange scan = ScanSignal(L.numSamples, C, input, threads);
@@ -122,9 +122,13 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
     flow.Compute(signal, range);
     report.flowSeconds += SecondsSince(flowStart);
 
-    if (fields && k == updates - 1)
+    if (k == updates - 1)
     {
-      ExportFlowFields<D>(L, flow, *fields);
+      if (fields)
+      {
+        ExportFlowFields<D>(L, flow, *fields);
+      }
+      flow.ReleaseWorkspace(); // only the velocity is needed from here on
     }
     const double progressStart = (k + 0.1) / updates;
     if (progress && !progress(progressStart))
