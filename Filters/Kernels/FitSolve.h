@@ -80,7 +80,12 @@ struct Frame
 };
 } // namespace fit
 
-/// The assembled system of the normalised mesh (see FitSystem.h); row r is point order[r].
+/**
+ * The assembled system of the normalised mesh (see FitSystem.h); row r is point
+ * order[r]: breadth-first, so that the solver's products read nearby rows. The
+ * assembly visits the points in the order the triangles first use them, so
+ * that it reads the triangles' data nearly in order.
+ */
 struct FitSystemData
 {
   fit::Frame frame;
@@ -92,6 +97,8 @@ struct FitSystemData
   fit::Coordinates massTerm; ///< alpha M c0; the original position on rows without triangles
   std::vector<std::int64_t> order; ///< point of each row
   std::vector<std::int64_t> rank;  ///< row of each point
+  /// The points in the order the assembly visits them (each fills its own row).
+  std::vector<std::int64_t> visit;
   std::vector<char> fitted;        ///< per row: its point is used by a non-degenerate triangle
 };
 

@@ -51,10 +51,12 @@ inline int CornerOf(const TriangleMesh& mesh, std::int64_t f, std::int64_t p)
 }
 
 /**
- * The rows' points in the order in which the triangles first use them (corner
- * by corner), then the points no non-degenerate triangle uses, in their order.
+ * The points in the order in which the triangles first use them (corner by
+ * corner), then the points no non-degenerate triangle uses, in their order:
+ * the order in which the assembly visits the rows, so that it reads the
+ * triangles' data nearly in their order.
  */
-void FirstUseOrder(const TriangleMesh& mesh, int threads, FitSystemData& system)
+std::vector<std::int64_t> FirstUseOrder(const TriangleMesh& mesh, int threads)
 {
   const std::int64_t np = mesh.NumberOfPoints();
   const std::int64_t nt = mesh.NumberOfTriangles();
@@ -87,8 +89,7 @@ void FirstUseOrder(const TriangleMesh& mesh, int threads, FitSystemData& system)
   {
     start[static_cast<size_t>(f) + 1] += start[static_cast<size_t>(f)];
   }
-  system.order.resize(static_cast<size_t>(np));
-  system.rank.resize(static_cast<size_t>(np));
+  std::vector<std::int64_t> order(static_cast<size_t>(np));
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t f = 0; f < nt; ++f)
   {
@@ -98,7 +99,7 @@ void FirstUseOrder(const TriangleMesh& mesh, int threads, FitSystemData& system)
       const std::int64_t p = mesh.Corners(f)[c];
       if (first[static_cast<size_t>(p)] == 3 * f + c)
       {
-        system.order[static_cast<size_t>(row++)] = p;
+        order[static_cast<size_t>(row++)] = p;
       }
     }
   }
@@ -107,13 +108,46 @@ void FirstUseOrder(const TriangleMesh& mesh, int threads, FitSystemData& system)
   {
     if (first[static_cast<size_t>(p)] < 0)
     {
-      system.order[static_cast<size_t>(row++)] = p;
+      order[static_cast<size_t>(row++)] = p;
     }
   }
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t r = 0; r < np; ++r)
+  return order;
+}
+
+/**
+ * The rows' points in breadth-first order over the one-rings, component by
+ * component from its smallest point (neighbours in ring order). Every row's
+ * columns are then within about two fronts of it, so the conjugate gradients'
+ * products read nearby memory. Serial: a few milliseconds per million points.
+ */
+void BreadthFirstOrder(const TriangleMesh& mesh, FitSystemData& system)
+{
+  const std::int64_t np = mesh.NumberOfPoints();
+  const CompressedLists& ring = mesh.OneRing();
+  system.order.clear();
+  system.order.reserve(static_cast<size_t>(np));
+  system.rank.assign(static_cast<size_t>(np), -1);
+  for (std::int64_t seed = 0; seed < np; ++seed)
   {
-    system.rank[static_cast<size_t>(system.order[static_cast<size_t>(r)])] = r;
+    if (system.rank[static_cast<size_t>(seed)] >= 0)
+    {
+      continue;
+    }
+    system.rank[static_cast<size_t>(seed)] = static_cast<std::int64_t>(system.order.size());
+    system.order.push_back(seed);
+    for (size_t next = system.order.size() - 1; next < system.order.size(); ++next)
+    {
+      const std::int64_t p = system.order[next];
+      for (std::int64_t e = ring.Begin(p); e < ring.End(p); ++e)
+      {
+        const std::int64_t q = ring.items[static_cast<size_t>(e)];
+        if (system.rank[static_cast<size_t>(q)] < 0)
+        {
+          system.rank[static_cast<size_t>(q)] = static_cast<std::int64_t>(system.order.size());
+          system.order.push_back(q);
+        }
+      }
+    }
   }
 }
 
@@ -126,6 +160,7 @@ void IdentityOrder(std::int64_t np, FitSystemData& system)
     system.order[static_cast<size_t>(p)] = p;
   }
   system.rank = system.order;
+  system.visit = system.order;
 }
 
 /**
@@ -147,9 +182,10 @@ void BuildPattern(const TriangleMesh& mesh, int threads, FitSystemData& system)
     outer[r + 1] = outer[r] + static_cast<int>(ring.End(p) - ring.Begin(p) + 1);
   }
 #pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t r = 0; r < np; ++r)
+  for (std::int64_t i = 0; i < np; ++i)
   {
-    const std::int64_t p = system.order[static_cast<size_t>(r)];
+    const std::int64_t p = system.visit[static_cast<size_t>(i)];
+    const std::int64_t r = system.rank[static_cast<size_t>(p)];
     int* cols = A.innerIndexPtr() + outer[r];
     int* out = cols;
     *out++ = static_cast<int>(r);
@@ -176,9 +212,10 @@ void FillRows(const TriangleMesh& mesh, int threads, FitSystemData& system)
   system.inverseDiagonal.resize(static_cast<size_t>(np));
   system.fitted.assign(static_cast<size_t>(np), 0);
 #pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t r = 0; r < np; ++r)
+  for (std::int64_t i = 0; i < np; ++i)
   {
-    const std::int64_t p = system.order[static_cast<size_t>(r)];
+    const std::int64_t p = system.visit[static_cast<size_t>(i)];
+    const std::int64_t r = system.rank[static_cast<size_t>(p)];
     const int* cols = A.innerIndexPtr() + A.outerIndexPtr()[r];
     const int* colsEnd = A.innerIndexPtr() + A.outerIndexPtr()[r + 1];
     double* row = A.valuePtr() + A.outerIndexPtr()[r];
@@ -254,7 +291,8 @@ Status BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
     }
     else
     {
-      FirstUseOrder(mesh, threads, *data);
+      BreadthFirstOrder(mesh, *data);
+      data->visit = FirstUseOrder(mesh, threads);
     }
     data->original.resize(np, 3);
 #pragma omp parallel for num_threads(threads) schedule(static)

@@ -8,11 +8,11 @@
  * eps M c0 and the normalisation to unit area depend on the positions, the
  * triangles and eps, not on the target normals: a FitSystem holds them, so a
  * second fit of the same mesh (another flow time in ParaView, other normals)
- * assembles only D w. The rows are numbered in the order in which the
- * triangles first use the points (a renumbering that keeps each row's
- * neighbours close in memory: meshes made by subdivision number new points far
- * from their neighbours), except for a piece of a distributed mesh, whose rows
- * are its points.
+ * assembles only D w. The rows are numbered breadth-first over the
+ * one-rings (a renumbering that keeps each row's neighbours close in memory:
+ * meshes made by subdivision number new points far from their neighbours, and
+ * the conjugate gradients' products then wait on memory), except for a piece
+ * of a distributed mesh, whose rows are its points.
  */
 #ifndef ShockFitSystem_h
 #define ShockFitSystem_h

@@ -77,9 +77,10 @@ Coordinates RightHandSides(const TriangleMesh& mesh, const double* targets, FitT
   const double weight = system.beta * system.frame.scale;
   Coordinates b(np, 3);
 #pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t r = 0; r < np; ++r)
+  for (std::int64_t i = 0; i < np; ++i)
   {
-    const std::int64_t p = system.order[static_cast<size_t>(r)];
+    const std::int64_t p = system.visit[static_cast<size_t>(i)];
+    const std::int64_t r = system.rank[static_cast<size_t>(p)];
     double divergence[3] = { 0.0, 0.0, 0.0 };
     for (std::int64_t a = around.Begin(p); a < around.End(p); ++a)
     {
