@@ -105,6 +105,30 @@ struct FitSystemData
 namespace fit
 {
 /**
+ * Add triangle f's term of the divergence of the target gradients at the
+ * point whose hat gradient in f is gp: out_k += A_f gp . w_k (w: FitTargetGradients
+ * of the valid target normal, else of the triangle's own normal).
+ */
+void AddTargetDivergence(const TriangleMesh& mesh, const double* normals, FitTarget target,
+  std::int64_t f, const double gp[3], double out[3]);
+
+/// The target normals whose divergence the assembly adds to the right-hand sides.
+struct Targets
+{
+  const double* normals = nullptr;
+  FitTarget target = FitTarget::CentralProjection;
+};
+
+/**
+ * BuildFitSystem (FitSystem.h) that also fills the right-hand sides
+ * b = alpha M c0 + beta s D w of `targets` in the same pass over the rows (b
+ * is left empty for a mesh without area).
+ */
+Status BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
+  const MeshPartition* partition, int threads, const Targets& targets, FitSystem& system,
+  Coordinates& b);
+
+/**
  * Solve A x = b for the three coordinates with the chosen solver, from
  * x = system.original for conjugate gradients. On a piece (parameters.partition)
  * only the owned rows are computed and the halo takes its owners' values.

@@ -199,10 +199,13 @@ void BuildPattern(const TriangleMesh& mesh, int threads, FitSystemData& system)
 
 /**
  * The values of A = alpha M + beta S (normalised: stiffness A g.g, mass s^2 A/12),
- * the mass term alpha M c0 and the inverse diagonal, row by row in parallel.
- * A point used by no non-degenerate triangle gets an identity row that keeps it.
+ * the mass term alpha M c0 and the inverse diagonal, row by row in parallel;
+ * with targets, also the right-hand sides b = alpha M c0 + beta s D w (the
+ * same sums as fit::RightHandSides). A point used by no non-degenerate
+ * triangle gets an identity row that keeps it.
  */
-void FillRows(const TriangleMesh& mesh, int threads, FitSystemData& system)
+void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets,
+  FitSystemData& system, Coordinates& rhs)
 {
   const std::int64_t np = mesh.NumberOfPoints();
   const CompressedLists& around = mesh.PointTriangles();
@@ -211,6 +214,8 @@ void FillRows(const TriangleMesh& mesh, int threads, FitSystemData& system)
   system.massTerm.resize(np, 3);
   system.inverseDiagonal.resize(static_cast<size_t>(np));
   system.fitted.assign(static_cast<size_t>(np), 0);
+  rhs.resize(targets ? np : 0, 3);
+  const double weight = system.beta * s;
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < np; ++i)
   {
@@ -225,6 +230,7 @@ void FillRows(const TriangleMesh& mesh, int threads, FitSystemData& system)
       return row[std::lower_bound(cols, colsEnd, column) - cols];
     };
     double b[3] = { 0.0, 0.0, 0.0 };
+    double divergence[3] = { 0.0, 0.0, 0.0 };
     bool fitted = false;
     for (std::int64_t a = around.Begin(p); a < around.End(p); ++a)
     {
@@ -238,6 +244,10 @@ void FillRows(const TriangleMesh& mesh, int threads, FitSystemData& system)
       const int self = CornerOf(mesh, f, p);
       const double area = mesh.Area(f);
       const Vec3 gp = Load(mesh.HatGradient(f, self));
+      if (targets)
+      {
+        fit::AddTargetDivergence(mesh, targets->normals, targets->target, f, gp.data(), divergence);
+      }
       for (int c = 0; c < 3; ++c)
       {
         const double mass = system.alpha * s * s * TriangleMass(area, self, c);
@@ -262,13 +272,37 @@ void FillRows(const TriangleMesh& mesh, int threads, FitSystemData& system)
     for (int k = 0; k < 3; ++k)
     {
       system.massTerm(r, k) = b[k];
+      if (targets)
+      {
+        rhs(r, k) = b[k] + weight * divergence[k];
+      }
     }
   }
 }
+Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
+  const MeshPartition* partition, int threads, const fit::Targets* targets, FitSystem& system,
+  Coordinates& b);
 } // namespace
 
 Status BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
   const MeshPartition* partition, int threads, FitSystem& system)
+{
+  Coordinates none;
+  return BuildSystem(mesh, screeningWeight, partition, threads, nullptr, system, none);
+}
+
+Status fit::BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
+  const MeshPartition* partition, int threads, const Targets& targets, FitSystem& system,
+  Coordinates& b)
+{
+  return BuildSystem(mesh, screeningWeight, partition, threads, &targets, system, b);
+}
+
+namespace
+{
+Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
+  const MeshPartition* partition, int threads, const fit::Targets* targets, FitSystem& system,
+  Coordinates& b)
 {
   system.Clear();
   if (!(std::isfinite(screeningWeight) && screeningWeight > 0.0))
@@ -305,7 +339,7 @@ Status BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
       }
     }
     BuildPattern(mesh, threads, *data);
-    FillRows(mesh, threads, *data);
+    FillRows(mesh, threads, targets, *data, b);
     system.data = std::move(data);
   }
   system.mesh = &mesh;
@@ -314,5 +348,6 @@ Status BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
   system.screeningWeight = screeningWeight;
   return {};
 }
+} // namespace
 
 } // namespace shock

@@ -67,7 +67,8 @@ std::int64_t InvalidTargets(
 /**
  * The right-hand sides b = alpha M c0 + beta D w, row by row in parallel: the
  * mass term of the system plus the divergence of the target gradients,
- * (D w)_p = sum_f A_f grad(phi_p) . w_k (normalised: s A g.w).
+ * (D w)_p = sum_f A_f grad(phi_p) . w_k (normalised: s A g.w). The same sums
+ * as the assembly's (FillRows), for a system kept from an earlier fit.
  */
 Coordinates RightHandSides(const TriangleMesh& mesh, const double* targets, FitTarget target,
   const FitSystemData& system, int threads)
@@ -85,18 +86,11 @@ Coordinates RightHandSides(const TriangleMesh& mesh, const double* targets, FitT
     for (std::int64_t a = around.Begin(p); a < around.End(p); ++a)
     {
       const std::int64_t f = around.items[static_cast<size_t>(a)];
-      if (mesh.Degenerate(f))
+      if (!mesh.Degenerate(f))
       {
-        continue;
-      }
-      const std::int64_t* t = mesh.Corners(f);
-      const Vec3 gp = Load(mesh.HatGradient(f, t[0] == p ? 0 : (t[1] == p ? 1 : 2)));
-      double n[3], w[9];
-      TargetNormal(mesh, targets, f, n);
-      FitTargetGradients(mesh, f, n, target, w);
-      for (int k = 0; k < 3; ++k)
-      {
-        divergence[k] += mesh.Area(f) * Dot(gp, Load(w + 3 * k));
+        const std::int64_t* t = mesh.Corners(f);
+        fit::AddTargetDivergence(mesh, targets, target, f,
+          mesh.HatGradient(f, t[0] == p ? 0 : (t[1] == p ? 1 : 2)), divergence);
       }
     }
     for (int k = 0; k < 3; ++k)
@@ -107,6 +101,22 @@ Coordinates RightHandSides(const TriangleMesh& mesh, const double* targets, FitT
   return b;
 }
 
+} // namespace
+
+void fit::AddTargetDivergence(const TriangleMesh& mesh, const double* normals, FitTarget target,
+  std::int64_t f, const double gp[3], double out[3])
+{
+  double n[3], w[9];
+  TargetNormal(mesh, normals, f, n);
+  FitTargetGradients(mesh, f, n, target, w);
+  for (int k = 0; k < 3; ++k)
+  {
+    out[k] += mesh.Area(f) * Dot(Load(gp), Load(w + 3 * k));
+  }
+}
+
+namespace
+{
 /// Check the parameters (a message for the first invalid one).
 Status CheckFitParameters(const TriangleMesh& mesh, const FitParameters& parameters)
 {
@@ -249,10 +259,13 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
   // The matrix and mass term: the cached ones when they were built for this mesh and eps.
   FitSystem own;
   FitSystem& system = cache && !partition ? *cache : own;
+  // (Built anew, the system comes with the right-hand sides, in the same pass.)
   out.reusedSystem = system.Matches(mesh, parameters.screeningWeight);
+  Coordinates b;
   if (!out.reusedSystem)
   {
-    status = BuildFitSystem(mesh, parameters.screeningWeight, partition, threads, system);
+    status = fit::BuildFitSystem(mesh, parameters.screeningWeight, partition, threads,
+      { targetNormals, parameters.target }, system, b);
   }
   if (!status.Ok() || !system.data)
   {
@@ -262,7 +275,10 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
     return status;
   }
   const FitSystemData& data = *system.data;
-  const Coordinates b = RightHandSides(mesh, targetNormals, parameters.target, data, threads);
+  if (out.reusedSystem)
+  {
+    b = RightHandSides(mesh, targetNormals, parameters.target, data, threads);
+  }
   out.setupSeconds = SecondsSince(setupStart);
 
   const auto solveStart = Clock::now();
