@@ -72,23 +72,7 @@ sharp = simple.SurfaceShockSharpen(Input=blurred)
 sharp.FlowTime = 256.0
 
 
-def show(proxy, view):
-    normals = simple.GenerateSurfaceNormals(Input=proxy, ComputeCellNormals=1, Splitting=0)
-    rgb = simple.Calculator(Input=normals, AttributeType="Cell Data", ResultArrayName="NormalColour",
-                            Function="0.5*Normals + 0.5*(iHat + jHat + kHat)")
-    display = simple.Show(rgb, view)
-    simple.ColorBy(display, ("CELLS", "NormalColour"))
-    display.MapScalars = 0    # the three components are the colour itself
-    display.Ambient = 0.4
-    display.Diffuse = 0.7
-
-
-def camera(view):
-    view.CameraPosition = [1.6, -1.9, 2.2]
-    view.CameraFocalPoint = [0, 0, 0]
-    view.CameraViewUp = [0, 0, 1]
-    simple.ResetCamera(view)
-
-
-shock_example.before_after(blurred, sharp, show, os.path.join(arguments.output, "sharpen_blurred_cad.png"),
-                           arguments.size, camera, ("Blurred CAD part", "Surface Shock Sharpen"))
+shock_example.before_after(blurred, sharp, shock_example.show_normal_colours,
+                           os.path.join(arguments.output, "sharpen_blurred_cad.png"), arguments.size,
+                           shock_example.looking_from([1.6, -1.9, 2.2], [0, 0, 1]),
+                           ("Blurred CAD part", "Surface Shock Sharpen"))

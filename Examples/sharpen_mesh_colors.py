@@ -39,13 +39,6 @@ def show(proxy, view):
     display.Specular = 0.2
 
 
-def camera(view):
-    view.CameraPosition = [1.6, 1.2, 2.2]
-    view.CameraFocalPoint = [0, 0, 0]
-    view.CameraViewUp = [0, 1, 0]
-    simple.ResetCamera(view)
-    view.GetActiveCamera().Dolly(1.15)
-
-
 shock_example.before_after(colours, sharp, show, os.path.join(arguments.output, "sharpen_mesh_colors.png"),
-                           arguments.size, camera, ("Blurred colours", "Surface Shock Advection"))
+                           arguments.size, shock_example.looking_from([1.6, 1.2, 2.2], [0, 1, 0], 1.15),
+                           ("Blurred colours", "Surface Shock Advection"))

@@ -39,25 +39,7 @@ sharp = simple.SurfaceShockSharpen(Input=rounded)
 sharp.FlowTime = 1024.0
 
 
-def show(proxy, view):
-    # Colour each triangle by its normal (x, y, z mapped to red, green, blue):
-    # a rounded edge is a band of blended colours, a sharp crease a clean line.
-    normals = simple.GenerateSurfaceNormals(Input=proxy, ComputeCellNormals=1, Splitting=0)
-    rgb = simple.Calculator(Input=normals, AttributeType="Cell Data", ResultArrayName="NormalColour",
-                            Function="0.5*Normals + 0.5*(iHat + jHat + kHat)")
-    display = simple.Show(rgb, view)
-    simple.ColorBy(display, ("CELLS", "NormalColour"))
-    display.MapScalars = 0    # the three components are the colour itself
-    display.Ambient = 0.4
-    display.Diffuse = 0.7
-
-
-def camera(view):
-    view.CameraPosition = [2.4, 2.6, 3.2]
-    view.CameraFocalPoint = [0, 0, 0]
-    view.CameraViewUp = [0, 1, 0]
-    simple.ResetCamera(view)
-
-
-shock_example.before_after(rounded, sharp, show, os.path.join(arguments.output, "sharpen_mesh_geometry.png"),
-                           arguments.size, camera, ("Rounded box", "Surface Shock Sharpen"))
+shock_example.before_after(rounded, sharp, shock_example.show_normal_colours,
+                           os.path.join(arguments.output, "sharpen_mesh_geometry.png"), arguments.size,
+                           shock_example.looking_from([2.4, 2.6, 3.2], [0, 1, 0]),
+                           ("Rounded box", "Surface Shock Sharpen"))

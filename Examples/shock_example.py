@@ -44,6 +44,33 @@ def _label(view, text):
     display.Color = [0.1, 0.1, 0.1]
 
 
+def show_normal_colours(proxy, view):
+    """Show a surface with each triangle coloured by its normal (x, y, z as red,
+    green, blue): a rounded edge is a band of blended colours, a sharp crease a
+    clean line."""
+    normals = simple.GenerateSurfaceNormals(Input=proxy, ComputeCellNormals=1, Splitting=0)
+    rgb = simple.Calculator(Input=normals, AttributeType="Cell Data", ResultArrayName="NormalColour",
+                            Function="0.5*Normals + 0.5*(iHat + jHat + kHat)")
+    display = simple.Show(rgb, view)
+    simple.ColorBy(display, ("CELLS", "NormalColour"))
+    display.MapScalars = 0    # the three components are the colour itself
+    display.Ambient = 0.4
+    display.Diffuse = 0.7
+
+
+def looking_from(position, view_up, dolly=1.0):
+    """A camera(view) for before_after: from `position` towards the origin, the
+    data fitted, then moved closer by `dolly`."""
+    def camera(view):
+        view.CameraPosition = position
+        view.CameraFocalPoint = [0, 0, 0]
+        view.CameraViewUp = view_up
+        simple.ResetCamera(view)
+        if dolly != 1.0:
+            view.GetActiveCamera().Dolly(dolly)
+    return camera
+
+
 def before_after(before, after, show, path, size, camera=None, titles=("Before", "After")):
     """Render `before` and `after` side by side in two linked views and save
     one PNG. `show(proxy, view)` displays a proxy in a view (colouring etc.);

@@ -20,7 +20,7 @@ struct CopyToDoubles
   void operator()(ArrayT* array, double* out, int threads) const
   {
     const auto values = vtk::DataArrayValueRange(array);
-    shock::ParallelFor(values.size(), threads, [&](std::int64_t begin, std::int64_t end) {
+    shock::ParallelFor(values.size(), shock::ThreadsForWork(threads, values.size()), [&](std::int64_t begin, std::int64_t end) {
       std::copy(values.begin() + begin, values.begin() + end, out + begin);
     });
   }
@@ -54,7 +54,7 @@ struct CopyFromDoubles
   {
     using ValueT = vtk::GetAPIType<ArrayT>;
     auto values = vtk::DataArrayValueRange(array);
-    shock::ParallelFor(values.size(), threads, [&](std::int64_t begin, std::int64_t end) {
+    shock::ParallelFor(values.size(), shock::ThreadsForWork(threads, values.size()), [&](std::int64_t begin, std::int64_t end) {
       for (std::int64_t i = begin; i < end; ++i)
       {
         values[i] = RoundAndClamp<ValueT>(in[i]);

@@ -54,89 +54,47 @@ const std::vector<Choice>& TracingChoices()
 std::vector<OptionSpec> ShockOptionSpecs(
   ShockOptions& target, ShockOptionSet set, vtkShockAdvectionFilter* defaults)
 {
-  // The filter's clamps (vtkSetClampMacro's Min/MaxValue), refused beyond.
-  const int passesLow = defaults->GetSmoothingPassesMinValue();
-  const int passesHigh = defaults->GetSmoothingPassesMaxValue();
-  const int updatesLow = defaults->GetNumberOfFlowUpdatesMinValue();
-  const int updatesHigh = defaults->GetNumberOfFlowUpdatesMaxValue();
-  const double stepLow = defaults->GetStepFractionMinValue();
-  const double stepHigh = defaults->GetStepFractionMaxValue();
-  const int threadsLow = defaults->GetNumberOfThreadsMinValue();
-  const int threadsHigh = defaults->GetNumberOfThreadsMaxValue();
+  vtkShockAdvectionFilter* d = defaults; // the ranges: its clamps (vtkSetClampMacro's Min/MaxValue)
   std::vector<OptionSpec> specs;
   if (set == ShockOptionSet::All)
   {
     specs.push_back({ "--time", "T",
-      "flow time t >= 0, normalised units" + DefaultText(NumberText(defaults->GetFlowTime())),
+      "flow time t >= 0, normalised units" + DefaultText(NumberText(d->GetFlowTime())),
       [&target](const std::string& v)
       { target.time = ParseInRange("--time", v, 0.0, std::numeric_limits<double>::max()); } });
-    specs.push_back({ "--smoothing", "N",
-      "smoothing passes, " + RangeText(passesLow, passesHigh) +
-        DefaultText(std::to_string(defaults->GetSmoothingPasses())),
-      [&target, passesLow, passesHigh](const std::string& v)
-      { target.smoothingPasses = ParseInRange("--smoothing", v, passesLow, passesHigh); } });
-    specs.push_back({ "--flow", "MODE",
-      "fixed|composed|naive" + DefaultText(ChoiceName(defaults->GetFlowMode(), FlowModeChoices())),
-      [&target](const std::string& v) { target.flowMode = ParseChoice("--flow", v, FlowModeChoices()); } });
-    specs.push_back({ "--updates", "K",
-      "flow updates of composed/naive, " + RangeText(updatesLow, updatesHigh) +
-        DefaultText(std::to_string(defaults->GetNumberOfFlowUpdates())),
-      [&target, updatesLow, updatesHigh](const std::string& v)
-      { target.flowUpdates = ParseInRange("--updates", v, updatesLow, updatesHigh); } });
-    specs.push_back({ "--sampling", "MODE",
-      "linear|nearest" + DefaultText(ChoiceName(defaults->GetSampling(), SamplingChoices())),
-      [&target](const std::string& v) { target.sampling = ParseChoice("--sampling", v, SamplingChoices()); } });
-    specs.push_back({ "--tracing", "MODE",
-      "exact (face crossing)|stepped" + DefaultText(ChoiceName(defaults->GetTracingMode(), TracingChoices())),
-      [&target](const std::string& v) { target.tracingMode = ParseChoice("--tracing", v, TracingChoices()); } });
-    specs.push_back({ "--step-fraction", "F",
-      "step of stepped tracing (edges), " + RangeText(stepLow, stepHigh) +
-        DefaultText(NumberText(defaults->GetStepFraction())),
-      [&target, stepLow, stepHigh](const std::string& v)
-      { target.stepFraction = ParseInRange("--step-fraction", v, stepLow, stepHigh); } });
+    specs.push_back(RangeOptionSpec("--smoothing", "N", "smoothing passes", target.smoothingPasses,
+      d->GetSmoothingPassesMinValue(), d->GetSmoothingPassesMaxValue(), d->GetSmoothingPasses()));
+    specs.push_back(ChoiceOptionSpec(
+      "--flow", "MODE", "fixed|composed|naive", target.flowMode, FlowModeChoices(), d->GetFlowMode()));
+    specs.push_back(RangeOptionSpec("--updates", "K", "flow updates of composed/naive",
+      target.flowUpdates, d->GetNumberOfFlowUpdatesMinValue(), d->GetNumberOfFlowUpdatesMaxValue(),
+      d->GetNumberOfFlowUpdates()));
+    specs.push_back(ChoiceOptionSpec(
+      "--sampling", "MODE", "linear|nearest", target.sampling, SamplingChoices(), d->GetSampling()));
+    specs.push_back(ChoiceOptionSpec("--tracing", "MODE", "exact (face crossing)|stepped",
+      target.tracingMode, TracingChoices(), d->GetTracingMode()));
+    specs.push_back(RangeOptionSpec("--step-fraction", "F", "step of stepped tracing (edges)",
+      target.stepFraction, d->GetStepFractionMinValue(), d->GetStepFractionMaxValue(),
+      d->GetStepFraction()));
   }
-  specs.push_back({ "--threads", "N", "OpenMP threads, " + RangeText(threadsLow, threadsHigh) +
-      ", 0 = all cores" + DefaultText(std::to_string(defaults->GetNumberOfThreads())),
-    [&target, threadsLow, threadsHigh](const std::string& v)
-    { target.threads = ParseInRange("--threads", v, threadsLow, threadsHigh); } });
+  specs.push_back(RangeOptionSpec("--threads", "N", "OpenMP threads", target.threads,
+    d->GetNumberOfThreadsMinValue(), d->GetNumberOfThreadsMaxValue(), d->GetNumberOfThreads(),
+    ", 0 = all cores"));
   return specs;
 }
 
 /// Sets the given parameters on a filter; the others keep their defaults.
 void ConfigureFilter(vtkShockAdvectionFilter* filter, const ShockOptions& options)
 {
-  if (options.time)
-  {
-    filter->SetFlowTime(*options.time);
-  }
-  if (options.smoothingPasses)
-  {
-    filter->SetSmoothingPasses(*options.smoothingPasses);
-  }
-  if (options.flowMode)
-  {
-    filter->SetFlowMode(*options.flowMode);
-  }
-  if (options.flowUpdates)
-  {
-    filter->SetNumberOfFlowUpdates(*options.flowUpdates);
-  }
-  if (options.sampling)
-  {
-    filter->SetSampling(*options.sampling);
-  }
-  if (options.tracingMode)
-  {
-    filter->SetTracingMode(*options.tracingMode);
-  }
-  if (options.stepFraction)
-  {
-    filter->SetStepFraction(*options.stepFraction);
-  }
-  if (options.threads)
-  {
-    filter->SetNumberOfThreads(*options.threads);
-  }
+  using F = vtkShockAdvectionFilter;
+  SetIfGiven(filter, &F::SetFlowTime, options.time);
+  SetIfGiven(filter, &F::SetSmoothingPasses, options.smoothingPasses);
+  SetIfGiven(filter, &F::SetFlowMode, options.flowMode);
+  SetIfGiven(filter, &F::SetNumberOfFlowUpdates, options.flowUpdates);
+  SetIfGiven(filter, &F::SetSampling, options.sampling);
+  SetIfGiven(filter, &F::SetTracingMode, options.tracingMode);
+  SetIfGiven(filter, &F::SetStepFraction, options.stepFraction);
+  SetIfGiven(filter, &F::SetNumberOfThreads, options.threads);
 }
 
 void UpdateOrThrow(vtkAlgorithm* algorithm, const std::string& context)
@@ -265,6 +223,27 @@ SelectedArray SelectArray(vtkDataSet* data, const std::string& requested, std::o
   throw CliError("the input has no " + what + " '" + requested + "' (" + available + ")");
 }
 
+namespace
+{
+
+/// Double points whose coordinates are map(x, axis) of those of `mesh`.
+template <typename Map>
+vtkSmartPointer<vtkPoints> MappedPoints(vtkPolyData* mesh, Map map)
+{
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(mesh->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    mesh->GetPoint(p, x);
+    points->SetPoint(p, map(x[0], 0), map(x[1], 1), map(x[2], 2));
+  }
+  return points;
+}
+
+} // namespace
+
 vtkSmartPointer<vtkPolyData> InUnitFrame(vtkPolyData* mesh, MeshFrame& frame)
 {
   double bounds[6];
@@ -282,33 +261,13 @@ vtkSmartPointer<vtkPolyData> InUnitFrame(vtkPolyData* mesh, MeshFrame& frame)
   frame.scale = frame.scale > 0.0 ? frame.scale : 1.0; // a single point: the filter tells
   auto unit = vtkSmartPointer<vtkPolyData>::New();
   unit->ShallowCopy(mesh);
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(mesh->GetNumberOfPoints());
-  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
-  {
-    double x[3];
-    mesh->GetPoint(p, x);
-    points->SetPoint(p, (x[0] - frame.centre[0]) / frame.scale, (x[1] - frame.centre[1]) / frame.scale,
-      (x[2] - frame.centre[2]) / frame.scale);
-  }
-  unit->SetPoints(points);
+  unit->SetPoints(MappedPoints(mesh, [&frame](double x, int a) { return (x - frame.centre[a]) / frame.scale; }));
   return unit;
 }
 
 void BackFromUnitFrame(vtkPolyData* mesh, const MeshFrame& frame)
 {
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(mesh->GetNumberOfPoints());
-  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
-  {
-    double x[3];
-    mesh->GetPoint(p, x);
-    points->SetPoint(p, x[0] * frame.scale + frame.centre[0], x[1] * frame.scale + frame.centre[1],
-      x[2] * frame.scale + frame.centre[2]);
-  }
-  mesh->SetPoints(points);
+  mesh->SetPoints(MappedPoints(mesh, [&frame](double x, int a) { return x * frame.scale + frame.centre[a]; }));
 }
 
 /// Filters the point array 'arrayName' of 'input'; throws "shock filter failed: ..." on error.
@@ -317,22 +276,11 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
 {
   vtkNew<vtkImageShockAdvectionFilter> filter;
   ConfigureFilter(filter, options);
-  if (methodOptions.method)
-  {
-    filter->SetMethod(*methodOptions.method);
-  }
-  if (methodOptions.courantNumber)
-  {
-    filter->SetCourantNumber(*methodOptions.courantNumber);
-  }
-  if (methodOptions.maximumIterations)
-  {
-    filter->SetMaximumIterations(*methodOptions.maximumIterations);
-  }
-  if (methodOptions.hierarchyLevels)
-  {
-    filter->SetHierarchyLevels(*methodOptions.hierarchyLevels);
-  }
+  using F = vtkImageShockAdvectionFilter;
+  SetIfGiven(filter.Get(), &F::SetMethod, methodOptions.method);
+  SetIfGiven(filter.Get(), &F::SetCourantNumber, methodOptions.courantNumber);
+  SetIfGiven(filter.Get(), &F::SetMaximumIterations, methodOptions.maximumIterations);
+  SetIfGiven(filter.Get(), &F::SetHierarchyLevels, methodOptions.hierarchyLevels);
   filter->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrayName.c_str());
   filter->SetInputData(input);

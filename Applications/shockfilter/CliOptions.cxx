@@ -166,6 +166,13 @@ std::string RangeText(double low, double high)
   return NumberText(low) + ".." + NumberText(high);
 }
 
+OptionSpec ChoiceOptionSpec(const std::string& name, const std::string& valueName, const std::string& text,
+  std::optional<int>& target, const std::vector<Choice>& choices, int defaultValue)
+{
+  return { name, valueName, text + DefaultText(ChoiceName(defaultValue, choices)),
+    [name, &target, &choices](const std::string& v) { target = ParseChoice(name, v, choices); } };
+}
+
 /// --array NAME (not empty).
 OptionSpec ArrayOptionSpec(std::string& target, const std::string& help)
 {

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -103,6 +104,47 @@ std::string DefaultText(const std::string& value);
 
 /// "low..high", for option help lines (the ranges are the filters' clamps).
 std::string RangeText(double low, double high);
+
+/// The text of a default value in help lines: integers in full, other numbers by NumberText().
+template <typename T>
+std::string ValueText(T value)
+{
+  if constexpr (std::is_integral<T>::value)
+  {
+    return std::to_string(value);
+  }
+  else
+  {
+    return NumberText(value);
+  }
+}
+
+/**
+ * "--name VALUE": a number in [low, high] (a filter's clamp: out of range is
+ * refused, where the filter's setter would clamp silently) stored in `target`;
+ * help "<text>, low..high<note> (default <defaultValue>)".
+ */
+template <typename T>
+OptionSpec RangeOptionSpec(const std::string& name, const std::string& valueName, const std::string& text,
+  std::optional<T>& target, T low, T high, T defaultValue, const std::string& note = "")
+{
+  return { name, valueName, text + ", " + RangeText(low, high) + note + DefaultText(ValueText(defaultValue)),
+    [name, &target, low, high](const std::string& v) { target = ParseInRange(name, v, low, high); } };
+}
+
+/// "--name VALUE": one of `choices` (by name) stored in `target`; help "<text> (default <name>)".
+OptionSpec ChoiceOptionSpec(const std::string& name, const std::string& valueName, const std::string& text,
+  std::optional<int>& target, const std::vector<Choice>& choices, int defaultValue);
+
+/// Calls (object->*set)(*value) when the option was given: an unset option keeps the default.
+template <typename Object, typename Class, typename Argument, typename T>
+void SetIfGiven(Object* object, void (Class::*set)(Argument), const std::optional<T>& value)
+{
+  if (value)
+  {
+    (object->*set)(*value);
+  }
+}
 
 /// --array NAME (not empty).
 OptionSpec ArrayOptionSpec(std::string& target, const std::string& help);

@@ -5,6 +5,7 @@
 #include "CliFilters.h"
 #include "Commands.h"
 #include "Demo.h"
+#include "ShockShapesVTK.h"
 
 #include "vtkCellArray.h"
 #include "vtkNew.h"
@@ -28,74 +29,13 @@ namespace
 {
 
 /**
- * The surface of the cube [-1, 1]^3 with n x n squares per face, two triangles
- * each (counter-clockwise seen from outside; edge and corner points shared),
- * with its creases rounded to radius 'rounding' in [0, 1] (1 gives the unit sphere).
+ * The surface of the cube [-1, 1]^3 with n x n squares per face, its creases
+ * rounded to radius 'rounding' in [0, 1] (1 gives the unit sphere): the
+ * tests' rounded box (Applications/Shapes).
  */
-vtkSmartPointer<vtkPolyData> MakeRoundedCube(int n, double rounding)
+vtkSmartPointer<vtkPolyData> RoundedCube(int n, double rounding)
 {
-  const int m = n + 1;
-  std::vector<vtkIdType> ids(static_cast<std::size_t>(m) * m * m, -1); // lattice point -> point id
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  const double inner = 1.0 - rounding;
-  const auto pointId = [&](const std::array<int, 3>& lattice)
-  {
-    vtkIdType& id = ids[(static_cast<std::size_t>(lattice[2]) * m + lattice[1]) * m + lattice[0]];
-    if (id < 0)
-    {
-      // The rounded box is the inner cube grown by a ball: a point moves to distance
-      // 'rounding' from its nearest point on the inner cube.
-      std::array<double, 3> x, nearest;
-      double distance = 0.0;
-      for (int a = 0; a < 3; ++a)
-      {
-        x[a] = 2.0 * lattice[a] / n - 1.0;
-        nearest[a] = std::clamp(x[a], -inner, inner);
-        distance += (x[a] - nearest[a]) * (x[a] - nearest[a]);
-      }
-      distance = std::sqrt(distance);
-      for (int a = 0; a < 3 && distance > 0.0; ++a)
-      {
-        x[a] = nearest[a] + rounding * (x[a] - nearest[a]) / distance;
-      }
-      id = points->InsertNextPoint(x.data());
-    }
-    return id;
-  };
-  vtkNew<vtkCellArray> triangles;
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    for (const int side : { 0, n })
-    {
-      for (int u = 0; u < n; ++u)
-      {
-        for (int v = 0; v < n; ++v)
-        {
-          // Axes (axis + 1, axis + 2) turn counter-clockwise seen from the + side.
-          const auto corner = [&](int du, int dv)
-          {
-            std::array<int, 3> lattice;
-            lattice[axis] = side;
-            lattice[(axis + 1) % 3] = u + du;
-            lattice[(axis + 2) % 3] = v + dv;
-            return pointId(lattice);
-          };
-          std::array<vtkIdType, 4> square = { corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1) };
-          if (side == 0)
-          {
-            std::swap(square[1], square[3]);
-          }
-          triangles->InsertNextCell({ square[0], square[1], square[2] });
-          triangles->InsertNextCell({ square[0], square[2], square[3] });
-        }
-      }
-    }
-  }
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->SetPoints(points);
-  mesh->SetPolys(triangles);
-  return mesh;
+  return shockshapes::ToPolyData(shockshapes::RoundedBox(n, 2.0, rounding));
 }
 
 /// Colour of the sphere demo at a point of the unit sphere: three regions with blurred borders.
@@ -125,7 +65,7 @@ void WriteDemoMesh(vtkPolyData* mesh, const std::filesystem::path& directory, co
 /// The mesh part of the demo: blurred colours on a sphere, the geometry of a rounded box.
 void RunMeshDemo(const std::filesystem::path& directory, const ShockOptions& common)
 {
-  vtkSmartPointer<vtkPolyData> sphere = MakeRoundedCube(40, 1.0);
+  vtkSmartPointer<vtkPolyData> sphere = RoundedCube(40, 1.0);
   vtkNew<vtkUnsignedCharArray> colours;
   colours->SetName(shockio::PointColorsName);
   colours->SetNumberOfComponents(3);
@@ -149,7 +89,7 @@ void RunMeshDemo(const std::filesystem::path& directory, const ShockOptions& com
   WriteDemoMesh(surface->GetOutput(), directory, "sphere_sharpened.ply",
     "colours filtered at t=" + NumberText(SphereDemoTime) + ": " + SecondsText(surfaceSeconds));
 
-  vtkSmartPointer<vtkPolyData> box = MakeRoundedCube(32, 0.3);
+  vtkSmartPointer<vtkPolyData> box = RoundedCube(32, 0.3);
   WriteDemoMesh(box, directory, "rounded_box_input.ply",
     std::to_string(box->GetNumberOfPoints()) + "-point cube, creases rounded to 0.3 of the half side");
   vtkNew<vtkPolyDataShockSharpenFilter> sharpen;

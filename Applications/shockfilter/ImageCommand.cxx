@@ -55,33 +55,20 @@ std::vector<OptionSpec> ImageOptionSpecs(ImageSettings& settings)
   vtkNew<vtkImageShockAdvectionFilter> defaults;
   std::vector<OptionSpec> specs;
   ImageMethodOptions& method = settings.method;
-  specs.push_back({ "--method", "METHOD",
-    "advection|pde (the Osher-Rudin PDE baseline, linear in t)" +
-      DefaultText(ChoiceName(defaults->GetMethod(), MethodChoices())),
-    [&method](const std::string& v) { method.method = ParseChoice("--method", v, MethodChoices()); } });
+  specs.push_back(ChoiceOptionSpec("--method", "METHOD",
+    "advection|pde (the Osher-Rudin PDE baseline, linear in t)", method.method, MethodChoices(),
+    defaults->GetMethod()));
   const std::vector<OptionSpec> shared = ShockOptionSpecs(settings.shock, ShockOptionSet::All, defaults);
   specs.insert(specs.end(), shared.begin(), shared.end());
-  const int levelsLow = defaults->GetHierarchyLevelsMinValue();
-  const int levelsHigh = defaults->GetHierarchyLevelsMaxValue();
-  specs.push_back({ "--levels", "N",
-    "advection: coarse-to-fine resolution levels, " + RangeText(levelsLow, levelsHigh) +
-      ", 1 = the paper's single level" + DefaultText(std::to_string(defaults->GetHierarchyLevels())),
-    [&method, levelsLow, levelsHigh](const std::string& v)
-    { method.hierarchyLevels = ParseInRange("--levels", v, levelsLow, levelsHigh); } });
-  const double courantLow = defaults->GetCourantNumberMinValue();
-  const double courantHigh = defaults->GetCourantNumberMaxValue();
-  specs.push_back({ "--courant", "C",
-    "pde: Courant number of the explicit step, " + RangeText(courantLow, courantHigh) +
-      DefaultText(NumberText(defaults->GetCourantNumber())),
-    [&method, courantLow, courantHigh](const std::string& v)
-    { method.courantNumber = ParseInRange("--courant", v, courantLow, courantHigh); } });
-  const int stepsLow = defaults->GetMaximumIterationsMinValue();
-  const int stepsHigh = defaults->GetMaximumIterationsMaxValue();
-  specs.push_back({ "--max-iterations", "N",
-    "pde: most explicit steps, " + RangeText(stepsLow, stepsHigh) +
-      DefaultText(std::to_string(defaults->GetMaximumIterations())),
-    [&method, stepsLow, stepsHigh](const std::string& v)
-    { method.maximumIterations = ParseInRange("--max-iterations", v, stepsLow, stepsHigh); } });
+  specs.push_back(RangeOptionSpec("--levels", "N", "advection: coarse-to-fine resolution levels",
+    method.hierarchyLevels, defaults->GetHierarchyLevelsMinValue(), defaults->GetHierarchyLevelsMaxValue(),
+    defaults->GetHierarchyLevels(), ", 1 = the paper's single level"));
+  specs.push_back(RangeOptionSpec("--courant", "C", "pde: Courant number of the explicit step",
+    method.courantNumber, defaults->GetCourantNumberMinValue(), defaults->GetCourantNumberMaxValue(),
+    defaults->GetCourantNumber()));
+  specs.push_back(RangeOptionSpec("--max-iterations", "N", "pde: most explicit steps",
+    method.maximumIterations, defaults->GetMaximumIterationsMinValue(),
+    defaults->GetMaximumIterationsMaxValue(), defaults->GetMaximumIterations()));
   specs.push_back(
     ArrayOptionSpec(settings.arrayName, "point array to filter (default: active point scalars)"));
   specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));

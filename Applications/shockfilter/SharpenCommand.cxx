@@ -55,49 +55,27 @@ std::vector<OptionSpec> SharpenOptionSpecs(SharpenSettings& settings)
 {
   vtkNew<vtkPolyDataShockSharpenFilter> defaults;
   std::vector<OptionSpec> specs = ShockOptionSpecs(settings.shock, ShockOptionSet::All, defaults);
-  const double angleLow = defaults->GetFeatureAngleMinValue();
-  const double angleHigh = defaults->GetFeatureAngleMaxValue();
-  specs.push_back({ "--feature-angle", "DEG",
-    "creases sharper than this are kept (180 = the paper), " + RangeText(angleLow, angleHigh) +
-      DefaultText(NumberText(defaults->GetFeatureAngle())),
-    [&settings, angleLow, angleHigh](const std::string& v)
-    { settings.featureAngle = ParseInRange("--feature-angle", v, angleLow, angleHigh); } });
-  specs.push_back({ "--fit-target", "NAME",
-    "central-projection|shear|rotation|projection (the paper)" +
-      DefaultText(ChoiceName(defaults->GetFitTarget(), FitTargetChoices())),
-    [&settings](const std::string& v)
-    { settings.fitTarget = ParseChoice("--fit-target", v, FitTargetChoices()); } });
-  const int normalLow = defaults->GetNormalSmoothingPassesMinValue();
-  const int normalHigh = defaults->GetNormalSmoothingPassesMaxValue();
-  specs.push_back({ "--normal-smoothing", "N",
-    "smoothing passes of the normals before, " + RangeText(normalLow, normalHigh) +
-      DefaultText(std::to_string(defaults->GetNormalSmoothingPasses())),
-    [&settings, normalLow, normalHigh](const std::string& v)
-    { settings.normalSmoothingPasses = ParseInRange("--normal-smoothing", v, normalLow, normalHigh); } });
-  const double screeningLow = defaults->GetScreeningWeightMinValue();
-  const double screeningHigh = defaults->GetScreeningWeightMaxValue();
-  specs.push_back({ "--screening", "EPS",
-    "screening weight of the fit, " + RangeText(screeningLow, screeningHigh) +
-      DefaultText(NumberText(defaults->GetScreeningWeight())),
-    [&settings, screeningLow, screeningHigh](const std::string& v)
-    { settings.screeningWeight = ParseInRange("--screening", v, screeningLow, screeningHigh); } });
-  specs.push_back({ "--solver", "NAME",
-    "cg|cg-tolerance|exact" + DefaultText(ChoiceName(defaults->GetSolver(), SolverChoices())),
-    [&settings](const std::string& v) { settings.solver = ParseChoice("--solver", v, SolverChoices()); } });
-  const int iterationsLow = defaults->GetSolverIterationsMinValue();
-  const int iterationsHigh = defaults->GetSolverIterationsMaxValue();
-  specs.push_back({ "--iterations", "K",
-    "CG iterations (cap of cg-tolerance), " + RangeText(iterationsLow, iterationsHigh) +
-      DefaultText(std::to_string(defaults->GetSolverIterations())),
-    [&settings, iterationsLow, iterationsHigh](const std::string& v)
-    { settings.iterations = ParseInRange("--iterations", v, iterationsLow, iterationsHigh); } });
-  const double toleranceLow = defaults->GetSolverToleranceMinValue();
-  const double toleranceHigh = defaults->GetSolverToleranceMaxValue();
-  specs.push_back({ "--tolerance", "X",
-    "stop residual of cg-tolerance (implied), " + RangeText(toleranceLow, toleranceHigh) +
-      DefaultText(NumberText(defaults->GetSolverTolerance())),
-    [&settings, toleranceLow, toleranceHigh](const std::string& v)
-    { settings.tolerance = ParseInRange("--tolerance", v, toleranceLow, toleranceHigh); } });
+  vtkPolyDataShockSharpenFilter* d = defaults;
+  specs.push_back(RangeOptionSpec("--feature-angle", "DEG",
+    "creases sharper than this are kept (180 = the paper)", settings.featureAngle,
+    d->GetFeatureAngleMinValue(), d->GetFeatureAngleMaxValue(), d->GetFeatureAngle()));
+  specs.push_back(ChoiceOptionSpec("--fit-target", "NAME",
+    "central-projection|shear|rotation|projection (the paper)", settings.fitTarget, FitTargetChoices(),
+    d->GetFitTarget()));
+  specs.push_back(RangeOptionSpec("--normal-smoothing", "N", "smoothing passes of the normals before",
+    settings.normalSmoothingPasses, d->GetNormalSmoothingPassesMinValue(),
+    d->GetNormalSmoothingPassesMaxValue(), d->GetNormalSmoothingPasses()));
+  specs.push_back(RangeOptionSpec("--screening", "EPS", "screening weight of the fit",
+    settings.screeningWeight, d->GetScreeningWeightMinValue(), d->GetScreeningWeightMaxValue(),
+    d->GetScreeningWeight()));
+  specs.push_back(ChoiceOptionSpec(
+    "--solver", "NAME", "cg|cg-tolerance|exact", settings.solver, SolverChoices(), d->GetSolver()));
+  specs.push_back(RangeOptionSpec("--iterations", "K", "CG iterations (cap of cg-tolerance)",
+    settings.iterations, d->GetSolverIterationsMinValue(), d->GetSolverIterationsMaxValue(),
+    d->GetSolverIterations()));
+  specs.push_back(RangeOptionSpec("--tolerance", "X", "stop residual of cg-tolerance (implied)",
+    settings.tolerance, d->GetSolverToleranceMinValue(), d->GetSolverToleranceMaxValue(),
+    d->GetSolverTolerance()));
   specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));
   specs.push_back(TimingsOptionSpec(settings.timings));
   return specs;
@@ -152,34 +130,17 @@ int RunSharpenCommand(const std::vector<std::string>& args)
 
   vtkNew<vtkPolyDataShockSharpenFilter> filter;
   ConfigureFilter(filter, settings.shock);
-  if (settings.featureAngle)
-  {
-    filter->SetFeatureAngle(*settings.featureAngle);
-  }
-  if (settings.fitTarget)
-  {
-    filter->SetFitTarget(*settings.fitTarget);
-  }
-  if (settings.normalSmoothingPasses)
-  {
-    filter->SetNormalSmoothingPasses(*settings.normalSmoothingPasses);
-  }
-  if (settings.screeningWeight)
-  {
-    filter->SetScreeningWeight(*settings.screeningWeight);
-  }
+  using F = vtkPolyDataShockSharpenFilter;
+  SetIfGiven(filter.Get(), &F::SetFeatureAngle, settings.featureAngle);
+  SetIfGiven(filter.Get(), &F::SetFitTarget, settings.fitTarget);
+  SetIfGiven(filter.Get(), &F::SetNormalSmoothingPasses, settings.normalSmoothingPasses);
+  SetIfGiven(filter.Get(), &F::SetScreeningWeight, settings.screeningWeight);
   if (settings.solver || settings.tolerance)
   {
     filter->SetSolver(settings.solver.value_or(tolerantSolver));
   }
-  if (settings.iterations)
-  {
-    filter->SetSolverIterations(*settings.iterations);
-  }
-  if (settings.tolerance)
-  {
-    filter->SetSolverTolerance(*settings.tolerance);
-  }
+  SetIfGiven(filter.Get(), &F::SetSolverIterations, settings.iterations);
+  SetIfGiven(filter.Get(), &F::SetSolverTolerance, settings.tolerance);
   MeshFrame frame;
   filter->SetInputData(InUnitFrame(input, frame));
   const double seconds = TimedUpdate(filter, MeshFilterBytes(input->GetNumberOfPoints()));

@@ -222,7 +222,7 @@ bool TraceThroughCoarseLevels(const std::vector<GridShape>& shapes, int C, const
   double range, const unsigned char* validSample, const AdvectionParameters& p, double time,
   float* positions, AdvectionReport& report, const ProgressFunction& progress, double progressAt)
 {
-  const int threads = ResolveThreadCount(p.numberOfThreads);
+  const int threads = ThreadsForWork(p.numberOfThreads, shapes[0].NumberOfSamples());
   const auto pyramidStart = Clock::now();
   const auto levels = BuildPyramid<D>(shapes, C, signal, validSample, threads);
   report.flowSeconds += SecondsSince(pyramidStart);

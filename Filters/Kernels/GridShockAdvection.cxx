@@ -67,7 +67,7 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
   const ProgressFunction& progress)
 {
   const Lattice<D> L(shape);
-  const int threads = ResolveThreadCount(p.numberOfThreads);
+  const int threads = ThreadsForWork(p.numberOfThreads, L.numSamples);
   const std::int64_t count = L.numSamples * C;
 
   const SignalRange scan = ScanSignal(L.numSamples, C, input, threads);

@@ -382,7 +382,7 @@ Status RunPDE(const GridShape& shape, int C, const double* input, double* output
   const ProgressFunction& progress, const PDECheckpointFunction& checkpoint)
 {
   const Lattice<D> L(shape);
-  const int threads = ResolveThreadCount(p.numberOfThreads);
+  const int threads = ThreadsForWork(p.numberOfThreads, L.numSamples);
   const std::int64_t count = L.numSamples * C;
 
   const SignalRange scan = ScanSignal(L.numSamples, C, input, threads);
