@@ -190,6 +190,33 @@ void RecomputeActiveNormals(vtkPolyData* output, const vtkShockPolyDataInternals
 }
 }
 
+vtkPolyDataShockSharpenFilter::vtkPolyDataShockSharpenFilter()
+  : PreparedMeshes(new vtkShockPolyDataInternals::MeshCache)
+  , KernelCache(new shock::SharpeningCache)
+{
+}
+
+vtkPolyDataShockSharpenFilter::~vtkPolyDataShockSharpenFilter() = default;
+
+int vtkPolyDataShockSharpenFilter::GetNumberOfMeshPreparations() const
+{
+  return this->PreparedMeshes->GetNumberOfPreparations();
+}
+
+const vtkShockPolyDataInternals::PreparedMesh* vtkPolyDataShockSharpenFilter::Prepare(
+  vtkPolyData* input, std::string& error)
+{
+  const vtkShockPolyDataInternals::PreparedMesh* prepared = this->PreparedMeshes->Get(
+    input, this->MergeCoincidentPoints, this->NumberOfThreads, error, &this->LastSetupSeconds);
+  const int preparation = this->PreparedMeshes->GetNumberOfPreparations();
+  if (!prepared || preparation != this->KernelCachePreparation)
+  {
+    this->KernelCache->Clear(); // what the kernels kept belongs to the previous mesh
+    this->KernelCachePreparation = prepared ? preparation : -1;
+  }
+  return prepared;
+}
+
 vtkPolyData* vtkPolyDataShockSharpenFilter::GetOutput()
 {
   return this->GetOutput(0);
@@ -341,18 +368,17 @@ int vtkPolyDataShockSharpenFilter::RequestData(
                   "split over processes: use the CONJUGATE_GRADIENT solvers (solved across them).");
     return 0;
   }
-  // The triangle mesh of the piece (with its ghost cells).
-  vtkShockPolyDataInternals::PreparedMesh prepared;
+  // The triangle mesh of the piece (with its ghost cells), kept between executions.
   const bool empty = piece.work->GetNumberOfPoints() == 0;
-  bool ok = empty ||
-    vtkShockPolyDataInternals::PrepareMesh(
-      piece.work, this->MergeCoincidentPoints, this->NumberOfThreads, prepared, error);
+  const vtkShockPolyDataInternals::PreparedMesh* kept = empty ? nullptr : this->Prepare(piece.work, error);
+  const bool ok = empty || kept;
   if (piece.controller ? vtkShockParallel::AnyFailed(piece.controller, !ok, error) : !ok)
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  this->LastSetupSeconds = prepared.seconds;
+  const vtkShockPolyDataInternals::PreparedMesh none;
+  const vtkShockPolyDataInternals::PreparedMesh& prepared = kept ? *kept : none;
   if (!piece.controller && (empty || prepared.mesh.NumberOfTriangles() == 0))
   {
     output->ShallowCopy(input);
@@ -418,8 +444,10 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   {
     status = shock::SharpenMeshGeometry(mesh, parameters, positions.data(), normals.data(),
       &report, this->GenerateFlowArrays ? &fields : nullptr,
-      [this](double fraction) { return this->ReportProgress(0.8 * fraction); });
+      [this](double fraction) { return this->ReportProgress(0.8 * fraction); },
+      partition ? nullptr : this->KernelCache.get());
   }
+  this->FitAssemblies += report.advection.aborted || report.fit.reusedSystem ? 0 : 1;
   if (!status.Ok())
   {
     vtkErrorMacro("Geometry sharpening failed: " << status.error);
@@ -506,4 +534,6 @@ void vtkPolyDataShockSharpenFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastRepeatedTriangles: " << this->LastRepeatedTriangles << "\n";
   os << indent << "LastDegenerateTriangles: " << this->LastDegenerateTriangles << "\n";
   os << indent << "LastFeatureEdges: " << this->LastFeatureEdges << "\n";
+  os << indent << "NumberOfMeshPreparations: " << this->GetNumberOfMeshPreparations() << "\n";
+  os << indent << "NumberOfFitAssemblies: " << this->FitAssemblies << "\n";
 }

@@ -88,6 +88,8 @@
 #include "vtkFiltersShockModule.h" // for export macro
 #include "vtkShockAdvectionFilter.h"
 
+#include <memory> // for std::unique_ptr
+#include <string> // for errors
 #include <vector> // for the kernels' buffers
 
 class vtkPolyData;
@@ -95,11 +97,13 @@ namespace shock
 {
 class TriangleMesh;
 struct MeshPartition;
+struct SharpeningCache;
 struct SharpeningReport;
 struct MeshFlowFields;
 }
 namespace vtkShockPolyDataInternals
 {
+class MeshCache;
 struct PreparedMesh;
 }
 
@@ -251,6 +255,20 @@ public:
   vtkGetMacro(LastFeatureEdges, vtkIdType);
   ///@}
 
+  ///@{
+  /**
+   * How many times the mesh was prepared (triangles, connectivity, geometry)
+   * and the fit's matrix assembled. Both are kept between executions: the
+   * mesh (with its version without repeated triangles, and the smoothed
+   * normals with their feature split) until the input's points or cells
+   * change, the matrix until they or ScreeningWeight change; so changing
+   * only a flow parameter (e.g. FlowTime) and updating again adds neither.
+   * The result is the same as a new filter's.
+   */
+  int GetNumberOfMeshPreparations() const;
+  int GetNumberOfFitAssemblies() const { return this->FitAssemblies; }
+  ///@}
+
   /// Name of the optional sharpened-normals cell array.
   static const char* NormalsArrayName() { return "ShockNormals"; }
 
@@ -261,8 +279,8 @@ public:
   ///@}
 
 protected:
-  vtkPolyDataShockSharpenFilter() = default;
-  ~vtkPolyDataShockSharpenFilter() override = default;
+  vtkPolyDataShockSharpenFilter();
+  ~vtkPolyDataShockSharpenFilter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   /// vtkPolyData output, also for an unstructured-grid input.
@@ -276,6 +294,9 @@ protected:
   bool Sharpen(const shock::TriangleMesh& mesh, const shock::MeshPartition* partition,
     double meanEdgeLength, std::vector<double>& positions, std::vector<double>& normals,
     shock::SharpeningReport& report, shock::MeshFlowFields& fields);
+
+  /// The prepared mesh of `input`, kept between executions (the kernels' cache goes with it).
+  const vtkShockPolyDataInternals::PreparedMesh* Prepare(vtkPolyData* input, std::string& error);
 
   /// `input` with the new positions, the field data of the run and the requested arrays.
   void BuildOutput(vtkPolyData* input, const vtkShockPolyDataInternals::PreparedMesh& prepared,
@@ -305,6 +326,12 @@ protected:
 private:
   vtkPolyDataShockSharpenFilter(const vtkPolyDataShockSharpenFilter&) = delete;
   void operator=(const vtkPolyDataShockSharpenFilter&) = delete;
+
+  /// The prepared mesh of the last input, and what the kernels kept for it.
+  std::unique_ptr<vtkShockPolyDataInternals::MeshCache> PreparedMeshes;
+  std::unique_ptr<shock::SharpeningCache> KernelCache;
+  int KernelCachePreparation = -1; ///< the preparation the kernel cache belongs to
+  int FitAssemblies = 0;
 };
 
 #endif

@@ -1,9 +1,9 @@
 #include "MeshSharpening.h"
 
-#include "SharpFeatures.h"
+#include "Timer.h"
+#include "Vec3.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -12,27 +12,6 @@ namespace shock
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-/// Normalise v in place; false (v unchanged) when its length is zero or not finite.
-bool Normalise(double* v)
-{
-  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (!(n > 0.0) || !std::isfinite(n))
-  {
-    return false;
-  }
-  v[0] /= n;
-  v[1] /= n;
-  v[2] /= n;
-  return true;
-}
-
 /// Laplacian smoothing of face normals over edge neighbours, area-weighted, positions fixed.
 void SmoothNormals(const TriangleMesh& mesh, std::vector<double>& normals, int passes, int threads)
 {
@@ -77,14 +56,10 @@ void SmoothNormals(const TriangleMesh& mesh, std::vector<double>& normals, int p
 void TriangleNormal(const TriangleMesh& mesh, const double* positions, std::int64_t f, double* n)
 {
   const std::int64_t* t = mesh.Corners(f);
-  const double* a = positions + 3 * t[0];
-  const double* b = positions + 3 * t[1];
-  const double* c = positions + 3 * t[2];
-  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
-  n[0] = u[1] * v[2] - u[2] * v[1];
-  n[1] = u[2] * v[0] - u[0] * v[2];
-  n[2] = u[0] * v[1] - u[1] * v[0];
+  const Vec3 a = Load(positions + 3 * t[0]);
+  const Vec3 cross =
+    Cross(Combine(1.0, Load(positions + 3 * t[1]), -1.0, a), Combine(1.0, Load(positions + 3 * t[2]), -1.0, a));
+  std::copy(cross.begin(), cross.end(), n);
   if (!Normalise(n))
   {
     n[0] = n[1] = n[2] = 0.0;
@@ -140,69 +115,115 @@ void Measure(const TriangleMesh& mesh, const double* positions, const MeshPartit
   report.maxDisplacement = diagonal2 > 0.0 ? std::sqrt(largest / diagonal2) : 0.0;
 }
 /**
- * The mesh without repeated and degenerate triangles, in `reduced` (all points
- * kept); `kept` lists the triangles kept, `source` maps every triangle to the
- * kept triangle whose result it takes (-1 for degenerate ones). Returns false
- * (nothing built) when every triangle is kept.
+ * The mesh without repeated and degenerate triangles, into the cache (all
+ * points kept): `source` maps every triangle to the kept triangle whose result
+ * it takes (-1 for degenerate ones); `removed` is false (nothing built) when
+ * every triangle is kept.
  */
-bool WithoutRepeatedTriangles(const TriangleMesh& mesh, int threads, TriangleMesh& reduced,
-  std::vector<std::int64_t>& source, SharpeningReport& report, Status& status)
+Status WithoutRepeatedTriangles(const TriangleMesh& mesh, int threads, SharpeningCache& cache)
 {
   const std::int64_t nt = mesh.NumberOfTriangles();
   const std::vector<std::int64_t> first = FindRepeatedTriangles(mesh, threads);
-  source.assign(static_cast<size_t>(nt), -1);
+  cache.source.assign(static_cast<size_t>(nt), -1);
+  cache.cleaned = true;
   std::vector<std::int64_t> corners;
   for (std::int64_t f = 0; f < nt; ++f)
   {
     const std::int64_t original = first[static_cast<size_t>(f)];
     if (original >= 0)
     {
-      ++report.repeatedTriangles;
-      source[static_cast<size_t>(f)] = source[static_cast<size_t>(original)];
+      ++cache.repeatedTriangles;
+      cache.source[static_cast<size_t>(f)] = cache.source[static_cast<size_t>(original)];
     }
     else if (mesh.Degenerate(f))
     {
-      ++report.degenerateTriangles;
+      ++cache.degenerateTriangles;
     }
     else
     {
-      source[static_cast<size_t>(f)] = static_cast<std::int64_t>(corners.size() / 3);
+      cache.source[static_cast<size_t>(f)] = static_cast<std::int64_t>(corners.size() / 3);
       corners.insert(corners.end(), mesh.Corners(f), mesh.Corners(f) + 3);
     }
   }
-  if (report.repeatedTriangles == 0 && report.degenerateTriangles == 0)
+  cache.removed = cache.repeatedTriangles > 0 || cache.degenerateTriangles > 0;
+  if (!cache.removed)
   {
-    return false;
+    cache.source.clear();
+    return {};
   }
   TriangleMeshView view;
   view.numberOfPoints = mesh.NumberOfPoints();
   view.points = mesh.NumberOfPoints() > 0 ? mesh.Point(0) : nullptr;
   view.numberOfTriangles = static_cast<std::int64_t>(corners.size() / 3);
   view.triangles = corners.data();
-  status = reduced.Build(view, threads);
-  return true;
+  return cache.reduced.Build(view, threads);
 }
 
 /**
- * Shock-filter advection of the face normals `input` into `target` (renormalised),
- * on the mesh split along its feature edges (SharpFeatures) when it has any.
+ * The face normals of the clean mesh after the smoothing passes, and the mesh
+ * split along its feature edges (SharpFeatures), into the cache unless it
+ * holds them for these passes and this feature angle.
+ */
+Status SharpenedNormalsInput(const TriangleMesh& mesh, const SharpeningParameters& parameters,
+  int threads, SharpeningCache& cache, SharpeningReport& r)
+{
+  r.reusedFeatures = cache.smoothingPasses == parameters.normalSmoothingPasses &&
+    cache.featureAngle == parameters.featureAngle;
+  if (!r.reusedFeatures)
+  {
+    const auto start = Clock::now();
+    cache.smoothingPasses = -1;
+    const std::int64_t nt = mesh.NumberOfTriangles();
+    cache.normals.resize(static_cast<size_t>(3 * nt));
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int64_t f = 0; f < nt; ++f)
+    {
+      std::copy(mesh.Normal(f), mesh.Normal(f) + 3, &cache.normals[static_cast<size_t>(3 * f)]);
+    }
+    SmoothNormals(mesh, cache.normals, parameters.normalSmoothingPasses, threads);
+    const Status split =
+      SplitAtFeatureEdges(mesh, cache.normals.data(), parameters.featureAngle, threads, cache.split);
+    r.normalsSeconds += SecondsSince(start);
+    if (!split.Ok())
+    {
+      return split;
+    }
+    cache.smoothingPasses = parameters.normalSmoothingPasses;
+    cache.featureAngle = parameters.featureAngle;
+  }
+  r.featureEdges = cache.split.featureEdges;
+  return {};
+}
+
+/// The potential per original point of a split mesh: the mean over its copies, weighted by their triangles.
+void PotentialOnOriginalPoints(const TriangleMesh& mesh, const FeatureSplitMesh& split, MeshFlowFields& fields)
+{
+  std::vector<double> potential(static_cast<size_t>(mesh.NumberOfPoints()), 0.0);
+  std::vector<double> weight(potential.size(), 0.0);
+  const CompressedLists& around = split.mesh.PointTriangles();
+  for (std::int64_t q = 0; q < split.mesh.NumberOfPoints(); ++q)
+  {
+    const size_t p = static_cast<size_t>(split.original[static_cast<size_t>(q)]);
+    const double count = static_cast<double>(around.End(q) - around.Begin(q));
+    potential[p] += count * fields.potential[static_cast<size_t>(q)];
+    weight[p] += count;
+  }
+  for (size_t p = 0; p < potential.size(); ++p)
+  {
+    potential[p] = weight[p] > 0.0 ? potential[p] / weight[p] : 0.0;
+  }
+  fields.potential.swap(potential);
+}
+
+/**
+ * Shock-filter advection of the (smoothed) face normals `input` into `target`
+ * (renormalised), on the mesh split along its feature edges when it has any.
  */
 Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& parameters,
-  const std::vector<double>& input, std::vector<double>& target, SharpeningReport& r,
-  MeshFlowFields* fields, const ProgressFunction& progress, int threads)
+  const std::vector<double>& input, const FeatureSplitMesh& split, std::vector<double>& target,
+  SharpeningReport& r, MeshFlowFields* fields, const ProgressFunction& progress, int threads)
 {
-  const auto splitStart = Clock::now();
-  FeatureSplitMesh split;
-  const Status splitStatus =
-    SplitAtFeatureEdges(mesh, input.data(), parameters.featureAngle, threads, split);
-  r.normalsSeconds += SecondsSince(splitStart);
-  if (!splitStatus.Ok())
-  {
-    return splitStatus;
-  }
-  r.featureEdges = split.featureEdges;
   const TriangleMesh& advected = split.featureEdges > 0 ? split.mesh : mesh;
-
   MeshSignal signal;
   signal.location = MeshLocation::Triangles;
   signal.components = 3;
@@ -228,22 +249,7 @@ Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& param
   }
   if (fields && split.featureEdges > 0)
   {
-    // Potential per original point: the mean over its copies, weighted by their triangles.
-    std::vector<double> potential(static_cast<size_t>(mesh.NumberOfPoints()), 0.0);
-    std::vector<double> weight(potential.size(), 0.0);
-    const CompressedLists& around = advected.PointTriangles();
-    for (std::int64_t q = 0; q < advected.NumberOfPoints(); ++q)
-    {
-      const size_t p = static_cast<size_t>(split.original[static_cast<size_t>(q)]);
-      const double count = static_cast<double>(around.End(q) - around.Begin(q));
-      potential[p] += count * fields->potential[static_cast<size_t>(q)];
-      weight[p] += count;
-    }
-    for (size_t p = 0; p < potential.size(); ++p)
-    {
-      potential[p] = weight[p] > 0.0 ? potential[p] / weight[p] : 0.0;
-    }
-    fields->potential.swap(potential);
+    PotentialOnOriginalPoints(mesh, split, *fields);
   }
   return {};
 }
@@ -251,99 +257,36 @@ Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& param
 /// SharpenMeshGeometry on a mesh without repeated or degenerate triangles.
 Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& parameters,
   double* positions, std::vector<double>& target, SharpeningReport& r, MeshFlowFields* fields,
-  const ProgressFunction& progress)
+  const ProgressFunction& progress, SharpeningCache& cache)
 {
-  const int threads = ResolveThreadCount(parameters.advection.numberOfThreads);
-  const std::int64_t nt = mesh.NumberOfTriangles();
-  const auto normalsStart = Clock::now();
-  std::vector<double> input(static_cast<size_t>(3 * nt));
-  for (std::int64_t f = 0; f < nt; ++f)
-  {
-    std::copy(mesh.Normal(f), mesh.Normal(f) + 3, &input[static_cast<size_t>(3 * f)]);
-  }
-  SmoothNormals(mesh, input, parameters.normalSmoothingPasses, threads);
-  r.normalsSeconds += SecondsSince(normalsStart);
-
-  const Status advected = AdvectNormals(mesh, parameters, input, target, r, fields, progress, threads);
-  if (!advected.Ok() || r.advection.aborted)
-  {
-    return advected;
-  }
-  FitParameters fit = parameters.fit;
-  fit.numberOfThreads = parameters.advection.numberOfThreads;
-  const Status fitted = FitPositionsToNormals(mesh, target.data(), positions, fit, &r.fit);
-  if (!fitted.Ok())
-  {
-    std::copy(mesh.Point(0), mesh.Point(0) + 3 * mesh.NumberOfPoints(), positions);
-    return fitted;
-  }
-  Measure(mesh, positions, fit.partition, threads, r);
-  return {};
-}
-} // namespace
-
-Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters& parameters,
-  double* positions, double* normals, SharpeningReport* report, MeshFlowFields* fields,
-  const ProgressFunction& progress)
-{
-  if (!positions)
-  {
-    return { "the output positions must not be null" };
-  }
-  if (parameters.normalSmoothingPasses < 0)
-  {
-    return { "the number of normal smoothing passes must be >= 0" };
-  }
-  if (!(parameters.featureAngle >= 0.0 && parameters.featureAngle <= 180.0))
-  {
-    return { "the feature angle must be in [0, 180] degrees" };
-  }
-  const Status valid = CheckAdvectionParameters(parameters.advection);
-  if (!valid.Ok())
-  {
-    return valid;
-  }
-  SharpeningReport localReport;
-  SharpeningReport& r = report ? *report : localReport;
-  r = SharpeningReport();
-  const int threads = ResolveThreadCount(parameters.advection.numberOfThreads);
-  if (mesh.NumberOfPoints() == 0)
-  {
-    return {};
-  }
-  std::copy(mesh.Point(0), mesh.Point(0) + 3 * mesh.NumberOfPoints(), positions);
-
-  // Repeated and degenerate triangles are removed: the result is that of the mesh without them.
-  TriangleMesh reduced;
-  std::vector<std::int64_t> source;
-  Status status;
-  const auto cleanStart = Clock::now();
-  // (Not for a piece of a distributed fit: its partition numbers the piece's triangles.)
-  const bool removed = !parameters.fit.partition &&
-    WithoutRepeatedTriangles(mesh, threads, reduced, source, r, status);
-  r.normalsSeconds = SecondsSince(cleanStart);
+  const int threads = ThreadsForWork(parameters.advection.numberOfThreads, mesh.NumberOfTriangles());
+  Status status = SharpenedNormalsInput(mesh, parameters, threads, cache, r);
   if (!status.Ok())
   {
     return status;
   }
-  const TriangleMesh& clean = removed ? reduced : mesh;
-  std::vector<double> target;
-  MeshFlowFields cleanFields;
-  status = SharpenCleanMesh(clean, parameters, positions, target, r,
-    fields ? (removed ? &cleanFields : fields) : nullptr, progress);
+  status = AdvectNormals(mesh, parameters, cache.normals, cache.split, target, r, fields, progress, threads);
   if (!status.Ok() || r.advection.aborted)
   {
     return status;
   }
-  if (!removed)
+  FitParameters fit = parameters.fit;
+  fit.numberOfThreads = parameters.advection.numberOfThreads;
+  status = FitPositionsToNormals(mesh, target.data(), positions, fit, &r.fit, &cache.fit);
+  if (!status.Ok())
   {
-    if (normals)
-    {
-      std::copy(target.begin(), target.end(), normals);
-    }
-    return {};
+    std::copy(mesh.Point(0), mesh.Point(0) + 3 * mesh.NumberOfPoints(), positions);
+    return status;
   }
-  // Back to the input's triangles: a repeated triangle takes its first occurrence's values.
+  Measure(mesh, positions, fit.partition, threads, r);
+  return {};
+}
+
+/// The normals and fields of the clean mesh back on the input's triangles (a repeat takes its first's).
+void ToInputTriangles(const TriangleMesh& mesh, const SharpeningCache& cache,
+  const std::vector<double>& target, MeshFlowFields& cleanFields, double* normals,
+  MeshFlowFields* fields)
+{
   const std::int64_t nt = mesh.NumberOfTriangles();
   if (fields)
   {
@@ -352,7 +295,7 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
   }
   for (std::int64_t f = 0; f < nt; ++f)
   {
-    const std::int64_t g = source[static_cast<size_t>(f)];
+    const std::int64_t g = cache.source[static_cast<size_t>(f)];
     for (int k = 0; k < 3; ++k)
     {
       if (normals)
@@ -364,6 +307,79 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
         fields->flow[static_cast<size_t>(3 * f + k)] = cleanFields.flow[static_cast<size_t>(3 * g + k)];
       }
     }
+  }
+}
+
+Status CheckSharpeningParameters(const SharpeningParameters& parameters)
+{
+  if (parameters.normalSmoothingPasses < 0)
+  {
+    return { "the number of normal smoothing passes must be >= 0" };
+  }
+  if (!(parameters.featureAngle >= 0.0 && parameters.featureAngle <= 180.0))
+  {
+    return { "the feature angle must be in [0, 180] degrees" };
+  }
+  return CheckAdvectionParameters(parameters.advection);
+}
+} // namespace
+
+Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters& parameters,
+  double* positions, double* normals, SharpeningReport* report, MeshFlowFields* fields,
+  const ProgressFunction& progress, SharpeningCache* cache)
+{
+  if (!positions)
+  {
+    return { "the output positions must not be null" };
+  }
+  Status status = CheckSharpeningParameters(parameters);
+  if (!status.Ok())
+  {
+    return status;
+  }
+  SharpeningReport localReport;
+  SharpeningReport& r = report ? *report : localReport;
+  r = SharpeningReport();
+  if (mesh.NumberOfPoints() == 0)
+  {
+    return {};
+  }
+  std::copy(mesh.Point(0), mesh.Point(0) + 3 * mesh.NumberOfPoints(), positions);
+
+  // Repeated and degenerate triangles are removed: the result is that of the mesh without
+  // them. (Not for a piece of a distributed fit: its partition numbers the piece's triangles.)
+  SharpeningCache localCache;
+  SharpeningCache& kept = cache && !parameters.fit.partition ? *cache : localCache;
+  r.reusedMesh = kept.cleaned;
+  if (!kept.cleaned && !parameters.fit.partition)
+  {
+    const auto cleanStart = Clock::now();
+    status = WithoutRepeatedTriangles(mesh, ResolveThreadCount(parameters.advection.numberOfThreads), kept);
+    r.normalsSeconds = SecondsSince(cleanStart);
+    if (!status.Ok())
+    {
+      kept.Clear();
+      return status;
+    }
+  }
+  r.repeatedTriangles = kept.repeatedTriangles;
+  r.degenerateTriangles = kept.degenerateTriangles;
+  const TriangleMesh& clean = kept.removed ? kept.reduced : mesh;
+  std::vector<double> target;
+  MeshFlowFields cleanFields;
+  status = SharpenCleanMesh(clean, parameters, positions, target, r,
+    fields ? (kept.removed ? &cleanFields : fields) : nullptr, progress, kept);
+  if (!status.Ok() || r.advection.aborted)
+  {
+    return status;
+  }
+  if (kept.removed)
+  {
+    ToInputTriangles(mesh, kept, target, cleanFields, normals, fields);
+  }
+  else if (normals)
+  {
+    std::copy(target.begin(), target.end(), normals);
   }
   return {};
 }

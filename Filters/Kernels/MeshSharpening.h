@@ -36,6 +36,7 @@
 
 #include "MeshShockAdvection.h"
 #include "ScreenedPoissonFit.h"
+#include "SharpFeatures.h"
 
 namespace shock
 {
@@ -68,6 +69,39 @@ struct SharpeningReport
   std::int64_t repeatedTriangles = 0;   ///< triangles repeating another's vertex set: removed
   std::int64_t degenerateTriangles = 0; ///< degenerate triangles (see TriangleMesh): removed
   std::int64_t featureEdges = 0;        ///< edges sharper than the feature angle: kept
+  /// Taken from the SharpeningCache given: the mesh without repeated and degenerate
+  /// triangles, and the smoothed normals with their feature split.
+  bool reusedMesh = false;
+  bool reusedFeatures = false;
+};
+
+/**
+ * What SharpenMeshGeometry can keep between runs on the same mesh, so that a
+ * run with other advection parameters (another flow time) only advects and
+ * solves: the mesh without repeated and degenerate triangles; the smoothed
+ * face normals and the mesh split at feature edges, for the smoothing passes
+ * and feature angle they were made with; the fit's matrix and mass term
+ * (FitSystem), for its screening weight. A run with other values of those
+ * rebuilds the part concerned. The caller clears the cache when the mesh
+ * changes; a piece of a distributed mesh (fit.partition) does not use it.
+ */
+struct SharpeningCache
+{
+  bool cleaned = false; ///< the fields below `removed` hold the mesh's clean version
+  bool removed = false; ///< triangles were removed: `reduced` is the clean mesh
+  TriangleMesh reduced;
+  std::vector<std::int64_t> source; ///< input triangle -> reduced triangle (-1: degenerate)
+  std::int64_t repeatedTriangles = 0;
+  std::int64_t degenerateTriangles = 0;
+
+  int smoothingPasses = -1; ///< of `normals` and `split` (-1: none kept)
+  double featureAngle = -1.0;
+  std::vector<double> normals; ///< smoothed face normals of the clean mesh
+  FeatureSplitMesh split;
+
+  FitSystem fit;
+
+  void Clear() { *this = SharpeningCache(); }
 };
 
 /**
@@ -85,12 +119,15 @@ struct SharpeningReport
  *                   its copies, weighted by their triangles; repeated and
  *                   degenerate triangles get zero flow).
  * @param progress   optional: progress/abort callback (advection part).
+ * @param cache      optional: what earlier runs on this same mesh kept (see
+ *                   SharpeningCache); the result is the same with or without it.
  * @return an error for invalid parameters or a failed solve; when aborted
  *         (report->advection.aborted), positions hold the input positions.
  */
 Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters& parameters,
   double* positions, double* normals = nullptr, SharpeningReport* report = nullptr,
-  MeshFlowFields* fields = nullptr, const ProgressFunction& progress = ProgressFunction());
+  MeshFlowFields* fields = nullptr, const ProgressFunction& progress = ProgressFunction(),
+  SharpeningCache* cache = nullptr);
 
 } // namespace shock
 

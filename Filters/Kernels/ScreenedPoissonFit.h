@@ -65,6 +65,8 @@
 #ifndef ScreenedPoissonFit_h
 #define ScreenedPoissonFit_h
 
+#include "FitOperators.h"
+#include "FitSystem.h"
 #include "MeshPartition.h"
 #include "ShockTypes.h"
 #include "TriangleMesh.h"
@@ -119,7 +121,7 @@ struct FitParameters
   /// Iteration cap of FitSolver::ConjugateGradientTolerance (>= 0).
   int maxIterations = 1000;
   /// OpenMP threads for assembly and the conjugate gradients; 0 uses all cores.
-  /// Meshes with fewer than 16384 points per thread use fewer threads. The result
+  /// Small meshes use fewer threads (ThreadsForWork of the points). The result
   /// does not depend on the number of threads (the parallel sums are ordered).
   int numberOfThreads = 0;
   /// When set, the mesh is one piece of a distributed mesh: normalisation, sums and
@@ -141,7 +143,10 @@ struct FitReport
   double residual = 0.0;
   /// Whether residual <= FitParameters::tolerance.
   bool converged = false;
-  double setupSeconds = 0.0; ///< normalisation and assembly of the matrix and right-hand sides
+  /// Normalisation and assembly of the matrix (unless reused) and of the right-hand sides.
+  double setupSeconds = 0.0;
+  /// The matrix and mass term came from the FitSystem given (built for an earlier fit).
+  bool reusedSystem = false;
   double solveSeconds = 0.0; ///< solve (factorisation for Exact) and the residual check
   /// Non-degenerate triangles whose target normal was invalid (replaced by their own normal).
   std::int64_t invalidTargets = 0;
@@ -169,40 +174,16 @@ void FitTargetGradients(const TriangleMesh& mesh, std::int64_t f, const double n
  *                      not alias targetNormals. Never contains NaN or infinity.
  * @param parameters    see FitParameters.
  * @param report        optional: iterations, residual, timings, counters.
+ * @param system        optional: the system of this mesh and screening weight
+ *                      (FitSystem.h), reused when it matches and (re)built into
+ *                      it otherwise; not used for a piece (parameters.partition).
+ *                      The caller clears it when the mesh changes.
  * @return an error message for invalid arguments or a failed factorisation; on
  *         an error other than a null pointer, positions holds the original positions.
  */
 Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNormals,
-  double* positions, const FitParameters& parameters, FitReport* report = nullptr);
-
-/// One entry of a sparse matrix; entries with the same row and column add up.
-struct SparseEntry
-{
-  std::int64_t row = 0;
-  std::int64_t column = 0;
-  double value = 0.0;
-};
-
-/**
- * The consistent finite-element mass matrix M of the mesh's hat functions: per
- * non-degenerate triangle of area A, A/12 [2 1 1; 1 2 1; 1 1 2] on its corners
- * (one entry per triangle and corner pair, in triangle order).
- */
-std::vector<SparseEntry> MassMatrix(const TriangleMesh& mesh);
-
-/**
- * The stiffness matrix S_ij = sum_f A_f grad(phi_i) . grad(phi_j) (the cotangent
- * Laplacian), one entry per non-degenerate triangle and corner pair.
- */
-std::vector<SparseEntry> StiffnessMatrix(const TriangleMesh& mesh);
-
-/**
- * The divergence of a per-triangle gradient field: (D w)_i = sum_f A_f
- * grad(phi_i) . w_{f,k} for each coordinate k. `gradients` holds 9 values per
- * triangle, w_{f,k} = gradients[9 f + 3 k .. 9 f + 3 k + 2]; returns 3 values
- * per point. Degenerate triangles contribute nothing.
- */
-std::vector<double> Divergence(const TriangleMesh& mesh, const double* gradients);
+  double* positions, const FitParameters& parameters, FitReport* report = nullptr,
+  FitSystem* system = nullptr);
 
 } // namespace shock
 

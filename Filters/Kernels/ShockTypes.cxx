@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #ifdef __linux__
+#include <dirent.h>
 #include <sys/mman.h>
 #endif
 
@@ -10,6 +11,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
 #include <new>
 
 namespace shock
@@ -80,6 +84,54 @@ std::size_t HugePageMultiple(std::size_t bytes)
 {
   return (bytes + HugePage - 1) / HugePage * HugePage;
 }
+
+// Whether a virtio balloon reports free pages to the host (feature bit 5,
+// VIRTIO_BALLOON_F_REPORTING; sysfs lists the feature bits as a string of 0/1).
+bool HostTakesBackFreePages()
+{
+  const char* const drivers = "/sys/bus/virtio/drivers/virtio_balloon";
+  DIR* directory = opendir(drivers);
+  if (!directory)
+  {
+    return false;
+  }
+  bool reporting = false;
+  while (const dirent* entry = readdir(directory))
+  {
+    if (std::strncmp(entry->d_name, "virtio", 6) != 0)
+    {
+      continue;
+    }
+    std::ifstream file(std::string(drivers) + "/" + entry->d_name + "/features");
+    std::string bits;
+    if (file >> bits && bits.size() > 5 && bits[5] == '1')
+    {
+      reporting = true;
+    }
+  }
+  closedir(directory);
+  return reporting;
+}
+}
+
+bool UseHugePages()
+{
+  static const bool use = [] {
+    if (const char* setting = std::getenv("SHOCK_HUGE_PAGES"))
+    {
+      if (std::strcmp(setting, "0") == 0 || std::strcmp(setting, "1") == 0)
+      {
+        return setting[0] == '1';
+      }
+    }
+    return !HostTakesBackFreePages();
+  }();
+  return use;
+}
+#else
+bool UseHugePages()
+{
+  return false;
 }
 #endif
 
@@ -109,7 +161,10 @@ void* AllocateLarge(std::size_t bytes)
       munmap(block + size, static_cast<std::size_t>(last - (block + size)));
     }
     // Advice only: without transparent huge pages the block simply has small pages.
-    madvise(block, size, MADV_HUGEPAGE);
+    if (UseHugePages())
+    {
+      madvise(block, size, MADV_HUGEPAGE);
+    }
     return block;
   }
 #endif

@@ -132,8 +132,20 @@ void ParallelFor(std::int64_t count, int threads,
  * transparent huge pages: the first touch of a buffer then takes one page fault
  * per 2 MiB instead of one per 4 KiB, which on a multi-megapixel image otherwise
  * costs a good part of the run time. Throws std::bad_alloc on failure.
+ * The huge-page advice is given when UseHugePages() says so.
  */
 void* AllocateLarge(std::size_t bytes);
+
+/**
+ * Whether AllocateLarge advises transparent huge pages. Yes on Linux, except in a
+ * virtual machine whose virtio balloon reports free pages to the host: there the
+ * host takes back free huge blocks, and touching a huge page it took back costs
+ * several times more than touching small pages (Benchmarks/RESULTS.md, "Cold
+ * start": 3.2 s per GiB against 0.4-0.8 s, while a huge page still backed costs
+ * 0.15 s). The environment variable SHOCK_HUGE_PAGES=1 or =0 overrides the choice.
+ * Decided once per process.
+ */
+bool UseHugePages();
 void FreeLarge(void* block, std::size_t bytes) noexcept;
 
 /// Deleter of LargeArray: FreeLarge needs the size.

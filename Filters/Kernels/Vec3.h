@@ -43,6 +43,20 @@ inline Vec3 Unit(const Vec3& v)
   return n > 0.0 ? Vec3{ v[0] / n, v[1] / n, v[2] / n } : Vec3{ 0.0, 0.0, 0.0 };
 }
 
+/// Normalise the 3 values at v in place; false (v unchanged) when the length is zero or not finite.
+inline bool Normalise(double* v)
+{
+  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(n > 0.0) || !std::isfinite(n))
+  {
+    return false;
+  }
+  v[0] /= n;
+  v[1] /= n;
+  v[2] /= n;
+  return true;
+}
+
 } // namespace shock
 
 #endif

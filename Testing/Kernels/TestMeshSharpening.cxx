@@ -329,3 +329,53 @@ TEST(MeshSharpening, RejectsInvalidParameters)
 }
 
 } // namespace
+
+TEST(MeshSharpening, ACacheKeepsWhatTheParametersDoNotChange)
+{
+  // A run with a cache equals a fresh run; the cache says what it reused: the clean
+  // mesh always, the smoothed normals and their feature split for the same passes
+  // and angle, the fit's system for the same screening weight.
+  struct Step
+  {
+    double time, featureAngle, screening;
+    int passes;
+    bool features, system;
+  };
+  const std::vector<Step> steps = {
+    { 64.0, 30.0, 1.0, 0, false, false },
+    { 512.0, 30.0, 1.0, 0, true, true },   // only the flow time changed
+    { 512.0, 5.0, 1.0, 0, false, true }, // feature angle
+    { 512.0, 5.0, 10.0, 0, true, false }, // screening weight
+    { 512.0, 5.0, 10.0, 2, false, true }, // smoothing passes
+  };
+  for (const MeshData& data : { shocktest::RoundedBox(12, 2.0, 0.35),
+         shocktest::WithDegenerateTriangles(shocktest::RoundedBox(12, 2.0, 0.35)) })
+  {
+    const shock::TriangleMesh mesh = Build(data);
+    shock::SharpeningCache cache;
+    std::vector<double> previous;
+    for (size_t s = 0; s < steps.size(); ++s)
+    {
+      shock::SharpeningParameters p = Parameters(steps[s].time);
+      p.featureAngle = steps[s].featureAngle;
+      p.fit.screeningWeight = steps[s].screening;
+      p.normalSmoothingPasses = steps[s].passes;
+      shock::SharpeningReport fresh, cached;
+      std::vector<double> freshNormals, cachedNormals(static_cast<size_t>(3 * mesh.NumberOfTriangles()));
+      const std::vector<double> expected = Sharpen(mesh, p, &fresh, &freshNormals);
+      std::vector<double> positions(static_cast<size_t>(3 * mesh.NumberOfPoints()));
+      ASSERT_TRUE(shock::SharpenMeshGeometry(mesh, p, positions.data(), cachedNormals.data(), &cached,
+        nullptr, shock::ProgressFunction(), &cache).Ok());
+      EXPECT_EQ(positions, expected) << "step " << s;
+      EXPECT_EQ(cachedNormals, freshNormals) << "step " << s;
+      EXPECT_EQ(cached.degenerateTriangles, fresh.degenerateTriangles);
+      EXPECT_EQ(cached.featureEdges, fresh.featureEdges);
+      EXPECT_FALSE(fresh.reusedMesh || fresh.reusedFeatures || fresh.fit.reusedSystem);
+      EXPECT_EQ(cached.reusedMesh, s > 0) << "step " << s;
+      EXPECT_EQ(cached.reusedFeatures, steps[s].features) << "step " << s;
+      EXPECT_EQ(cached.fit.reusedSystem, steps[s].system) << "step " << s;
+      EXPECT_NE(positions, previous) << "step " << s; // every step changes the result
+      previous = positions;
+    }
+  }
+}

@@ -1,0 +1,353 @@
+#include "FitSystem.h"
+
+#include "FitOperators.h"
+#include "FitSolve.h"
+#include "Vec3.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shock
+{
+
+namespace
+{
+using fit::Coordinates;
+using fit::Frame;
+using fit::RowMatrix;
+
+/// Area and area-weighted centroid of the (owned) triangles: the unit-area normalisation.
+Frame UnitAreaFrame(const TriangleMesh& mesh, const MeshPartition* partition, int threads)
+{
+  // A ghost triangle is added by its owner.
+  const auto total = fit::BlockSums<4>(mesh.NumberOfTriangles(), threads,
+    partition ? &partition->ownedTriangles : nullptr, partition,
+    [&](std::int64_t f, std::array<double, 4>& sum) {
+      const double a = mesh.Area(f); // 0 for degenerate triangles
+      const double* c = mesh.Centroid(f);
+      sum[0] += a;
+      for (int k = 0; k < 3; ++k)
+      {
+        sum[k + 1] += a * c[k];
+      }
+    });
+  Frame frame;
+  if (total[0] > 0.0)
+  {
+    frame.scale = 1.0 / std::sqrt(total[0]);
+    for (int k = 0; k < 3; ++k)
+    {
+      frame.center[k] = total[k + 1] / total[0];
+    }
+  }
+  return frame;
+}
+
+/// Corner of non-degenerate triangle f at point p.
+inline int CornerOf(const TriangleMesh& mesh, std::int64_t f, std::int64_t p)
+{
+  const std::int64_t* t = mesh.Corners(f);
+  return t[0] == p ? 0 : (t[1] == p ? 1 : 2);
+}
+
+/**
+ * The points in the order in which the triangles first use them (corner by
+ * corner), then the points no non-degenerate triangle uses, in their order:
+ * the order in which the assembly visits the rows, so that it reads the
+ * triangles' data nearly in their order.
+ */
+std::vector<std::int64_t> FirstUseOrder(const TriangleMesh& mesh, int threads)
+{
+  const std::int64_t np = mesh.NumberOfPoints();
+  const std::int64_t nt = mesh.NumberOfTriangles();
+  const CompressedLists& around = mesh.PointTriangles();
+  std::vector<std::int64_t> first(static_cast<size_t>(np), -1); // 3 f + corner
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t p = 0; p < np; ++p)
+  {
+    std::int64_t key = -1;
+    for (std::int64_t a = around.Begin(p); a < around.End(p); ++a)
+    {
+      const std::int64_t f = around.items[static_cast<size_t>(a)];
+      if (!mesh.Degenerate(f) && (key < 0 || 3 * f < key))
+      {
+        key = 3 * f + CornerOf(mesh, f, p);
+      }
+    }
+    first[static_cast<size_t>(p)] = key;
+  }
+  std::vector<std::int64_t> start(static_cast<size_t>(nt) + 1, 0); // rows before triangle f's
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t f = 0; f < nt; ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      start[static_cast<size_t>(f) + 1] += first[static_cast<size_t>(mesh.Corners(f)[c])] == 3 * f + c;
+    }
+  }
+  for (std::int64_t f = 0; f < nt; ++f)
+  {
+    start[static_cast<size_t>(f) + 1] += start[static_cast<size_t>(f)];
+  }
+  std::vector<std::int64_t> order(static_cast<size_t>(np));
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t f = 0; f < nt; ++f)
+  {
+    std::int64_t row = start[static_cast<size_t>(f)];
+    for (int c = 0; c < 3; ++c)
+    {
+      const std::int64_t p = mesh.Corners(f)[c];
+      if (first[static_cast<size_t>(p)] == 3 * f + c)
+      {
+        order[static_cast<size_t>(row++)] = p;
+      }
+    }
+  }
+  std::int64_t row = start.back();
+  for (std::int64_t p = 0; p < np; ++p)
+  {
+    if (first[static_cast<size_t>(p)] < 0)
+    {
+      order[static_cast<size_t>(row++)] = p;
+    }
+  }
+  return order;
+}
+
+/**
+ * The rows' points in breadth-first order over the one-rings, component by
+ * component from its smallest point (neighbours in ring order). Every row's
+ * columns are then within about two fronts of it, so the conjugate gradients'
+ * products read nearby memory. Serial: a few milliseconds per million points.
+ */
+void BreadthFirstOrder(const TriangleMesh& mesh, FitSystemData& system)
+{
+  const std::int64_t np = mesh.NumberOfPoints();
+  const CompressedLists& ring = mesh.OneRing();
+  system.order.clear();
+  system.order.reserve(static_cast<size_t>(np));
+  system.rank.assign(static_cast<size_t>(np), -1);
+  for (std::int64_t seed = 0; seed < np; ++seed)
+  {
+    if (system.rank[static_cast<size_t>(seed)] >= 0)
+    {
+      continue;
+    }
+    system.rank[static_cast<size_t>(seed)] = static_cast<std::int64_t>(system.order.size());
+    system.order.push_back(seed);
+    for (size_t next = system.order.size() - 1; next < system.order.size(); ++next)
+    {
+      const std::int64_t p = system.order[next];
+      for (std::int64_t e = ring.Begin(p); e < ring.End(p); ++e)
+      {
+        const std::int64_t q = ring.items[static_cast<size_t>(e)];
+        if (system.rank[static_cast<size_t>(q)] < 0)
+        {
+          system.rank[static_cast<size_t>(q)] = static_cast<std::int64_t>(system.order.size());
+          system.order.push_back(q);
+        }
+      }
+    }
+  }
+}
+
+/// Rows in the points' own order (a piece of a distributed mesh).
+void IdentityOrder(std::int64_t np, FitSystemData& system)
+{
+  system.order.resize(static_cast<size_t>(np));
+  for (std::int64_t p = 0; p < np; ++p)
+  {
+    system.order[static_cast<size_t>(p)] = p;
+  }
+  system.rank = system.order;
+  system.visit = system.order;
+}
+
+/**
+ * The compressed-row pattern: row r holds its point's one-ring and itself, as
+ * rows (sorted). Built in parallel straight from the mesh's adjacency.
+ */
+void BuildPattern(const TriangleMesh& mesh, int threads, FitSystemData& system)
+{
+  const std::int64_t np = mesh.NumberOfPoints();
+  const CompressedLists& ring = mesh.OneRing();
+  RowMatrix& A = system.matrix;
+  A.resize(static_cast<Eigen::Index>(np), static_cast<Eigen::Index>(np));
+  A.resizeNonZeros(static_cast<Eigen::Index>(np + static_cast<std::int64_t>(ring.items.size())));
+  int* outer = A.outerIndexPtr();
+  outer[0] = 0;
+  for (std::int64_t r = 0; r < np; ++r)
+  {
+    const std::int64_t p = system.order[static_cast<size_t>(r)];
+    outer[r + 1] = outer[r] + static_cast<int>(ring.End(p) - ring.Begin(p) + 1);
+  }
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t i = 0; i < np; ++i)
+  {
+    const std::int64_t p = system.visit[static_cast<size_t>(i)];
+    const std::int64_t r = system.rank[static_cast<size_t>(p)];
+    int* cols = A.innerIndexPtr() + outer[r];
+    int* out = cols;
+    *out++ = static_cast<int>(r);
+    for (std::int64_t e = ring.Begin(p); e < ring.End(p); ++e)
+    {
+      *out++ = static_cast<int>(system.rank[static_cast<size_t>(ring.items[static_cast<size_t>(e)])]);
+    }
+    std::sort(cols, out);
+  }
+}
+
+/**
+ * The values of A = alpha M + beta S (normalised: stiffness A g.g, mass s^2 A/12),
+ * the mass term alpha M c0 and the inverse diagonal, row by row in parallel;
+ * with targets, also the right-hand sides b = alpha M c0 + beta s D w (the
+ * same sums as fit::RightHandSides). A point used by no non-degenerate
+ * triangle gets an identity row that keeps it.
+ */
+void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets,
+  FitSystemData& system, Coordinates& rhs)
+{
+  const std::int64_t np = mesh.NumberOfPoints();
+  const CompressedLists& around = mesh.PointTriangles();
+  const double s = system.frame.scale;
+  RowMatrix& A = system.matrix;
+  system.massTerm.resize(np, 3);
+  system.inverseDiagonal.resize(static_cast<size_t>(np));
+  system.fitted.assign(static_cast<size_t>(np), 0);
+  rhs.resize(targets ? np : 0, 3);
+  const double weight = system.beta * s;
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t i = 0; i < np; ++i)
+  {
+    const std::int64_t p = system.visit[static_cast<size_t>(i)];
+    const std::int64_t r = system.rank[static_cast<size_t>(p)];
+    const int* cols = A.innerIndexPtr() + A.outerIndexPtr()[r];
+    const int* colsEnd = A.innerIndexPtr() + A.outerIndexPtr()[r + 1];
+    double* row = A.valuePtr() + A.outerIndexPtr()[r];
+    std::fill(row, row + (colsEnd - cols), 0.0);
+    auto entry = [&](std::int64_t point) -> double& {
+      const int column = static_cast<int>(system.rank[static_cast<size_t>(point)]);
+      return row[std::lower_bound(cols, colsEnd, column) - cols];
+    };
+    double b[3] = { 0.0, 0.0, 0.0 };
+    double divergence[3] = { 0.0, 0.0, 0.0 };
+    bool fitted = false;
+    for (std::int64_t a = around.Begin(p); a < around.End(p); ++a)
+    {
+      const std::int64_t f = around.items[static_cast<size_t>(a)];
+      if (mesh.Degenerate(f))
+      {
+        continue;
+      }
+      fitted = true;
+      const std::int64_t* t = mesh.Corners(f);
+      const int self = CornerOf(mesh, f, p);
+      const double area = mesh.Area(f);
+      const Vec3 gp = Load(mesh.HatGradient(f, self));
+      if (targets)
+      {
+        fit::AddTargetDivergence(mesh, targets->normals, targets->target, f, gp.data(), divergence);
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        const double mass = system.alpha * s * s * TriangleMass(area, self, c);
+        entry(t[c]) += mass + system.beta * area * Dot(gp, Load(mesh.HatGradient(f, c)));
+        const std::int64_t column = system.rank[static_cast<size_t>(t[c])];
+        for (int k = 0; k < 3; ++k)
+        {
+          b[k] += mass * system.original(column, k);
+        }
+      }
+    }
+    if (!fitted)
+    {
+      entry(p) = 1.0; // nothing constrains the point: an identity row keeps it where it is
+      for (int k = 0; k < 3; ++k)
+      {
+        b[k] = system.original(r, k);
+      }
+    }
+    system.fitted[static_cast<size_t>(r)] = fitted ? 1 : 0;
+    system.inverseDiagonal[static_cast<size_t>(r)] = 1.0 / entry(p); // > 0: M's diagonal is
+    for (int k = 0; k < 3; ++k)
+    {
+      system.massTerm(r, k) = b[k];
+      if (targets)
+      {
+        rhs(r, k) = b[k] + weight * divergence[k];
+      }
+    }
+  }
+}
+Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
+  const MeshPartition* partition, int threads, const fit::Targets* targets, FitSystem& system,
+  Coordinates& b);
+} // namespace
+
+Status BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
+  const MeshPartition* partition, int threads, FitSystem& system)
+{
+  Coordinates none;
+  return BuildSystem(mesh, screeningWeight, partition, threads, nullptr, system, none);
+}
+
+Status fit::BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
+  const MeshPartition* partition, int threads, const Targets& targets, FitSystem& system,
+  Coordinates& b)
+{
+  return BuildSystem(mesh, screeningWeight, partition, threads, &targets, system, b);
+}
+
+namespace
+{
+Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
+  const MeshPartition* partition, int threads, const fit::Targets* targets, FitSystem& system,
+  Coordinates& b)
+{
+  system.Clear();
+  if (!(std::isfinite(screeningWeight) && screeningWeight > 0.0))
+  {
+    return { "the screening weight must be finite and > 0" };
+  }
+  auto data = std::make_shared<FitSystemData>();
+  data->frame = UnitAreaFrame(mesh, partition, threads);
+  if (data->frame.scale > 0.0)
+  {
+    // A = alpha M + beta S and b = alpha M c0 + beta D w have the solution of
+    // (eps M + S) c = eps M c0 + D w; dividing by max(1, eps) keeps every entry
+    // bounded, so any finite eps > 0 is safe from overflow.
+    data->alpha = std::min(screeningWeight, 1.0);
+    data->beta = 1.0 / std::max(screeningWeight, 1.0);
+    const std::int64_t np = mesh.NumberOfPoints();
+    if (partition)
+    {
+      IdentityOrder(np, *data);
+    }
+    else
+    {
+      BreadthFirstOrder(mesh, *data);
+      data->visit = FirstUseOrder(mesh, threads);
+    }
+    data->original.resize(np, 3);
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int64_t r = 0; r < np; ++r)
+    {
+      const double* x = mesh.Point(data->order[static_cast<size_t>(r)]);
+      for (int k = 0; k < 3; ++k)
+      {
+        data->original(r, k) = data->frame.scale * (x[k] - data->frame.center[k]);
+      }
+    }
+    BuildPattern(mesh, threads, *data);
+    FillRows(mesh, threads, targets, *data, b);
+    system.data = std::move(data);
+  }
+  system.mesh = &mesh;
+  system.points = mesh.NumberOfPoints();
+  system.triangles = mesh.NumberOfTriangles();
+  system.screeningWeight = screeningWeight;
+  return {};
+}
+} // namespace
+
+} // namespace shock

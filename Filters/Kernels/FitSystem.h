@@ -1,0 +1,61 @@
+/**
+ * @file FitSystem.h
+ * @brief The screened Poisson system of the fit as far as it depends on the
+ * mesh and the screening weight only: kept between fits of the same mesh.
+ *
+ * FitPositionsToNormals (ScreenedPoissonFit.h) solves
+ * (eps M + S) c1 = eps M c0 + D w. The matrix eps M + S, the mass term
+ * eps M c0 and the normalisation to unit area depend on the positions, the
+ * triangles and eps, not on the target normals: a FitSystem holds them, so a
+ * second fit of the same mesh (another flow time in ParaView, other normals)
+ * assembles only D w. The rows are numbered breadth-first over the
+ * one-rings (a renumbering that keeps each row's neighbours close in memory:
+ * meshes made by subdivision number new points far from their neighbours, and
+ * the conjugate gradients' products then wait on memory), except for a piece
+ * of a distributed mesh, whose rows are its points.
+ */
+#ifndef ShockFitSystem_h
+#define ShockFitSystem_h
+
+#include "MeshPartition.h"
+#include "ShockTypes.h"
+#include "TriangleMesh.h"
+
+#include <cstdint>
+#include <memory>
+
+namespace shock
+{
+
+struct FitSystemData; // FitSolve.h: the matrix, the mass term, the row order
+
+/// A built system and what it was built for (see the file comment).
+struct FitSystem
+{
+  std::shared_ptr<const FitSystemData> data; ///< empty until built
+  const TriangleMesh* mesh = nullptr;        ///< the mesh it was built for
+  std::int64_t points = 0;                   ///< that mesh's size when built
+  std::int64_t triangles = 0;
+  double screeningWeight = 0.0;
+
+  /// Built for `mesh` (the same object, unchanged since: the caller's promise) and eps.
+  bool Matches(const TriangleMesh& target, double eps) const
+  {
+    return this->data && this->mesh == &target && this->points == target.NumberOfPoints() &&
+      this->triangles == target.NumberOfTriangles() && this->screeningWeight == eps;
+  }
+  void Clear() { *this = FitSystem(); }
+};
+
+/**
+ * Build the system of `mesh` for the screening weight eps (finite, > 0) on
+ * `threads` threads (the result does not depend on their number). With a
+ * partition, the normalisation sums run over all pieces and the rows keep the
+ * points' numbering. A mesh without area gives an empty system (data null).
+ */
+Status BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
+  const MeshPartition* partition, int threads, FitSystem& system);
+
+} // namespace shock
+
+#endif
