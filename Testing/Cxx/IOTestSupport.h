@@ -43,13 +43,19 @@ inline std::string FileBytes(const std::string& path)
   return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
 }
 
-/// The names of the temporary files (".partial-") an output left in `directory`.
-inline std::vector<std::string> PartialFiles(const std::string& directory)
+/**
+ * The temporary files (".TARGET.partial-...") that a write of `target` left beside
+ * it. Only that target's: tests running at the same time write other files into
+ * the same folder.
+ */
+inline std::vector<std::string> PartialFiles(const std::string& target)
 {
+  const std::filesystem::path path(target);
+  const std::string prefix = "." + path.filename().string() + ".partial-";
   std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(directory))
+  for (const auto& entry : std::filesystem::directory_iterator(path.parent_path()))
   {
-    if (entry.path().filename().string().find(".partial-") != std::string::npos)
+    if (entry.path().filename().string().rfind(prefix, 0) == 0)
     {
       names.push_back(entry.path().filename().string());
     }

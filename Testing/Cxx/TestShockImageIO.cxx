@@ -205,7 +205,7 @@ TEST(ShockImageIO, RasterFilesRoundTripAndAFailedWriteLeavesTheTarget)
     EXPECT_FALSE(written) << extension;
     EXPECT_EQ(error.rfind(path + ": ", 0), 0u) << error;
     EXPECT_EQ(FileBytes(path), before) << extension;
-    EXPECT_TRUE(shocktest::PartialFiles(std::filesystem::path(path).parent_path().string()).empty());
+    EXPECT_TRUE(shocktest::PartialFiles(path).empty());
 
     ASSERT_TRUE(shockio::WriteImage(TestImage(), path, "Colour", error, note)) << error;
     const vtkSmartPointer<vtkImageData> read = shockio::ReadImage(path, shockio::DefaultMaxSamples, error);

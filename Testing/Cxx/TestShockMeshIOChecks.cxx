@@ -192,7 +192,7 @@ TEST(ShockMeshIOChecks, AFailedWriteLeavesTheTargetUntouched)
     EXPECT_EQ(error.rfind(path + ": ", 0), 0u) << error;
     EXPECT_EQ(error.find('\n'), std::string::npos) << error;
     EXPECT_EQ(FileBytes(path), before) << format;
-    EXPECT_TRUE(shocktest::PartialFiles(std::filesystem::path(path).parent_path().string()).empty()) << format;
+    EXPECT_TRUE(shocktest::PartialFiles(path).empty()) << format;
     // Without the limit the same write replaces the file.
     EXPECT_TRUE(shockio::WriteMesh(sphere, path, error)) << error;
     EXPECT_NE(FileBytes(path), before) << format;
