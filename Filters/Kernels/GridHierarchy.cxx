@@ -130,24 +130,6 @@ std::vector<double> Restrict(const Lattice<D>& fine, const Lattice<D>& coarse, i
   return out;
 }
 
-/// Validity masks of one level; both empty when every sample is finite.
-template <int D>
-struct LevelMasks
-{
-  std::vector<unsigned char> samples, faces;
-
-  LevelMasks(const Lattice<D>& L, int C, const double* values, int threads)
-  {
-    if (!ScanSignal(L.numSamples, C, values, threads).allFinite)
-    {
-      this->samples = FiniteSamples(L.numSamples, C, values, threads);
-      this->faces = ValidFaces<D>(L, this->samples.data(), threads);
-    }
-  }
-  const unsigned char* Samples() const { return this->samples.empty() ? nullptr : this->samples.data(); }
-  const unsigned char* Faces() const { return this->faces.empty() ? nullptr : this->faces.data(); }
-};
-
 /// Levels 1 .. shapes.size() - 1 of the signal pyramid (level 0 is `signal` itself).
 template <int D>
 std::vector<std::vector<double>> BuildPyramid(const std::vector<GridShape>& shapes, int C,
@@ -167,7 +149,8 @@ std::vector<std::vector<double>> BuildPyramid(const std::vector<GridShape>& shap
     UmbrellaSmooth<D>(fine, C, finer, 1.0, smoothed.data(), scratch.data(), valid, passes, threads);
     levels.push_back(Restrict<D>(fine, coarse, C, smoothed.data(), valid, threads));
     finer = levels.back().data();
-    const LevelMasks<D> masks(coarse, C, finer, threads);
+    const ValidityMasks<D> masks(
+      coarse, C, finer, ScanSignal(coarse.numSamples, C, finer, threads).allFinite, threads);
     levelValid = masks.samples;
     valid = levelValid.empty() ? nullptr : levelValid.data();
   }
@@ -234,7 +217,8 @@ bool TraceThroughCoarseLevels(const std::vector<GridShape>& shapes, int C, const
     const auto flowStart = Clock::now();
     const Lattice<D> L(shapes[l]);
     const double* values = levels[l - 1].data();
-    const LevelMasks<D> masks(L, C, values, threads);
+    const ValidityMasks<D> masks(
+      L, C, values, ScanSignal(L.numSamples, C, values, threads).allFinite, threads);
     FlowComputation<D> flow(L, C, p.smoothingPasses, masks.Samples(), masks.Faces(), threads);
     flow.Compute(values, range);
     report.flowSeconds += SecondsSince(flowStart);

@@ -262,6 +262,24 @@ std::vector<unsigned char> ValidFaces(
   return valid;
 }
 
+/// Validity masks of a signal: both empty, and null pointers, when every sample is finite.
+template <int D>
+struct ValidityMasks
+{
+  std::vector<unsigned char> samples, faces;
+
+  ValidityMasks(const Lattice<D>& L, int C, const double* values, bool allFinite, int threads)
+  {
+    if (!allFinite)
+    {
+      this->samples = FiniteSamples(L.numSamples, C, values, threads);
+      this->faces = ValidFaces<D>(L, this->samples.data(), threads);
+    }
+  }
+  const unsigned char* Samples() const { return this->samples.empty() ? nullptr : this->samples.data(); }
+  const unsigned char* Faces() const { return this->faces.empty() ? nullptr : this->faces.data(); }
+};
+
 } // namespace grid
 } // namespace shock
 

@@ -61,6 +61,41 @@ namespace
 
 using namespace grid;
 
+/// The flow of the current signal, on range-normalised intensities, timed into the
+/// report. After the last update's flow, the fields are exported and the
+/// workspace released (only the velocity is needed from there on).
+template <int D>
+void ComputeFlow(const Lattice<D>& L, FlowComputation<D>& flow, const double* signal,
+  double range, bool last, GridFlowFields* fields, AdvectionReport& report)
+{
+  const auto flowStart = Clock::now();
+  flow.Compute(signal, range);
+  report.flowSeconds += SecondsSince(flowStart);
+  if (last)
+  {
+    if (fields)
+    {
+      ExportFlowFields<D>(L, flow, *fields);
+    }
+    flow.ReleaseWorkspace();
+  }
+}
+
+/// The advection of one flow update (Appendix A AdvectVertices), timed into the
+/// report; false when aborted.
+template <int D>
+bool AdvectUpdate(const AdvectionContext<D>& ctx, const FlowComputation<D>& flow,
+  const AdvectionParameters& p, double stepTime, const double* source, double* target,
+  float* positions, double progressStart, double progressSpan)
+{
+  const auto advectStart = Clock::now();
+  const GridTracer<D> tracer(ctx.L, flow.Velocity(), p);
+  const bool completed = AdvectVertices<D>(
+    ctx, tracer, stepTime, source, target, positions, progressStart, progressSpan);
+  ctx.report.advectionSeconds += SecondsSince(advectStart);
+  return completed;
+}
+
 template <int D>
 Status RunGrid(const GridShape& shape, int C, const double* input, double* output,
   const AdvectionParameters& p, AdvectionReport& report, GridFlowFields* fields,
@@ -82,15 +117,8 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
     return {}; // constant (or entirely non-finite) signal: no flow
   }
 
-  // Validity masks only when some sample is not finite; null pointers mean all valid.
-  std::vector<unsigned char> validSamples, validFaces;
-  if (!scan.allFinite)
-  {
-    validSamples = FiniteSamples(L.numSamples, C, input, threads);
-    validFaces = ValidFaces<D>(L, validSamples.data(), threads);
-  }
-  const unsigned char* validSample = scan.allFinite ? nullptr : validSamples.data();
-  const unsigned char* validFace = scan.allFinite ? nullptr : validFaces.data();
+  const ValidityMasks<D> masks(L, C, input, scan.allFinite, threads);
+  const unsigned char* validSample = masks.Samples();
 
   // t = 0 gives the input, exactly (the flow fields may still be wanted).
   const bool advect = p.time > 0.0;
@@ -111,25 +139,13 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
   {
     positions = InitialTracePositions<D>(L, threads);
   }
-  FlowComputation<D> flow(L, C, p.smoothingPasses, validSample, validFace, threads);
+  FlowComputation<D> flow(L, C, p.smoothingPasses, validSample, masks.Faces(), threads);
   const AdvectionContext<D> ctx{ L, C, threads, p.sampling, validSample, progress, report };
 
   const double* signal = input; // the signal whose flow is computed
   for (int k = 0; k < updates; ++k)
   {
-    // Flow of the current signal, on range-normalised intensities.
-    const auto flowStart = Clock::now();
-    flow.Compute(signal, range);
-    report.flowSeconds += SecondsSince(flowStart);
-
-    if (k == updates - 1)
-    {
-      if (fields)
-      {
-        ExportFlowFields<D>(L, flow, *fields);
-      }
-      flow.ReleaseWorkspace(); // only the velocity is needed from here on
-    }
+    ComputeFlow<D>(L, flow, signal, range, k == updates - 1, fields, report);
     const double progressStart = (k + 0.1) / updates;
     if (progress && !progress(progressStart))
     {
@@ -156,17 +172,12 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
       }
     }
 
-    const auto advectStart = Clock::now();
-    const GridTracer<D> tracer(L, flow.Velocity(), p);
     // Fixed and Composed flows sample the input (Composed from the composed
     // positions, its result feeding the next flow); Naive resamples the last result.
     const bool naive = p.flowMode == FlowMode::Naive;
-    const double* source = naive ? signal : input;
     double* target = naive && (updates - 1 - k) % 2 == 1 ? naiveBuffer.get() : output;
-    const bool completed = AdvectVertices<D>(
-      ctx, tracer, stepTime, source, target, positions.get(), progressStart, 0.9 / updates);
-    report.advectionSeconds += SecondsSince(advectStart);
-    if (!completed)
+    if (!AdvectUpdate<D>(ctx, flow, p, stepTime, naive ? signal : input, target, positions.get(),
+          progressStart, 0.9 / updates))
     {
       report.aborted = true;
       break;

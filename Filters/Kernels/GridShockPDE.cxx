@@ -400,17 +400,9 @@ Status RunPDE(const GridShape& shape, int C, const double* input, double* output
     return {};
   }
 
-  std::vector<unsigned char> validSamples, validFaces;
-  if (!scan.allFinite)
-  {
-    validSamples = FiniteSamples(L.numSamples, C, input, threads);
-    validFaces = ValidFaces<D>(L, validSamples.data(), threads);
-  }
-  const unsigned char* validSample = scan.allFinite ? nullptr : validSamples.data();
-  const unsigned char* validFace = scan.allFinite ? nullptr : validFaces.data();
-
+  const ValidityMasks<D> masks(L, C, input, scan.allFinite, threads);
   PDEIntegration<D> integration(
-    L, C, input, range, p, validSample, validFace, threads, report, checkpoint);
+    L, C, input, range, p, masks.Samples(), masks.Faces(), threads, report, checkpoint);
   integration.Run(progress);
   integration.Finish(output, fields);
   return {};
