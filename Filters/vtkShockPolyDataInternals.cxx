@@ -144,6 +144,90 @@ shock::TriangleMeshView Triangles::View() const
   return view;
 }
 
+namespace
+{
+/// Whether a cell's point ids lie in [0, numberOfPoints); else the message.
+bool IdsInRange(const char* kind, vtkIdType cellId, vtkIdType size, const vtkIdType* ids,
+  vtkIdType numberOfPoints, std::string& error)
+{
+  for (vtkIdType k = 0; k < size; ++k)
+  {
+    if (ids[k] < 0 || ids[k] >= numberOfPoints)
+    {
+      error = std::string(kind) + " " + std::to_string(cellId) + " refers to point " +
+        std::to_string(ids[k]) + ", outside [0, " + std::to_string(numberOfPoints) + ")";
+      return false;
+    }
+  }
+  return true;
+}
+
+void AddTriangle(Triangles& out, vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell)
+{
+  out.triangles.insert(out.triangles.end(), { a, b, c });
+  out.sourceCell.push_back(cell);
+}
+
+/// The triangles of a polygon of 4 or more corners.
+void AddPolygon(vtkPoints* points, vtkIdType size, const vtkIdType* ids, vtkIdType cellId,
+  vtkPolygon* polygon, vtkIdList* fan, Triangles& out)
+{
+  if (size == 4 && ConvexQuad(points, ids))
+  {
+    // One fixed diagonal for every convex quad: structured quad meshes get a
+    // uniform triangulation (ear cutting would mix the diagonals).
+    AddTriangle(out, ids[0], ids[1], ids[2], cellId);
+    AddTriangle(out, ids[0], ids[2], ids[3], cellId);
+    return;
+  }
+  // Ear cutting handles non-convex polygons; it returns local corner indices.
+  polygon->Initialize(static_cast<int>(size), ids, points);
+  fan->Reset();
+  if (polygon->Triangulate(fan) && fan->GetNumberOfIds() == 3 * (size - 2))
+  {
+    for (vtkIdType k = 0; k < fan->GetNumberOfIds(); k += 3)
+    {
+      AddTriangle(out, ids[fan->GetId(k)], ids[fan->GetId(k + 1)], ids[fan->GetId(k + 2)], cellId);
+    }
+    return;
+  }
+  for (vtkIdType k = 1; k + 1 < size; ++k)
+  {
+    AddTriangle(out, ids[0], ids[k], ids[k + 1], cellId); // degenerate polygon: a fan keeps the points used
+  }
+}
+
+/// The triangles of the strips, whose cell ids continue from `cellId`.
+bool AddStrips(vtkPolyData* input, vtkIdType cellId, Triangles& out, std::string& error)
+{
+  auto strips = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
+  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell(), ++cellId)
+  {
+    vtkIdType size;
+    const vtkIdType* ids;
+    strips->GetCurrentCell(size, ids);
+    if (!IdsInRange("strip", cellId, size, ids, input->GetNumberOfPoints(), error))
+    {
+      return false;
+    }
+    ++out.nonTriangleCells;
+    for (vtkIdType k = 0; k + 2 < size; ++k)
+    {
+      // Every other triangle of a strip is flipped to keep one orientation.
+      if (k % 2 == 0)
+      {
+        AddTriangle(out, ids[k], ids[k + 1], ids[k + 2], cellId);
+      }
+      else
+      {
+        AddTriangle(out, ids[k + 1], ids[k], ids[k + 2], cellId);
+      }
+    }
+  }
+  return true;
+}
+}
+
 bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error)
 {
   out = Triangles();
@@ -160,101 +244,37 @@ bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error)
   }
   out.triangles.clear();
   out.sourceCell.clear();
-  const vtkIdType numberOfPoints = input->GetNumberOfPoints();
-  const vtkIdType firstPolygon = input->GetNumberOfVerts() + input->GetNumberOfLines();
   out.triangles.reserve(static_cast<size_t>(3 * input->GetNumberOfPolys()));
   out.sourceCell.reserve(static_cast<size_t>(input->GetNumberOfPolys()));
-  auto add = [&out](vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell) {
-    out.triangles.insert(out.triangles.end(), { a, b, c });
-    out.sourceCell.push_back(cell);
-  };
 
   vtkNew<vtkPolygon> polygon;
   vtkNew<vtkIdList> fan;
-  vtkIdType cellId = firstPolygon;
+  vtkIdType cellId = input->GetNumberOfVerts() + input->GetNumberOfLines();
   auto polys = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
   for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell(), ++cellId)
   {
     vtkIdType size;
     const vtkIdType* ids;
     polys->GetCurrentCell(size, ids);
-    for (vtkIdType k = 0; k < size; ++k)
+    if (!IdsInRange("cell", cellId, size, ids, input->GetNumberOfPoints(), error))
     {
-      if (ids[k] < 0 || ids[k] >= numberOfPoints)
-      {
-        error = "cell " + std::to_string(cellId) + " refers to point " + std::to_string(ids[k]) +
-          ", outside [0, " + std::to_string(numberOfPoints) + ")";
-        return false;
-      }
+      return false;
     }
     if (size < 3)
     {
       ++out.degenerateCells;
-      continue;
     }
-    if (size == 3)
+    else if (size == 3)
     {
-      add(ids[0], ids[1], ids[2], cellId);
-      continue;
-    }
-    ++out.nonTriangleCells;
-    if (size == 4 && ConvexQuad(points, ids))
-    {
-      // One fixed diagonal for every convex quad: structured quad meshes get a
-      // uniform triangulation (ear cutting would mix the diagonals).
-      add(ids[0], ids[1], ids[2], cellId);
-      add(ids[0], ids[2], ids[3], cellId);
-      continue;
-    }
-    // Ear cutting handles non-convex polygons; it returns local corner indices.
-    polygon->Initialize(static_cast<int>(size), ids, points);
-    fan->Reset();
-    if (polygon->Triangulate(fan) && fan->GetNumberOfIds() == 3 * (size - 2))
-    {
-      for (vtkIdType k = 0; k < fan->GetNumberOfIds(); k += 3)
-      {
-        add(ids[fan->GetId(k)], ids[fan->GetId(k + 1)], ids[fan->GetId(k + 2)], cellId);
-      }
+      AddTriangle(out, ids[0], ids[1], ids[2], cellId);
     }
     else
     {
-      for (vtkIdType k = 1; k + 1 < size; ++k)
-      {
-        add(ids[0], ids[k], ids[k + 1], cellId); // degenerate polygon: a fan keeps the points used
-      }
+      ++out.nonTriangleCells;
+      AddPolygon(points, size, ids, cellId, polygon, fan, out);
     }
   }
-
-  auto strips = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
-  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell(), ++cellId)
-  {
-    vtkIdType size;
-    const vtkIdType* ids;
-    strips->GetCurrentCell(size, ids);
-    for (vtkIdType k = 0; k < size; ++k)
-    {
-      if (ids[k] < 0 || ids[k] >= numberOfPoints)
-      {
-        error = "strip " + std::to_string(cellId) + " refers to point " + std::to_string(ids[k]) +
-          ", outside [0, " + std::to_string(numberOfPoints) + ")";
-        return false;
-      }
-    }
-    ++out.nonTriangleCells;
-    for (vtkIdType k = 0; k + 2 < size; ++k)
-    {
-      // Every other triangle of a strip is flipped to keep one orientation.
-      if (k % 2 == 0)
-      {
-        add(ids[k], ids[k + 1], ids[k + 2], cellId);
-      }
-      else
-      {
-        add(ids[k + 1], ids[k], ids[k + 2], cellId);
-      }
-    }
-  }
-  return true;
+  return AddStrips(input, cellId, out, error);
 }
 
 bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, PreparedMesh& out,
