@@ -341,12 +341,13 @@ int vtkPolyDataShockSharpenFilter::RequestData(
                   "split over processes: use the CONJUGATE_GRADIENT solvers (solved across them).");
     return 0;
   }
-  // The triangle mesh of the piece (with its ghost cells).
+  // The triangle mesh of the piece (with its ghost cells), in the whole mesh's length unit.
+  const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work);
   vtkShockPolyDataInternals::PreparedMesh prepared;
   const bool empty = piece.work->GetNumberOfPoints() == 0;
   bool ok = empty ||
     vtkShockPolyDataInternals::PrepareMesh(
-      piece.work, this->MergeCoincidentPoints, this->NumberOfThreads, prepared, error);
+      piece.work, this->MergeCoincidentPoints, this->NumberOfThreads, prepared, error, unit);
   if (piece.controller ? vtkShockParallel::AnyFailed(piece.controller, !ok, error) : !ok)
   {
     vtkErrorMacro(<< error);
@@ -380,6 +381,10 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   {
     output->ShallowCopy(input);
     return 1; // aborted (the output holds the input), or an empty piece
+  }
+  for (double& x : positions)
+  {
+    x *= unit; // back from the mesh unit (a power of two: exact)
   }
   // The output: the piece's own cells with the new positions and the requested arrays.
   vtkNew<vtkPolyData> sharpened;

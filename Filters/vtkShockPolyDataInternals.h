@@ -15,6 +15,7 @@
 
 class vtkDataSet;
 class vtkInformationVector;
+class vtkMultiProcessController;
 class vtkDoubleArray;
 class vtkPolyData;
 
@@ -52,11 +53,23 @@ struct PreparedMesh
 
 /**
  * Extract the triangles, optionally merge exactly coincident points (the mesh
- * then uses one copy of each; the others have no triangles), and build the mesh.
+ * then uses one copy of each; the others have no triangles), and build the mesh
+ * of the points divided by `unit` (see MeshUnit; 0: the mesh's size is not finite).
  * Returns false with a complete one-sentence `error` when the input is unusable.
  */
 bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, PreparedMesh& out,
-  std::string& error);
+  std::string& error, double unit = 1.0);
+
+/**
+ * The length unit a surface filter works in: 1 for a mesh whose bounding box's
+ * largest side lies in [2^-64, 2^64] (filtered as it is); else the power of two
+ * nearest above that side. The filter divides the points by it (exactly) and
+ * multiplies the lengths it outputs by it: the algorithm is scale-covariant,
+ * and lengths to the fourth power of meshes beyond about 1e+-75 would leave
+ * the double range (NaN, no change, false flipped triangles). 0 when the side
+ * is not finite. With a controller all processes agree (collective).
+ */
+double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece);
 
 /**
  * A per-cell array of 3-vectors from per-triangle ones: the area-weighted mean

@@ -485,7 +485,8 @@ bool ReadHeader(const std::string& path, const ImageFormat& format, std::uint64_
     case ImageFormat::JPEG:
       return JpegHeader(path, header, problem);
     case ImageFormat::TIFF:
-      return TiffHeader(path, header, problem);
+      return TiffHeader(path, header, problem) && WithinLimit(header, maxSamples, problem) &&
+        CheckTiffDirectories(path, header.depth, problem);
     case ImageFormat::BMP:
       return BmpHeader(path, header, problem) && WithinLimit(header, maxSamples, problem) &&
         BmpPixelsInFile(path, header, problem);

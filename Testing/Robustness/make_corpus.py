@@ -226,6 +226,11 @@ def tiff_vtk_overflow_kinds():
     page2 = entries(1, 1, 1, len(second), w=2 * W, offset=8 + len(first))
     ifd2 = ifd1 + len(ifd(page1, 0))
     yield "pages_differ", b"II*\0" + struct.pack("<I", ifd1) + first + second + ifd(page1, ifd2) + ifd(page2, 0)
+    # a second page libtiff refuses (RowsPerStrip with 2 values): VTK reads it anyway
+    # (the fuzz search's division by zero inside libtiff)
+    page2 = entries(1, 1, 1, len(first))[:7] + [(278, 4, 2, H), (279, 4, 1, len(first))]
+    ifd2 = ifd1 + len(ifd(page1, 0))
+    yield "page_libtiff_refuses", b"II*\0" + struct.pack("<I", ifd1) + first + second + ifd(page1, ifd2) + ifd(page2, 0)
 
 
 # --- VTK image files ----------------------------------------------------------------
