@@ -33,10 +33,18 @@ vtkPolyData* vtkPolyDataShockAdvectionFilter::GetOutput(int port)
 }
 
 vtkPolyDataShockAdvectionFilter::vtkPolyDataShockAdvectionFilter()
+  : PreparedMeshes(new vtkShockPolyDataInternals::MeshCache)
 {
   // Default array: the active point scalars.
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS,
     vtkDataSetAttributes::SCALARS);
+}
+
+vtkPolyDataShockAdvectionFilter::~vtkPolyDataShockAdvectionFilter() = default;
+
+int vtkPolyDataShockAdvectionFilter::GetNumberOfMeshPreparations() const
+{
+  return this->PreparedMeshes->GetNumberOfPreparations();
 }
 
 int vtkPolyDataShockAdvectionFilter::FillInputPortInformation(int, vtkInformation* info)
@@ -157,15 +165,17 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
     return false;
   }
 
-  vtkShockPolyDataInternals::PreparedMesh prepared;
+  // The mesh as prepared for the last execution, unless the points or cells changed.
   std::string error;
-  if (!vtkShockPolyDataInternals::PrepareMesh(input, false, this->NumberOfThreads, prepared, error, unit))
+  const vtkShockPolyDataInternals::PreparedMesh* prepared =
+    this->PreparedMeshes->Get(input, false, this->NumberOfThreads, error, &this->LastSetupSeconds, unit);
+  if (!prepared)
   {
     vtkErrorMacro(<< error);
     return false;
   }
-  const vtkShockPolyDataInternals::Triangles& triangles = prepared.triangles;
-  const shock::TriangleMesh& mesh = prepared.mesh;
+  const vtkShockPolyDataInternals::Triangles& triangles = prepared->triangles;
+  const shock::TriangleMesh& mesh = prepared->mesh;
   if (cellData && triangles.nonTriangleCells > 0)
   {
     vtkErrorMacro("Cell array '" << name << "' lives on " << triangles.nonTriangleCells
@@ -174,7 +184,6 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
                                     "(vtkTriangleFilter, or ParaView's Triangulate filter).");
     return false;
   }
-  this->LastSetupSeconds = prepared.seconds;
 
   // Everything checked: the output starts as the input, arrays shared.
   output->ShallowCopy(input);
@@ -280,4 +289,5 @@ bool vtkPolyDataShockAdvectionFilter::LocalValueRange(
 void vtkPolyDataShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfMeshPreparations: " << this->GetNumberOfMeshPreparations() << "\n";
 }

@@ -70,8 +70,14 @@
 #include "vtkFiltersShockModule.h" // for export macro
 #include "vtkShockAdvectionFilter.h"
 
+#include <memory> // for std::unique_ptr
+
 class vtkDataArray;
 class vtkPolyData;
+namespace vtkShockPolyDataInternals
+{
+class MeshCache;
+}
 
 class VTKFILTERSSHOCK_EXPORT vtkPolyDataShockAdvectionFilter : public vtkShockAdvectionFilter
 {
@@ -86,9 +92,17 @@ public:
   vtkPolyData* GetOutput(int port);
   ///@}
 
+  /**
+   * How many times the mesh was prepared (triangles, connectivity, geometry).
+   * The prepared mesh is kept between executions and prepared again only
+   * when the input's points or cells change, so changing only a parameter
+   * (e.g. FlowTime) and updating again does not add one.
+   */
+  int GetNumberOfMeshPreparations() const;
+
 protected:
   vtkPolyDataShockAdvectionFilter();
-  ~vtkPolyDataShockAdvectionFilter() override = default;
+  ~vtkPolyDataShockAdvectionFilter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
@@ -113,6 +127,9 @@ protected:
 private:
   vtkPolyDataShockAdvectionFilter(const vtkPolyDataShockAdvectionFilter&) = delete;
   void operator=(const vtkPolyDataShockAdvectionFilter&) = delete;
+
+  /// The prepared mesh of the last input, kept between executions.
+  std::unique_ptr<vtkShockPolyDataInternals::MeshCache> PreparedMeshes;
 };
 
 #endif

@@ -23,6 +23,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 
@@ -275,6 +276,61 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return true;
+}
+
+namespace
+{
+/// What PrepareMesh reads from `input`, as numbers (see MeshCache).
+std::vector<unsigned long long> PreparationKey(vtkPolyData* input, bool mergeCoincidentPoints)
+{
+  using Number = unsigned long long;
+  std::vector<Number> key{ mergeCoincidentPoints ? 1ULL : 0ULL };
+  vtkPoints* points = input->GetPoints();
+  key.insert(key.end(),
+    { reinterpret_cast<Number>(points), points ? Number{ points->GetMTime() } : 0ULL,
+      points ? static_cast<Number>(points->GetDataType()) : 0ULL,
+      static_cast<Number>(input->GetNumberOfPoints()) });
+  for (vtkCellArray* cells :
+    { input->GetVerts(), input->GetLines(), input->GetPolys(), input->GetStrips() })
+  {
+    key.insert(key.end(),
+      { reinterpret_cast<Number>(cells), cells ? Number{ cells->GetMTime() } : 0ULL,
+        cells ? static_cast<Number>(cells->GetNumberOfCells()) : 0ULL });
+  }
+  return key;
+}
+}
+
+const PreparedMesh* MeshCache::Get(vtkPolyData* input, bool mergeCoincidentPoints, int threads,
+  std::string& error, double* seconds, double unit)
+{
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<unsigned long long> key = PreparationKey(input, mergeCoincidentPoints);
+  unsigned long long unitBits = 0; // the unit is agreed over processes: it can change alone
+  std::memcpy(&unitBits, &unit, sizeof(unit));
+  key.push_back(unitBits);
+  if (key != this->Key)
+  {
+    this->Clear();
+    ++this->Preparations;
+    if (!PrepareMesh(input, mergeCoincidentPoints, threads, this->Mesh, error, unit))
+    {
+      this->Clear();
+      return nullptr;
+    }
+    this->Key = std::move(key);
+  }
+  if (seconds)
+  {
+    *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  return &this->Mesh;
+}
+
+void MeshCache::Clear()
+{
+  this->Key.clear();
+  this->Mesh = PreparedMesh();
 }
 
 vtkSmartPointer<vtkDoubleArray> TrianglesToCells(const char* name, vtkIdType numberOfCells,

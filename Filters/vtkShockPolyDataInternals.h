@@ -72,6 +72,38 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
 double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece);
 
 /**
+ * The prepared mesh of a filter's input, kept between executions: a filter
+ * executed again with only its parameters changed (ParaView's Apply after a
+ * new FlowTime) does not prepare the mesh again. It is prepared again when
+ * anything PrepareMesh reads changes: the points (object, modification time,
+ * data type, count), the vertex, line, polygon and strip cell arrays (object,
+ * modification time, count: vertices and lines number the polygons' cells), or
+ * the merging of coincident points. The thread count is no part of the key:
+ * the prepared mesh does not depend on it.
+ */
+class MeshCache
+{
+public:
+  /**
+   * The prepared mesh of `input`: the kept one when nothing it depends on has
+   * changed, else prepared anew with PrepareMesh. nullptr with a complete
+   * one-sentence `error` when the input is unusable (nothing is kept then).
+   * `seconds` receives the time this call took; `unit` as for PrepareMesh.
+   */
+  const PreparedMesh* Get(vtkPolyData* input, bool mergeCoincidentPoints, int threads,
+    std::string& error, double* seconds = nullptr, double unit = 1.0);
+  /// Meshes prepared so far (a kept one does not count): how tests see the cache work.
+  int GetNumberOfPreparations() const { return this->Preparations; }
+  /// Forget the kept mesh and free its memory.
+  void Clear();
+
+private:
+  std::vector<unsigned long long> Key; ///< empty: nothing kept
+  PreparedMesh Mesh;
+  int Preparations = 0;
+};
+
+/**
  * A per-cell array of 3-vectors from per-triangle ones: the area-weighted mean
  * of each cell's triangles (zero for cells without triangles).
  */
