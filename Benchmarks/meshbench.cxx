@@ -129,6 +129,7 @@ struct Options
   double maxLoad = 0.5;    ///< wait for a 1-minute load average below this before starting
   double waitMinutes = 15; ///< at most this long
   std::string dump;        ///< write the input and the target result as DUMP-input.ply, DUMP-output.ply
+  std::string writeInput;  ///< write the mode's input mesh there and exit (for Benchmarks/userbench.sh)
 };
 
 std::string DefaultMeshDir()
@@ -817,6 +818,28 @@ std::vector<double> ParseList(const std::string& text)
   return values;
 }
 
+/// --write-input: the mesh the mode would measure (colors: with its colours), written to a file.
+int WriteInput(const Options& options)
+{
+  const bool colours = options.mode == "colors";
+  const std::string name =
+    !options.mesh.empty() ? options.mesh : (colours ? "armadillo" : "ChineseDragon-10kv");
+  const int levels = options.levels >= 0 ? options.levels : (colours ? 2 : 3);
+  BenchMesh bench = PrepareMesh(name, levels, options.meshDir);
+  if (colours)
+  {
+    PaintBlurredColours(bench.mesh, options.blurPasses);
+  }
+  std::string error;
+  if (!shockio::WriteMesh(bench.mesh, options.writeInput, error))
+  {
+    std::cerr << "cannot write " << options.writeInput << ": " << error << "\n";
+    return 2;
+  }
+  std::cerr << "wrote " << options.writeInput << "\n";
+  return 0;
+}
+
 void Usage()
 {
   std::cerr
@@ -845,6 +868,8 @@ void Usage()
        "  --max-load L          wait for a 1-minute load average below L first (default 0.5)\n"
        "  --wait-minutes M      ... for at most M minutes, then run anyway (default 15)\n"
        "  --dump PREFIX         write the input mesh and the target result as PREFIX-*.ply\n"
+       "  --write-input FILE    write the mode's input mesh (colors: with its colours) to FILE\n"
+       "                        (any format of shockfilter, e.g. .ply) and exit, measuring nothing\n"
        "Markdown on stdout, progress on stderr.\n";
 }
 
@@ -940,6 +965,10 @@ bool ParseOptions(int argc, char* argv[], Options& options)
     {
       options.dump = value();
     }
+    else if (arg == "--write-input")
+    {
+      options.writeInput = value();
+    }
     else
     {
       if (arg != "-h" && arg != "--help")
@@ -979,6 +1008,10 @@ int main(int argc, char* argv[])
   {
     Usage();
     return argc > 1 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help") ? 0 : 2;
+  }
+  if (!options.writeInput.empty())
+  {
+    return WriteInput(options);
   }
   std::ostringstream command;
   for (int i = 0; i < argc; ++i)

@@ -28,6 +28,7 @@
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkXMLImageDataWriter.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -821,6 +822,29 @@ void Dump(const std::string& prefix)
   }
 }
 
+/// --write-volume N PATH: the volume of the volume mode at N^3, as a .vti file (Benchmarks/userbench.sh).
+int WriteVolume(const std::string& size, const std::string& path)
+{
+  const int n = std::atoi(size.c_str());
+  if (n < 2 || n > 2048)
+  {
+    std::cerr << "--write-volume: size " << size << " not in 2..2048\n";
+    return 2;
+  }
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(MakeVolume(n, 19990101));
+  writer->SetFileName(path.c_str());
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();
+  if (writer->Write() != 1)
+  {
+    std::cerr << "cannot write " << path << "\n";
+    return 2;
+  }
+  std::cerr << "wrote " << path << "\n";
+  return 0;
+}
+
 void Usage(const char* argv0)
 {
   std::cerr
@@ -836,6 +860,8 @@ void Usage(const char* argv0)
     << "  --cell-budget S        no retries once a measurement has taken S seconds (default 240)\n"
     << "  --max-cell-seconds S   do not repeat a measurement whose first run took longer (default 60)\n"
     << "  --no-volume-single     volume mode: skip the 1-thread run\n"
+    << "  --write-volume N FILE  write the volume mode's volume at N^3 (256: the measured one) as a\n"
+    << "                         .vti file, then exit\n"
     << "  --dump PREFIX          write the image and its t = 16 and 1024 results as PREFIX-*.ppm, then exit\n"
     << "Markdown tables on stdout, progress on stderr.\n";
 }
@@ -903,6 +929,11 @@ int main(int argc, char* argv[])
     {
       Dump(value("--dump"));
       return 0;
+    }
+    else if (arg == "--write-volume")
+    {
+      const std::string size = value("--write-volume");
+      return WriteVolume(size, value("--write-volume"));
     }
     else if (arg == "--no-volume-single")
     {

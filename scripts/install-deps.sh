@@ -2,6 +2,8 @@
 # The one install list of this project: Debian 12 packages needed to build the
 # VTK module, the ParaView plugin, the tests and the benchmarks, and to run the
 # GUI/MPI tests. Idempotent: installs only what is missing. Needs root (or sudo).
+#   bash scripts/install-deps.sh               what the build, the tests and CI need
+#   bash scripts/install-deps.sh --benchmarks  also what only Benchmarks/userbench.sh needs
 set -euo pipefail
 
 PACKAGES=(
@@ -27,6 +29,15 @@ PACKAGES=(
   # headless display for rendering tests and screenshots; MPI launcher
   xvfb xauth mpi-default-bin
 )
+# Only for the benchmarks (not CI): G'MIC, the shock-filter sharpening that
+# Benchmarks/userbench.sh compares against (row "gmic").
+BENCHMARK_PACKAGES=(gmic)
+if [ "${1:-}" = "--benchmarks" ]; then
+  PACKAGES+=("${BENCHMARK_PACKAGES[@]}")
+elif [ $# -gt 0 ]; then
+  echo "usage: bash scripts/install-deps.sh [--benchmarks]" >&2
+  exit 2
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
