@@ -93,9 +93,11 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     output->Initialize();
     return 1; // replicated data: process 0 filters it once
   }
-  // Normalise like the whole surface: data range and mean edge length over all pieces.
+  // Normalise like the whole surface: data range and mean edge length over all
+  // pieces, lengths in the unit of the whole surface (collective).
   this->ParallelValueScale = this->GlobalValueScale(piece.controller, inputVector);
-  this->ParallelLengthScale = this->GlobalMeanEdgeLength(piece.controller, piece.work);
+  const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work);
+  this->ParallelLengthScale = this->GlobalMeanEdgeLength(piece.controller, piece.work) / (unit > 0.0 ? unit : 1.0);
   if (input->GetNumberOfPoints() == 0)
   {
     output->ShallowCopy(input);
@@ -107,7 +109,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   }
   // Filter the piece with its ghost cells; the output holds each owned cell once.
   vtkNew<vtkPolyData> filtered;
-  if (!this->FilterSurface(piece.work, array, association, filtered))
+  if (!this->FilterSurface(piece.work, array, association, filtered, unit))
   {
     return 0;
   }
@@ -143,7 +145,7 @@ double vtkPolyDataShockAdvectionFilter::GlobalMeanEdgeLength(
 }
 
 bool vtkPolyDataShockAdvectionFilter::FilterSurface(
-  vtkPolyData* input, vtkDataArray* selected, int association, vtkPolyData* output)
+  vtkPolyData* input, vtkDataArray* selected, int association, vtkPolyData* output, double unit)
 {
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
   // The selected array as the piece (with ghost cells) has it.
@@ -164,7 +166,7 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   // The mesh as prepared for the last execution, unless the points or cells changed.
   std::string error;
   const vtkShockPolyDataInternals::PreparedMesh* prepared =
-    this->PreparedMeshes->Get(input, false, this->NumberOfThreads, error, &this->LastSetupSeconds);
+    this->PreparedMeshes->Get(input, false, this->NumberOfThreads, error, &this->LastSetupSeconds, unit);
   if (!prepared)
   {
     vtkErrorMacro(<< error);

@@ -122,8 +122,10 @@ protected:
   /// Mean edge length over the cells all pieces own (collective; 0 without a controller).
   double GlobalMeanEdgeLength(vtkMultiProcessController* controller, vtkPolyData* piece);
 
-  /// Filter `selected` (as chosen on the input) on `input` into `output`; false after vtkErrorMacro.
-  bool FilterSurface(vtkPolyData* input, vtkDataArray* selected, int association, vtkPolyData* output);
+  /// Filter `selected` (as chosen on the input) on `input` (lengths in `unit`, see
+  /// vtkShockPolyDataInternals::MeshUnit) into `output`; false after vtkErrorMacro.
+  bool FilterSurface(vtkPolyData* input, vtkDataArray* selected, int association, vtkPolyData* output,
+    double unit = 1.0);
 
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;

@@ -204,10 +204,10 @@ int vtkPolyDataShockSharpenFilter::GetNumberOfMeshPreparations() const
 }
 
 const vtkShockPolyDataInternals::PreparedMesh* vtkPolyDataShockSharpenFilter::Prepare(
-  vtkPolyData* input, std::string& error)
+  vtkPolyData* input, double unit, std::string& error)
 {
-  const vtkShockPolyDataInternals::PreparedMesh* prepared = this->PreparedMeshes->Get(
-    input, this->MergeCoincidentPoints, this->NumberOfThreads, error, &this->LastSetupSeconds);
+  const vtkShockPolyDataInternals::PreparedMesh* prepared = this->PreparedMeshes->Get(input,
+    this->MergeCoincidentPoints, this->NumberOfThreads, error, &this->LastSetupSeconds, unit);
   const int preparation = this->PreparedMeshes->GetNumberOfPreparations();
   if (!prepared || preparation != this->KernelCachePreparation)
   {
@@ -368,9 +368,12 @@ int vtkPolyDataShockSharpenFilter::RequestData(
                   "split over processes: use the CONJUGATE_GRADIENT solvers (solved across them).");
     return 0;
   }
-  // The triangle mesh of the piece (with its ghost cells), kept between executions.
+  // The triangle mesh of the piece (with its ghost cells), in the whole mesh's
+  // length unit, kept between executions.
+  const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work);
   const bool empty = piece.work->GetNumberOfPoints() == 0;
-  const vtkShockPolyDataInternals::PreparedMesh* kept = empty ? nullptr : this->Prepare(piece.work, error);
+  const vtkShockPolyDataInternals::PreparedMesh* kept =
+    empty ? nullptr : this->Prepare(piece.work, unit, error);
   const bool ok = empty || kept;
   if (piece.controller ? vtkShockParallel::AnyFailed(piece.controller, !ok, error) : !ok)
   {
@@ -406,6 +409,10 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   {
     output->ShallowCopy(input);
     return 1; // aborted (the output holds the input), or an empty piece
+  }
+  for (double& x : positions)
+  {
+    x *= unit; // back from the mesh unit (a power of two: exact)
   }
   // The output: the piece's own cells with the new positions and the requested arrays.
   vtkNew<vtkPolyData> sharpened;

@@ -295,8 +295,10 @@ protected:
     double meanEdgeLength, std::vector<double>& positions, std::vector<double>& normals,
     shock::SharpeningReport& report, shock::MeshFlowFields& fields);
 
-  /// The prepared mesh of `input`, kept between executions (the kernels' cache goes with it).
-  const vtkShockPolyDataInternals::PreparedMesh* Prepare(vtkPolyData* input, std::string& error);
+  /// The prepared mesh of `input` in the length unit `unit` (MeshUnit), kept between
+  /// executions (the kernels' cache goes with it).
+  const vtkShockPolyDataInternals::PreparedMesh* Prepare(
+    vtkPolyData* input, double unit, std::string& error);
 
   /// `input` with the new positions, the field data of the run and the requested arrays.
   void BuildOutput(vtkPolyData* input, const vtkShockPolyDataInternals::PreparedMesh& prepared,

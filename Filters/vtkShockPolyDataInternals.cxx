@@ -10,6 +10,8 @@
 #include "vtkIdList.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkCommunicator.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -23,6 +25,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <numeric>
 
 namespace
@@ -277,8 +281,40 @@ bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error)
   return AddStrips(input, cellId, out, error);
 }
 
+double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece)
+{
+  double side = 0.0;
+  if (piece && piece->GetNumberOfPoints() > 0)
+  {
+    double bounds[6];
+    piece->GetBounds(bounds);
+    for (int a = 0; a < 3; ++a)
+    {
+      side = std::max(side, bounds[2 * a + 1] - bounds[2 * a]);
+    }
+    side = std::isnan(side) ? std::numeric_limits<double>::infinity() : side;
+  }
+  if (controller && controller->GetNumberOfProcesses() > 1)
+  {
+    double largest = side;
+    controller->AllReduce(&side, &largest, 1, vtkCommunicator::MAX_OP);
+    side = largest;
+  }
+  if (!std::isfinite(side))
+  {
+    return 0.0;
+  }
+  if (side == 0.0 || (side >= std::ldexp(1.0, -64) && side <= std::ldexp(1.0, 64)))
+  {
+    return 1.0;
+  }
+  int exponent = 0;
+  std::frexp(side, &exponent); // side = m 2^exponent, m in [0.5, 1)
+  return std::ldexp(1.0, exponent);
+}
+
 bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, PreparedMesh& out,
-  std::string& error)
+  std::string& error, double unit)
 {
   const auto start = std::chrono::steady_clock::now();
   out.representative.clear();
@@ -292,6 +328,18 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
   {
     error = "Cannot use the mesh: a point coordinate is not finite (NaN or infinity).";
     return false;
+  }
+  if (!(unit > 0.0))
+  {
+    error = "Cannot use the mesh: it spans more than the double range (its size is not a finite number).";
+    return false;
+  }
+  if (unit != 1.0)
+  {
+    for (double& x : out.triangles.points)
+    {
+      x /= unit; // a power of two: exact
+    }
   }
   if (mergeCoincidentPoints)
   {
@@ -335,15 +383,18 @@ std::vector<unsigned long long> PreparationKey(vtkPolyData* input, bool mergeCoi
 }
 
 const PreparedMesh* MeshCache::Get(vtkPolyData* input, bool mergeCoincidentPoints, int threads,
-  std::string& error, double* seconds)
+  std::string& error, double* seconds, double unit)
 {
   const auto start = std::chrono::steady_clock::now();
   std::vector<unsigned long long> key = PreparationKey(input, mergeCoincidentPoints);
+  unsigned long long unitBits = 0; // the unit is agreed over processes: it can change alone
+  std::memcpy(&unitBits, &unit, sizeof(unit));
+  key.push_back(unitBits);
   if (key != this->Key)
   {
     this->Clear();
     ++this->Preparations;
-    if (!PrepareMesh(input, mergeCoincidentPoints, threads, this->Mesh, error))
+    if (!PrepareMesh(input, mergeCoincidentPoints, threads, this->Mesh, error, unit))
     {
       this->Clear();
       return nullptr;

@@ -21,6 +21,7 @@ namespace vtkShockParallel
 struct SurfacePiece;
 }
 class vtkInformationVector;
+class vtkMultiProcessController;
 class vtkDoubleArray;
 class vtkPolyData;
 
@@ -58,11 +59,23 @@ struct PreparedMesh
 
 /**
  * Extract the triangles, optionally merge exactly coincident points (the mesh
- * then uses one copy of each; the others have no triangles), and build the mesh.
+ * then uses one copy of each; the others have no triangles), and build the mesh
+ * of the points divided by `unit` (see MeshUnit; 0: the mesh's size is not finite).
  * Returns false with a complete one-sentence `error` when the input is unusable.
  */
 bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, PreparedMesh& out,
-  std::string& error);
+  std::string& error, double unit = 1.0);
+
+/**
+ * The length unit a surface filter works in: 1 for a mesh whose bounding box's
+ * largest side lies in [2^-64, 2^64] (filtered as it is); else the power of two
+ * nearest above that side. The filter divides the points by it (exactly) and
+ * multiplies the lengths it outputs by it: the algorithm is scale-covariant,
+ * and lengths to the fourth power of meshes beyond about 1e+-75 would leave
+ * the double range (NaN, no change, false flipped triangles). 0 when the side
+ * is not finite. With a controller all processes agree (collective).
+ */
+double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece);
 
 /**
  * The prepared mesh of a filter's input, kept between executions: a filter
@@ -81,10 +94,10 @@ public:
    * The prepared mesh of `input`: the kept one when nothing it depends on has
    * changed, else prepared anew with PrepareMesh. nullptr with a complete
    * one-sentence `error` when the input is unusable (nothing is kept then).
-   * `seconds` receives the time this call took.
+   * `seconds` receives the time this call took; `unit` as for PrepareMesh.
    */
   const PreparedMesh* Get(vtkPolyData* input, bool mergeCoincidentPoints, int threads,
-    std::string& error, double* seconds = nullptr);
+    std::string& error, double* seconds = nullptr, double unit = 1.0);
   /// Meshes prepared so far (a kept one does not count): how tests see the cache work.
   int GetNumberOfPreparations() const { return this->Preparations; }
   /// Forget the kept mesh and free its memory.

@@ -44,6 +44,12 @@ struct ImageHeader
 bool CheckImageFile(const std::string& path, const ImageFormat& format, std::uint64_t maxSamples,
   ImageHeader& header, std::string& error);
 
+/**
+ * Whether libtiff reads each of the `directories` directories (pages) of the
+ * TIFF file `path` without an error; else `problem` says which error.
+ */
+bool CheckTiffDirectories(const std::string& path, std::uint64_t directories, std::string& problem);
+
 /// Whether `text` (a whole PNG file) is a complete, undamaged PNG; else `problem` says why.
 bool CheckPng(const std::string& text, ImageHeader& header, std::uint64_t maxSamples, std::string& problem);
 

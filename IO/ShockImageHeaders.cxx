@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -128,28 +129,58 @@ bool JpegHeader(const std::string& path, ImageHeader& header, std::string& probl
   return false;
 }
 
-/// BMP: the BITMAPINFOHEADER (or the OS/2 BITMAPCOREHEADER).
+/// A signed little-endian field of `size` bytes (2 or 4), as VTK's BMP reader reads it.
+std::int64_t SignedLE(const std::string& bytes, std::size_t at, int size)
+{
+  const std::uint64_t value = Unsigned(bytes, at, size, true);
+  return size == 2 ? static_cast<std::int16_t>(value) : static_cast<std::int32_t>(value);
+}
+
+/**
+ * BMP: what VTK 9.2's vtkBMPReader can read. Its ExecuteInformation reports a
+ * problem but does not stop the read: it then reads the pixels with what it
+ * had set so far (no colour table for an 8-bit file whose header ends early:
+ * a null pointer; no depth at all for an unknown header: a read past a buffer).
+ * So the whole header must be there and be one of its two kinds (the 40-byte
+ * BITMAPINFOHEADER, the 12-byte OS/2 BITMAPCOREHEADER, whose sizes it reads as
+ * signed 16-bit numbers), 8 or 24 bits, uncompressed (it reads compressed data
+ * as pixels), with every pixel row inside the file.
+ */
 bool BmpHeader(const std::string& path, ImageHeader& header, std::string& problem)
 {
   const std::string bytes = ReadBytes(path, 0, 54);
-  if (bytes.size() < 26 || bytes.compare(0, 2, "BM") != 0)
+  if (bytes.size() < 18 || bytes.compare(0, 2, "BM") != 0)
   {
     problem = "not a BMP file (too short, or no 'BM' signature)";
     return false;
   }
   const std::uint64_t infoSize = Unsigned(bytes, 14, 4, true);
-  const bool core = infoSize == 12;
-  if (!core && bytes.size() < 30)
+  if (infoSize != 40 && infoSize != 12)
   {
-    problem = "the BMP header is truncated";
+    problem = "a BMP with a " + std::to_string(infoSize) +
+      "-byte info header (VTK reads the 40-byte BITMAPINFOHEADER and the 12-byte OS/2 header)";
     return false;
   }
-  const auto width = static_cast<std::int32_t>(Unsigned(bytes, 18, core ? 2 : 4, true));
-  const auto height = static_cast<std::int32_t>(Unsigned(bytes, core ? 20 : 22, core ? 2 : 4, true));
+  const bool core = infoSize == 12;
+  if (bytes.size() < 14 + infoSize)
+  {
+    problem = "the BMP header is truncated (" + std::to_string(bytes.size()) + " of " +
+      std::to_string(14 + infoSize) + " bytes)";
+    return false;
+  }
+  const std::int64_t width = SignedLE(bytes, 18, core ? 2 : 4);
+  const std::int64_t height = SignedLE(bytes, core ? 20 : 22, core ? 2 : 4);
   const std::uint64_t bits = Unsigned(bytes, core ? 24 : 28, 2, true);
+  const std::uint64_t compression = core ? 0 : Unsigned(bytes, 30, 4, true);
   if (bits != 8 && bits != 24)
   {
     problem = "a BMP of " + std::to_string(bits) + " bits per pixel (VTK reads 8 and 24)";
+    return false;
+  }
+  if (compression != 0)
+  {
+    problem = "a compressed BMP (compression " + std::to_string(compression) +
+      "; VTK reads uncompressed BMP files only)";
     return false;
   }
   if (width <= 0 || height == 0 || height == std::numeric_limits<std::int32_t>::min())
@@ -158,8 +189,32 @@ bool BmpHeader(const std::string& path, ImageHeader& header, std::string& proble
       " pixels";
     return false;
   }
-  header = { static_cast<std::uint64_t>(width), static_cast<std::uint64_t>(std::abs(static_cast<std::int64_t>(height))),
-    1, bits == 24 ? 3u : 1u, 1, true };
+  header = { static_cast<std::uint64_t>(width), static_cast<std::uint64_t>(std::abs(height)), 1,
+    bits == 24 ? 3u : 1u, 1, true };
+  return true;
+}
+
+/// Whether the pixel rows of the BMP `path` (its header checked) lie inside the file.
+bool BmpPixelsInFile(const std::string& path, const ImageHeader& header, std::string& problem)
+{
+  const std::string bytes = ReadBytes(path, 0, 18);
+  const std::uint64_t offset = Unsigned(bytes, 10, 4, true);
+  const std::uint64_t headerEnd = 14 + Unsigned(bytes, 14, 4, true);
+  // Rows are padded to 4 bytes; VTK reads the last one without its padding.
+  const std::uint64_t row = header.width * header.components;
+  const std::uint64_t needed = ((row + 3) / 4 * 4) * (header.height - 1) + row;
+  std::error_code code;
+  const std::uint64_t size = std::filesystem::file_size(path, code);
+  if (offset < headerEnd)
+  {
+    problem = "the BMP pixel data offset " + std::to_string(offset) + " lies inside its header";
+    return false;
+  }
+  if (!code && (offset > size || size - offset < needed))
+  {
+    problem = "the BMP file holds fewer pixels than its header declares (truncated?)";
+    return false;
+  }
   return true;
 }
 
@@ -220,7 +275,98 @@ bool PnmHeader(
   return true;
 }
 
-/// TIFF (classic, either byte order): the first directory's size, and the number of directories (slices).
+/// What a TIFF directory declares of its pixels (0 where a tag is absent or unreadable).
+struct TiffLayout
+{
+  std::uint64_t width = 0, height = 0, samples = 1, bits = 1, photometric = 0;
+  bool operator!=(const TiffLayout& o) const
+  {
+    return this->width != o.width || this->height != o.height || this->samples != o.samples ||
+      this->bits != o.bits;
+  }
+};
+
+/// The first value of the TIFF directory entry at `entry` of `bytes` (SHORT or LONG; inline or at its offset).
+std::uint64_t TiffFirstValue(const std::string& path, const std::string& bytes, std::size_t entry, bool little)
+{
+  const std::uint64_t type = Unsigned(bytes, entry + 2, 2, little);
+  const std::uint64_t count = Unsigned(bytes, entry + 4, 4, little);
+  const int size = type == 3 ? 2 : type == 4 ? 4 : 0;
+  if (size == 0 || count == 0)
+  {
+    return 0; // libtiff ignores a tag of another type
+  }
+  if (count * size <= 4)
+  {
+    return Unsigned(bytes, entry + 8, size, little);
+  }
+  const std::string value = ReadBytes(path, Unsigned(bytes, entry + 8, 4, little), size);
+  return value.size() == static_cast<std::size_t>(size) ? Unsigned(value, 0, size, little) : 0;
+}
+
+/**
+ * The layout of the TIFF directory `bytes` (its entries and next offset);
+ * false with `problem` set for a tag listed twice (libtiff takes the first, a
+ * reader of the last would check another size) or a size that is not one SHORT or LONG.
+ */
+bool TiffDirectory(const std::string& path, const std::string& bytes, std::uint64_t entries, bool little,
+  TiffLayout& layout, std::string& problem)
+{
+  std::set<std::uint64_t> tags;
+  for (std::size_t e = 0; e < entries; ++e)
+  {
+    const std::size_t entry = e * 12;
+    const std::uint64_t tag = Unsigned(bytes, entry, 2, little);
+    if (!tags.insert(tag).second)
+    {
+      problem = "a TIFF directory lists tag " + std::to_string(tag) + " twice";
+      return false;
+    }
+    const std::uint64_t type = Unsigned(bytes, entry + 2, 2, little);
+    if ((tag == 256 || tag == 257 || tag == 277) &&
+      ((type != 3 && type != 4) || Unsigned(bytes, entry + 4, 4, little) != 1))
+    {
+      problem = "the TIFF tag " + std::to_string(tag) + " is not one SHORT or LONG value";
+      return false;
+    }
+    const std::uint64_t value = TiffFirstValue(path, bytes, entry, little);
+    layout.width = tag == 256 ? value : layout.width;
+    layout.height = tag == 257 ? value : layout.height;
+    layout.samples = tag == 277 ? value : layout.samples;
+    layout.bits = tag == 258 ? value : layout.bits;
+    layout.photometric = tag == 262 ? value : layout.photometric;
+  }
+  return true;
+}
+
+/**
+ * Whether VTK 9.2's vtkTIFFReader reads pixels of `layout` (the first
+ * directory's) into a buffer of the right size: it makes 3 components of 2
+ * samples per pixel but writes 4 per pixel into them when it reads through
+ * libtiff's RGBA interface, and it copies 3 samples per pixel of an RGB or
+ * YCbCr image into as many components as the samples.
+ */
+bool TiffLayoutVtkReads(const TiffLayout& layout, std::string& problem)
+{
+  if (layout.samples == 2)
+  {
+    problem = "a TIFF of 2 samples per pixel (VTK 9.2's reader writes past its buffer for them)";
+    return false;
+  }
+  if ((layout.photometric == 2 || layout.photometric == 6) && layout.samples < 3)
+  {
+    problem = "a TIFF of " + std::string(layout.photometric == 2 ? "RGB" : "YCbCr") + " colours with " +
+      std::to_string(layout.samples) + " sample per pixel (3 or more needed)";
+    return false;
+  }
+  return true;
+}
+
+/**
+ * TIFF (classic, either byte order): the first directory's size, and the
+ * number of directories (slices). VTK reads every directory with the first's
+ * layout, so all must declare the same size, samples and bits per sample.
+ */
 bool TiffHeader(const std::string& path, ImageHeader& header, std::string& problem)
 {
   std::string bytes = ReadBytes(path, 0, 8);
@@ -232,6 +378,7 @@ bool TiffHeader(const std::string& path, ImageHeader& header, std::string& probl
   }
   std::uint64_t offset = Unsigned(bytes, 4, 4, little);
   std::set<std::uint64_t> seen;
+  TiffLayout first;
   header = { 0, 0, 0, 1, 1, true };
   std::uint64_t budget = 64 << 20; // bytes of directories read: a chain of them cannot make this slow
   while (offset != 0 && seen.insert(offset).second)
@@ -250,29 +397,23 @@ bool TiffHeader(const std::string& path, ImageHeader& header, std::string& probl
       problem = "a TIFF directory is empty or truncated";
       return false;
     }
-    std::set<std::uint64_t> tags;
-    for (std::size_t e = 0; e < entries && header.depth == 0; ++e)
+    TiffLayout layout;
+    if (!TiffDirectory(path, bytes, entries, little, layout, problem))
     {
-      const std::uint64_t tag = Unsigned(bytes, e * 12, 2, little);
-      if (!tags.insert(tag).second)
-      {
-        // libtiff takes the first, a reader of the last would check another size.
-        problem = "a TIFF directory lists tag " + std::to_string(tag) + " twice";
-        return false;
-      }
-      const std::uint64_t type = Unsigned(bytes, e * 12 + 2, 2, little);
-      const bool isShort = type == 3;
-      if ((tag == 256 || tag == 257 || tag == 277) &&
-        ((type != 3 && type != 4) || Unsigned(bytes, e * 12 + 4, 4, little) != 1))
-      {
-        problem = "the TIFF tag " + std::to_string(tag) + " is not one SHORT or LONG value";
-        return false;
-      }
-      const std::uint64_t value = Unsigned(bytes, e * 12 + 8, isShort ? 2 : 4, little);
-      header.width = tag == 256 ? value : header.width;
-      header.height = tag == 257 ? value : header.height;
-      header.components = tag == 277 ? value : header.components;
-      header.bytesPerComponent = tag == 258 && isShort ? std::max<std::uint64_t>(1, value / 8) : header.bytesPerComponent;
+      return false;
+    }
+    if (header.depth == 0)
+    {
+      first = layout;
+      header.width = layout.width;
+      header.height = layout.height;
+      header.components = layout.samples;
+      header.bytesPerComponent = std::max<std::uint64_t>(1, layout.bits / 8);
+    }
+    else if (layout != first)
+    {
+      problem = "the TIFF directories (pages) differ in size, samples or bits per sample (VTK reads all as the first)";
+      return false;
     }
     ++header.depth;
     offset = Unsigned(bytes, entries * 12, 4, little);
@@ -282,7 +423,7 @@ bool TiffHeader(const std::string& path, ImageHeader& header, std::string& probl
     problem = "the TIFF file declares no image size";
     return false;
   }
-  return true;
+  return TiffLayoutVtkReads(first, problem);
 }
 
 /// The first `count` numbers after `key` in `text` (e.g. "DIMENSIONS" or "WholeExtent=\""); false if absent.
@@ -344,9 +485,11 @@ bool ReadHeader(const std::string& path, const ImageFormat& format, std::uint64_
     case ImageFormat::JPEG:
       return JpegHeader(path, header, problem);
     case ImageFormat::TIFF:
-      return TiffHeader(path, header, problem);
+      return TiffHeader(path, header, problem) && WithinLimit(header, maxSamples, problem) &&
+        CheckTiffDirectories(path, header.depth, problem);
     case ImageFormat::BMP:
-      return BmpHeader(path, header, problem);
+      return BmpHeader(path, header, problem) && WithinLimit(header, maxSamples, problem) &&
+        BmpPixelsInFile(path, header, problem);
     case ImageFormat::PNM:
       return PnmHeader(path, maxSamples, header, problem);
     case ImageFormat::VTI:

@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -170,6 +171,104 @@ TEST(ShockImageIO, PnmHeadersVtkLoopsOnAreRefusedAtOnce)
     EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
     EXPECT_EQ(error, path + ": malformed PNM header (expected width, height and maximum value as numbers)");
   }
+}
+
+std::string LittleEndian(std::uint32_t value, int bytes)
+{
+  std::string text;
+  for (int i = 0; i < bytes; ++i)
+  {
+    text += static_cast<char>(value >> (8 * i));
+  }
+  return text;
+}
+
+/**
+ * A BMP file (Microsoft's BITMAPFILEHEADER, then a BITMAPINFOHEADER of 40 bytes
+ * or a BITMAPCOREHEADER of 12) of `width` x `height` pixels of `bits` bits,
+ * with a grey colour table of 256 entries for 8 bits, and `pixelBytes` bytes of
+ * pixels (rows padded to 4 bytes), the pixel offset pointing after the table.
+ */
+std::string Bmp(std::int32_t width, std::int32_t height, int bits, std::size_t pixelBytes, int info = 40,
+  std::uint32_t compression = 0)
+{
+  std::string header = info == 12
+    ? LittleEndian(12, 4) + LittleEndian(static_cast<std::uint32_t>(width), 2) +
+      LittleEndian(static_cast<std::uint32_t>(height), 2) + LittleEndian(1, 2) + LittleEndian(bits, 2)
+    : LittleEndian(static_cast<std::uint32_t>(info), 4) + LittleEndian(static_cast<std::uint32_t>(width), 4) +
+      LittleEndian(static_cast<std::uint32_t>(height), 4) + LittleEndian(1, 2) + LittleEndian(bits, 2) +
+      LittleEndian(compression, 4) + std::string(20, '\0');
+  header.resize(std::max<std::size_t>(header.size(), static_cast<std::size_t>(info)), '\0');
+  std::string table;
+  for (int i = 0; bits == 8 && i < 256; ++i)
+  {
+    // Blue, green, red (and a reserved byte in the 40-byte kind): entry i is (255 - i, i, i / 2).
+    table += std::string{ static_cast<char>(i / 2), static_cast<char>(i), static_cast<char>(255 - i) } +
+      (info == 12 ? "" : std::string(1, '\0'));
+  }
+  std::string pixels;
+  for (std::size_t i = 0; i < pixelBytes; ++i)
+  {
+    pixels += static_cast<char>(i * 37 % 256);
+  }
+  const auto offset = static_cast<std::uint32_t>(14 + header.size() + table.size());
+  return "BM" + LittleEndian(offset + static_cast<std::uint32_t>(pixels.size()), 4) + LittleEndian(0, 4) +
+    LittleEndian(offset, 4) + header + table + pixels;
+}
+
+/// ReadImage's error on a file `name` holding `bytes` without its "<path>: " (empty if it was read).
+std::string Refusal(const std::string& name, const std::string& bytes)
+{
+  const std::string path = TempPath(name);
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  std::string error;
+  const auto image = shockio::ReadImage(path, shockio::DefaultMaxSamples, error);
+  EXPECT_EQ(image == nullptr, !error.empty()) << error;
+  EXPECT_TRUE(error.empty() || error.rfind(path + ": ", 0) == 0) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+  return error.empty() ? error : error.substr(path.size() + 2);
+}
+
+TEST(ShockImageIO, BmpFilesVtkReadsWellPassAndTheOthersAreRefused)
+{
+  // 3 x 2 pixels, rows of 3 bytes padded to 4 (8 bits) or 9 padded to 12 (24 bits).
+  EXPECT_EQ(Refusal("grey.bmp", Bmp(3, 2, 8, 8)), "");
+  EXPECT_EQ(Refusal("core.bmp", Bmp(3, 2, 8, 8, 12)), "");
+  EXPECT_EQ(Refusal("rgb.bmp", Bmp(3, -2, 24, 24)), "");
+  // The colour table is applied: pixel (0, 0) is byte 0 (entry 0), pixel (1, 0) byte 37.
+  std::string error;
+  const std::string path = TempPath("grey.bmp");
+  const auto image = shockio::ReadImage(path, shockio::DefaultMaxSamples, error);
+  ASSERT_NE(image, nullptr) << error;
+  auto* colour = image->GetPointData()->GetScalars();
+  ASSERT_EQ(colour->GetNumberOfComponents(), 3);
+  EXPECT_EQ(colour->GetComponent(1, 0), 255 - 37);
+  EXPECT_EQ(colour->GetComponent(1, 1), 37);
+  EXPECT_EQ(colour->GetComponent(1, 2), 37 / 2);
+
+  // Of the kind of the 30-byte file the fuzz search found (seeds/bmp/crash-bmp-reader-segv.bmp):
+  // an 8-bit 40-byte header that ends after the bit count; VTK 9.2 read it through a null pointer.
+  const std::string found = Bmp(50, 40, 8, 0).substr(0, 30);
+  EXPECT_EQ(Refusal("found.bmp", found), "the BMP header is truncated (30 of 54 bytes)");
+  EXPECT_EQ(Refusal("short.bmp", Bmp(3, 2, 24, 24, 12).substr(0, 25)),
+    "the BMP header is truncated (25 of 26 bytes)");
+  // Header kinds VTK does not read (its reader then reads pixels of depth 0).
+  for (const int info : { 0, 41, 108, 124 })
+  {
+    EXPECT_EQ(Refusal("kind.bmp", Bmp(3, 2, 24, 24, info)),
+      "a BMP with a " + std::to_string(info) +
+        "-byte info header (VTK reads the 40-byte BITMAPINFOHEADER and the 12-byte OS/2 header)");
+  }
+  EXPECT_EQ(Refusal("rle.bmp", Bmp(3, 2, 8, 8, 40, 1)),
+    "a compressed BMP (compression 1; VTK reads uncompressed BMP files only)");
+  // The OS/2 header's sizes are signed 16-bit numbers: 0x8000 is -32768.
+  EXPECT_EQ(Refusal("wide.bmp", Bmp(0x8000, 2, 24, 24, 12)),
+    "the BMP header declares -32768x2 pixels");
+  EXPECT_EQ(Refusal("rows.bmp", Bmp(3, 2, 24, 20)),
+    "the BMP file holds fewer pixels than its header declares (truncated?)");
+  std::string inside = Bmp(3, 2, 24, 24);
+  inside[10] = 20;
+  EXPECT_EQ(Refusal("inside.bmp", inside), "the BMP pixel data offset 20 lies inside its header");
 }
 
 /// A 16 x 8 RGB test image, its point scalars named "Colour".

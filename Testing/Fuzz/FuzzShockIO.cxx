@@ -23,12 +23,18 @@ namespace
 /// A small limit keeps each run fast; the limit itself is checked like any other.
 constexpr std::uint64_t FuzzMaxSamples = 1 << 20;
 
-/// The scratch file of this process for inputs of `extension`.
+/**
+ * The scratch file of this process for inputs of `extension`. Its name has
+ * the same length in every process (the process id in 10 digits): messages
+ * that contain it then take the same code paths, and a search with a fixed
+ * seed finds the same inputs on every run.
+ */
 std::string InputPath(const std::string& extension)
 {
   const char* directory = std::getenv("TMPDIR");
-  return std::string(directory ? directory : "/tmp") + "/shockfuzz-" + std::to_string(::getpid()) + "." +
-    extension;
+  char id[16];
+  std::snprintf(id, sizeof(id), "%010ld", static_cast<long>(::getpid()));
+  return std::string(directory ? directory : "/tmp") + "/shockfuzz-" + id + "." + extension;
 }
 } // namespace
 

@@ -131,24 +131,38 @@ def pnm_kinds():
         add("pnm_%s.ppm" % name, header, "image", "refuse")
 
 
-def bmp(w=W, h=H, bits=24, offset=54, info=40, data=None, planes=1):
+def bmp(w=W, h=H, bits=24, offset=54, info=40, data=None, planes=1, compression=0):
     row = ((w * bits + 31) // 32) * 4 if w > 0 and bits > 0 else 0
     data = bytes((i * 3) % 256 for i in range(row * abs(h))) if data is None else data
     header = b"BM" + struct.pack("<IHHI", offset + len(data), 0, 0, offset)
-    dib = struct.pack("<IiiHHIIiiII", info, w, h, planes, bits, 0, len(data), 2835, 2835, 0, 0)
+    if info == 12:  # the OS/2 BITMAPCOREHEADER: 16-bit sizes
+        dib = struct.pack("<IHHHH", info, w & 0xFFFF, h & 0xFFFF, planes, bits)
+    else:
+        dib = struct.pack("<IiiHHIIiiII", info, w, h, planes, bits, compression, len(data), 2835, 2835, 0, 0)
     return header + dib + data
 
 
 def bmp_kinds():
     add("bmp_valid.bmp", bmp(), "image", "ok")
+    add("bmp_valid_core_header.bmp", bmp(info=12, offset=26), "image", "ok")
+    grey_table = b"".join(bytes((i, i, i, 0)) for i in range(256))
+    add("bmp_valid_8bit.bmp", bmp(bits=8, offset=54 + 1024, data=grey_table + bytes(((W + 3) // 4 * 4) * H)),
+        "image", "ok")
     add("bmp_top_down.bmp", bmp(h=-H), "image", "any")
     for name, data in [("huge", bmp(65000, 65000, data=b"\0" * 64)), ("zero_width", bmp(0, H, data=b"")),
                        ("zero_height", bmp(W, 0, data=b"")), ("negative_width", bmp(-W, H, data=b"\0" * 64)),
                        ("int_min_height", bmp(W, -2**31, data=b"\0" * 64)), ("truncated_data", bmp()[:100]),
                        ("truncated_header", bmp()[:20]), ("bits_0", bmp(bits=0, data=b"\0" * 64)),
                        ("bits_7", bmp(bits=7, data=b"\0" * 64)), ("offset_beyond", bmp(offset=10**6)),
-                       ("not_bm", b"XM" + bmp()[2:]), ("info_size_0", bmp(info=0))]:
-        add("bmp_%s.bmp" % name, data, "image", "any" if name in ("bits_0", "bits_7", "info_size_0") else "refuse")
+                       ("not_bm", b"XM" + bmp()[2:]), ("info_size_0", bmp(info=0)),
+                       # the fuzz search's 30-byte file: an 8-bit 40-byte header ending after the bit count
+                       # (VTK 9.2 read it through a null pointer: no colour table)
+                       ("header_ends_after_bits", bmp(bits=8)[:30]),
+                       ("info_size_124", bmp(info=124)), ("info_size_108", bmp(info=108)),
+                       ("compressed_rle8", bmp(bits=8, compression=1)),
+                       ("core_negative_width", bmp(w=0x8000, info=12, offset=26, data=b"\0" * 64)),
+                       ("offset_inside_header", bmp(offset=20))]:
+        add("bmp_%s.bmp" % name, data, "image", "refuse")
 
 
 # --- TIFF ---------------------------------------------------------------------------
@@ -184,6 +198,39 @@ def tiff_kinds():
                                    (256, 4, 1, W), (257, 4, 1, H), (258, 3, 1, 8), (259, 3, 1, 60000), (273, 4, 1, 8),
                                    (277, 3, 1, 1), (279, 4, 1, W * H)]), "any")]:
         add("tiff_%s.tif" % name, data, "image", expect)
+    for name, data in tiff_vtk_overflow_kinds():
+        add("tiff_%s.tif" % name, data, "image", "refuse")
+
+
+def tiff_vtk_overflow_kinds():
+    """TIFF files VTK 9.2's reader writes or reads past its buffers for (the fuzz search's heap corruption)."""
+    grey_alpha = bytes((i * 5) % 256 for i in range(W * H * 2))
+
+    def entries(spp, photometric, compression, strip_bytes, w=W, offset=8):
+        return [(256, 4, 1, w), (257, 4, 1, H), (258, 3, 1, 8), (259, 3, 1, compression), (262, 3, 1, photometric),
+                (273, 4, 1, offset), (277, 3, 1, spp), (278, 4, 1, H), (279, 4, 1, strip_bytes)]
+    # 2 samples per pixel read through libtiff's RGBA interface (old deflate code): 4 bytes per pixel into 3
+    deflated = zlib.compress(grey_alpha)
+    yield "two_samples_rgba_path", tiff(data=deflated, entries=entries(2, 1, 32946, len(deflated)))
+    yield "two_samples_grey_alpha", tiff(data=grey_alpha, entries=entries(2, 1, 1, len(grey_alpha)))
+    yield "rgb_one_sample", tiff(spp=1, entries=entries(1, 2, 1, W * H))
+    # two pages, the second twice as wide: VTK reads it with the first page's size
+    first, second = bytes(W * H), bytes(2 * W * H)
+    ifd1 = 8 + len(first) + len(second)
+    def ifd(items, next_ifd):
+        out = struct.pack("<H", len(items))
+        for tag, kind, count, value in items:
+            out += struct.pack("<HHI", tag, kind, count) + (struct.pack("<HH", value, 0) if kind == 3 else struct.pack("<I", value))
+        return out + struct.pack("<I", next_ifd)
+    page1 = entries(1, 1, 1, len(first))
+    page2 = entries(1, 1, 1, len(second), w=2 * W, offset=8 + len(first))
+    ifd2 = ifd1 + len(ifd(page1, 0))
+    yield "pages_differ", b"II*\0" + struct.pack("<I", ifd1) + first + second + ifd(page1, ifd2) + ifd(page2, 0)
+    # a second page libtiff refuses (RowsPerStrip with 2 values): VTK reads it anyway
+    # (the fuzz search's division by zero inside libtiff)
+    page2 = entries(1, 1, 1, len(first))[:7] + [(278, 4, 2, H), (279, 4, 1, len(first))]
+    ifd2 = ifd1 + len(ifd(page1, 0))
+    yield "page_libtiff_refuses", b"II*\0" + struct.pack("<I", ifd1) + first + second + ifd(page1, ifd2) + ifd(page2, 0)
 
 
 # --- VTK image files ----------------------------------------------------------------
