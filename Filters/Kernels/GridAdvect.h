@@ -43,7 +43,8 @@ struct Stencil
   }
 
   /// The weighted sum of component c of `values` (C components per sample).
-  double Apply(const double* values, int C, int c) const
+  template <typename T>
+  double Apply(const T* values, int C, int c) const
   {
     // Four partial sums: four short chains of dependent additions instead of one long one.
     double partial[4] = { 0.0, 0.0, 0.0, 0.0 };
@@ -52,12 +53,12 @@ struct Stencil
     {
       for (int k = 0; k < 4; ++k)
       {
-        partial[k] += this->weight[r + k] * values[this->sample[r + k] * C + c];
+        partial[k] += this->weight[r + k] * static_cast<double>(values[this->sample[r + k] * C + c]);
       }
     }
     for (; r < this->size; ++r)
     {
-      partial[0] += this->weight[r] * values[this->sample[r] * C + c];
+      partial[0] += this->weight[r] * static_cast<double>(values[this->sample[r] * C + c]);
     }
     return (partial[0] + partial[1]) + (partial[2] + partial[3]);
   }
@@ -145,21 +146,180 @@ struct AdvectionContext
 };
 
 /**
+ * The 3^D samples around an interior sample, where the traces that stay in
+ * their start faces read: a trace from the face through corner pattern b reads
+ * the corners of that face, whose lower corner is the sample minus bits(b).
+ * Weights gathered over this neighbourhood are applied in one pass at the end.
+ */
+template <int D>
+struct Neighbourhood
+{
+  static constexpr int Size = D == 1 ? 3 : (D == 2 ? 9 : 27);
+  static constexpr int Corners = Lattice<D>::Corners;
+  std::array<std::int64_t, Size> offset{}; // sample offset of neighbourhood entry k
+  std::array<int, Corners> lower{};        // entry of the lower corner of the face through b
+  std::array<int, Corners> step{};         // entry step from a face's lower corner to its corner b
+  std::array<double, 2> start{};           // start coordinate in its face, per corner bit
+
+  explicit Neighbourhood(const Lattice<D>& L)
+  {
+    // Entry k = sum over axes of (o_d + 1) 3^d for the offset o in {-1, 0, 1}^D.
+    for (int k = 0; k < Size; ++k)
+    {
+      std::int64_t o = 0;
+      for (int d = 0, rest = k; d < D; ++d, rest /= 3)
+      {
+        o += (rest % 3 - 1) * L.sampleStride[d];
+      }
+      this->offset[k] = o;
+    }
+    for (int b = 0; b < Corners; ++b)
+    {
+      int power = 1;
+      for (int d = 0; d < D; ++d, power *= 3)
+      {
+        const int bit = (b >> d) & 1;
+        this->lower[b] += (1 - bit) * power;
+        this->step[b] += bit * power;
+      }
+    }
+    // The start, offset from the sample towards the face centre, measured from
+    // the face's lower corner: the sample is that corner (bit 0) or the upper one.
+    this->start[0] = 0.5 * VertexOffset;
+    this->start[1] = 1.0 - 0.5 * VertexOffset;
+  }
+};
+
+/**
+ * The start of the trace of sample i into its adjacent face through corner
+ * pattern b: offset from the sample towards the face centre (index position q);
+ * the face's coordinates, the sample's minus the corner bits, go to c.
+ */
+template <int D>
+void StartInFace(const std::array<std::int64_t, D>& i, int b, std::array<double, D>& q,
+  std::array<std::int64_t, D>& c)
+{
+  for (int d = 0; d < D; ++d)
+  {
+    const int bit = (b >> d) & 1;
+    c[d] = i[d] - bit;
+    q[d] = static_cast<double>(i[d]) + VertexOffset * (0.5 - bit);
+  }
+}
+
+/**
+ * Traces the start of face f (through corner pattern b) of an interior sample
+ * when it does not leave the face in time t: the flow is constant on the face,
+ * so the trace ends at start + v t, and its multilinear read is added to the
+ * neighbourhood weights. False, adding nothing, when the trace would leave the
+ * face (the general tracer takes it).
+ */
+template <int D>
+SHOCK_ALWAYS_INLINE bool TraceWithinFace(
+  const Neighbourhood<D>& hood, const float* v, int b, double time, double* weights)
+{
+  std::array<double, D> frac;
+  bool inside = true;
+  for (int d = 0; d < D; ++d)
+  {
+    frac[d] = hood.start[(b >> d) & 1] + static_cast<double>(v[d]) * time;
+    inside = inside && frac[d] >= 0.0 && frac[d] <= 1.0;
+  }
+  if (!inside)
+  {
+    return false;
+  }
+  // Multilinear weights of the face's corners, built one axis at a time.
+  double corner[Lattice<D>::Corners];
+  corner[0] = 1.0;
+  for (int d = 0; d < D; ++d)
+  {
+    for (int c = 0; c < (1 << d); ++c)
+    {
+      corner[c | (1 << d)] = corner[c] * frac[d];
+      corner[c] *= 1.0 - frac[d];
+    }
+  }
+  double* face = weights + hood.lower[b];
+  for (int c = 0; c < Lattice<D>::Corners; ++c)
+  {
+    face[hood.step[c]] += corner[c];
+  }
+  return true;
+}
+
+/**
+ * Appendix A AdvectVertices for one sample i (index s), any case: traces from
+ * the offset into each adjacent face (or from the stored positions), reads
+ * added to `stencil`; returns the number of traces.
+ */
+template <int D>
+int TraceSample(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, double time,
+  const AdjacentFaces<D>& faces, const std::array<std::int64_t, D>& i, std::int64_t s,
+  float* positions, Stencil<D>& stencil, std::uint64_t& steps, std::uint64_t& truncated)
+{
+  constexpr int Corners = Lattice<D>::Corners;
+  int traces = 0;
+  for (int b = 0; b < Corners; ++b)
+  {
+    std::int64_t f = faces.Face(i[0], b);
+    if (f < 0)
+    {
+      continue;
+    }
+    std::array<double, D> q;
+    std::array<std::int64_t, D> c;
+    float* stored = positions ? positions + (s * Corners + b) * D : nullptr;
+    if (stored)
+    {
+      std::copy(stored, stored + D, q.begin());
+      f = tracer.FaceOf(q, c);
+    }
+    else
+    {
+      StartInFace<D>(i, b, q, c);
+    }
+    bool cut = false;
+    steps += static_cast<std::uint64_t>(tracer.Trace(q, c, f, time, cut));
+    truncated += cut ? 1 : 0;
+    if (stored)
+    {
+      std::copy(q.begin(), q.end(), stored);
+    }
+    if (!SampleGrid<D>(ctx.L, ctx.valid, ctx.sampling, q, stencil))
+    {
+      stencil.Add(s, 1.0); // only non-finite samples around q: keep the sample's own value
+    }
+    ++traces;
+  }
+  return traces;
+}
+
+/**
  * Appendix A AdvectVertices: every valid sample is traced from an offset into
  * each adjacent face, the source signal is sampled at the traced points and the
  * results are averaged. With `positions` (Composed flow; D floats per sample and
  * corner pattern), traces resume from and update the stored positions instead
  * of starting at the offsets.
+ *
+ * The common case takes a shorter road with the same result: an interior sample
+ * of an all-finite signal, read multilinearly, whose traces mostly stay in their
+ * start faces. Their reads are gathered as weights on the sample's 3^D
+ * neighbourhood and applied once; the traces that leave go through the tracer.
  * Returns false when aborted through the progress callback.
  */
-template <int D>
+template <int D, typename T>
 bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, double time,
-  const double* source, double* out, float* positions, double progressStart, double progressSpan)
+  const T* source, double* out, float* positions, double progressStart, double progressSpan)
 {
   const Lattice<D>& L = ctx.L;
   const int C = ctx.C;
   const unsigned char* valid = ctx.valid;
   constexpr int Corners = Lattice<D>::Corners;
+  using Hood = Neighbourhood<D>;
+  const Hood hood(L);
+  const bool shortRoad =
+    !positions && !valid && ctx.sampling == Sampling::Linear && tracer.CrossesFaces();
   const RowBlocks<D> blocks(L.n);
   // Progress is reported, and an abort honoured, between chunks of blocks.
   const std::int64_t chunkCount =
@@ -180,6 +340,13 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
       const std::int64_t x0 = i[0];
       const std::int64_t s0 = L.SampleIndex(i);
       const AdjacentFaces<D> faces(L, i);
+      // Interior rows (all neighbours along the other axes exist) take the short road
+      // between x = 1 and n - 2.
+      bool interiorRow = shortRoad;
+      for (int d = 1; d < D; ++d)
+      {
+        interiorRow = interiorRow && i[d] >= 1 && i[d] + 1 < L.n[d];
+      }
       for (std::int64_t j = 0; j < length; ++j)
       {
         const std::int64_t s = s0 + j;
@@ -190,48 +357,41 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
           std::copy(source + s * C, source + (s + 1) * C, result);
           continue;
         }
+        Stencil<D> stencil;
+        if (interiorRow && i[0] >= 1 && i[0] + 1 < L.n[0])
+        {
+          double weights[Hood::Size] = {};
+          for (int b = 0; b < Corners; ++b)
+          {
+            const std::int64_t f = faces.Face(i[0], b);
+            if (TraceWithinFace<D>(hood, tracer.Velocity(f), b, time, weights))
+            {
+              continue;
+            }
+            std::array<double, D> q;
+            std::array<std::int64_t, D> c;
+            StartInFace<D>(i, b, q, c);
+            bool cut = false;
+            steps += static_cast<std::uint64_t>(tracer.Trace(q, c, f, time, cut));
+            truncated += cut ? 1 : 0;
+            SampleGrid<D>(L, nullptr, Sampling::Linear, q, stencil);
+          }
+          for (int c = 0; c < C; ++c)
+          {
+            const T* value = source + s * C + c;
+            double sum = stencil.Apply(source, C, c);
+            for (int e = 0; e < Hood::Size; ++e)
+            {
+              sum += weights[e] * static_cast<double>(value[hood.offset[e] * C]);
+            }
+            result[c] = sum / Corners;
+          }
+          continue;
+        }
         // The traces' reads are gathered first, then combined per component in
         // registers (no read-modify-write of the output per corner).
-        Stencil<D> stencil;
-        int traces = 0;
-        for (int b = 0; b < Corners; ++b)
-        {
-          std::int64_t f = faces.Face(i[0], b);
-          if (f < 0)
-          {
-            continue;
-          }
-          std::array<double, D> q;
-          std::array<std::int64_t, D> c;
-          float* stored = positions ? positions + (s * Corners + b) * D : nullptr;
-          if (stored)
-          {
-            std::copy(stored, stored + D, q.begin());
-            f = tracer.FaceOf(q, c);
-          }
-          else
-          {
-            // The start lies in face f, whose coordinates are the sample's minus the corner bits.
-            for (int d = 0; d < D; ++d)
-            {
-              const int bit = (b >> d) & 1;
-              c[d] = i[d] - bit;
-              q[d] = static_cast<double>(i[d]) + VertexOffset * (0.5 - bit);
-            }
-          }
-          bool cut = false;
-          steps += static_cast<std::uint64_t>(tracer.Trace(q, c, f, time, cut));
-          truncated += cut ? 1 : 0;
-          if (stored)
-          {
-            std::copy(q.begin(), q.end(), stored);
-          }
-          if (!SampleGrid<D>(L, valid, ctx.sampling, q, stencil))
-          {
-            stencil.Add(s, 1.0); // only non-finite samples around q: keep the sample's own value
-          }
-          ++traces;
-        }
+        const int traces =
+          TraceSample<D>(ctx, tracer, time, faces, i, s, positions, stencil, steps, truncated);
         for (int c = 0; c < C; ++c)
         {
           result[c] = stencil.Apply(source, C, c) / traces;

@@ -63,6 +63,12 @@ public:
                                                : this->TraceStepped(q, c, f, t, truncated);
   }
 
+  /// The back-trace velocity of face f: D floats, index units.
+  const float* Velocity(std::int64_t f) const { return this->V + f * D; }
+
+  /// True when Trace takes the exact face-to-face path (its steps are face crossings).
+  bool CrossesFaces() const { return this->Mode == Tracing::FaceCrossing; }
+
   /// The face holding q (clamped to the grid): its index, and its coordinates in c.
   std::int64_t FaceOf(const std::array<double, D>& q, std::array<std::int64_t, D>& c) const
   {

@@ -11,6 +11,13 @@
 #ifndef ShockTypes_h
 #define ShockTypes_h
 
+// Forces the inlining of a small function on a hot path (GCC and Clang).
+#if defined(__GNUC__) || defined(__clang__)
+#define SHOCK_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define SHOCK_ALWAYS_INLINE inline
+#endif
+
 #include <cstddef>
 #include <cstdint>
 #include <functional>
