@@ -211,19 +211,15 @@ int vtkImageShockAdvectionFilter::FilterImage(
     }
   }
 
-  // Everything checked: the output starts as the input, arrays shared.
+  // Everything checked: the output starts as the input, arrays shared. The
+  // kernel reads the array in place when it is float or double, and writes its
+  // results straight into a new array of the input's type.
   output->ShallowCopy(input);
-  const int threads = this->NumberOfThreads;
-  // Uninitialised buffers, filled in parallel (no serial zero fill of the whole signal).
-  const vtkIdType count = array->GetNumberOfValues();
-  shock::LargeArray<double> values = shock::AllocateLargeArray<double>(count);
-  vtkShockFilterInternals::ToDoubles(array, values.get(), threads);
-  const shock::LargeArray<double> filtered = shock::AllocateLargeArray<double>(count);
+  vtkShockFilterInternals::KernelOutput filtered = vtkShockFilterInternals::OutputForKernel(array);
   shock::GridFlowFields fields;
   bool aborted = false;
-  const bool ran = this->RunKernel(grid, array->GetNumberOfComponents(), values.get(),
-    filtered.get(), this->GenerateFlowArrays ? &fields : nullptr, aborted);
-  values.reset();
+  const bool ran =
+    this->RunKernel(grid, array, filtered, this->GenerateFlowArrays ? &fields : nullptr, aborted);
   if (!ran)
   {
     return 0;
@@ -235,8 +231,7 @@ int vtkImageShockAdvectionFilter::FilterImage(
 
   vtkDataSetAttributes* attributes =
     cellData ? static_cast<vtkDataSetAttributes*>(output->GetCellData()) : output->GetPointData();
-  vtkShockFilterInternals::ReplaceArray(attributes, array,
-    vtkShockFilterInternals::FromDoubles(array, filtered.get(), threads));
+  vtkShockFilterInternals::ReplaceArray(attributes, array, filtered.array);
   if (this->GenerateFlowArrays)
   {
     AttachFlowArrays(output, cellData, grid, fields);
@@ -244,18 +239,27 @@ int vtkImageShockAdvectionFilter::FilterImage(
   return 1;
 }
 
-bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, int components,
-  const double* input, double* output, shock::GridFlowFields* fields, bool& aborted)
+bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDataArray* array,
+  const vtkShockFilterInternals::KernelOutput& filtered, shock::GridFlowFields* fields,
+  bool& aborted)
 {
+  const shock::SampleWriter& output = filtered.writer;
   const auto progress = [this](double fraction) { return this->ReportProgress(fraction); };
+  const int components = array->GetNumberOfComponents();
+  const int threads = this->NumberOfThreads;
+  vtkShockFilterInternals::KernelSignal signal =
+    vtkShockFilterInternals::SignalForKernel(array, threads);
   shock::Status status;
   if (this->Method == ADVECTION)
   {
     shock::AdvectionReport report;
     shock::AdvectionParameters parameters = vtkShockFilterInternals::MakeParameters(this);
     parameters.hierarchyLevels = this->HierarchyLevels;
-    status =
-      shock::AdvectGridSignal(grid, components, input, output, parameters, &report, fields, progress);
+    status = signal.floats
+      ? shock::AdvectGridSignal(
+          grid, components, signal.floats, output, parameters, &report, fields, progress)
+      : shock::AdvectGridSignal(
+          grid, components, signal.doubles, output, parameters, &report, fields, progress);
     if (status.Ok())
     {
       this->RecordRun(
@@ -273,10 +277,20 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, int c
     parameters.numberOfThreads = this->NumberOfThreads;
     parameters.valueScale = this->ParallelValueScale;
     shock::PDEReport report;
-    status = shock::SolveGridShockPDE(grid, components, input, output, parameters, &report, fields,
-      progress);
+    // The PDE works on double buffers.
+    if (!signal.doubles)
+    {
+      signal.doubleCopy = shock::AllocateLargeArray<double>(array->GetNumberOfValues());
+      std::copy(signal.floats, signal.floats + array->GetNumberOfValues(), signal.doubleCopy.get());
+      signal.doubles = signal.doubleCopy.get();
+    }
+    const shock::LargeArray<double> solved =
+      shock::AllocateLargeArray<double>(array->GetNumberOfValues());
+    status = shock::SolveGridShockPDE(grid, components, signal.doubles, solved.get(), parameters,
+      &report, fields, progress);
     if (status.Ok())
     {
+      output(0, grid.NumberOfSamples(), solved.get());
       this->RecordRun(report.flowSeconds, report.updateSeconds, 0, 0);
       this->LastIterations = report.iterations;
       this->LastReachedTime = report.reachedTime;

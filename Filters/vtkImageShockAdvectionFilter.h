@@ -74,6 +74,10 @@ namespace shock
 struct GridShape;
 struct GridFlowFields;
 }
+namespace vtkShockFilterInternals
+{
+struct KernelOutput;
+}
 
 class VTKFILTERSSHOCK_EXPORT vtkImageShockAdvectionFilter : public vtkShockAdvectionFilter
 {
@@ -181,9 +185,11 @@ protected:
   double LastReachedTime = 0.0;
 
 private:
-  /// Run the selected method on double samples; false (with vtkErrorMacro) on failure.
-  bool RunKernel(const shock::GridShape& grid, int components, const double* input,
-    double* output, shock::GridFlowFields* fields, bool& aborted);
+  /// Run the selected method on the array's samples, results to `output`; false (with
+  /// vtkErrorMacro) on failure.
+  bool RunKernel(const shock::GridShape& grid, vtkDataArray* array,
+    const vtkShockFilterInternals::KernelOutput& output, shock::GridFlowFields* fields,
+    bool& aborted);
 
   vtkImageShockAdvectionFilter(const vtkImageShockAdvectionFilter&) = delete;
   void operator=(const vtkImageShockAdvectionFilter&) = delete;

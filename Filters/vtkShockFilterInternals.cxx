@@ -1,5 +1,6 @@
 #include "vtkShockFilterInternals.h"
 
+#include "vtkAOSDataArrayTemplate.h"
 #include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
@@ -10,6 +11,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <type_traits>
 
 namespace
@@ -46,6 +49,42 @@ T RoundAndClamp(double v)
     return static_cast<T>(v);
   }
 }
+
+/// Copies any array into float or double storage (the value types a kernel reads).
+struct CopyTo
+{
+  template <typename ArrayT, typename OutT>
+  void operator()(ArrayT* array, OutT* out, int threads) const
+  {
+    const auto values = vtk::DataArrayValueRange(array);
+    shock::ParallelFor(values.size(), shock::ThreadsForWork(threads, values.size()),
+      [&](std::int64_t begin, std::int64_t end) {
+        for (std::int64_t i = begin; i < end; ++i)
+        {
+          out[i] = static_cast<OutT>(values[i]);
+        }
+      });
+  }
+};
+
+/// Makes the writer of OutputForKernel for an array of a dispatchable type.
+struct MakeWriter
+{
+  template <typename ArrayT>
+  void operator()(ArrayT* array, shock::SampleWriter& writer) const
+  {
+    using ValueT = vtk::GetAPIType<ArrayT>;
+    const int C = array->GetNumberOfComponents();
+    writer = [array, C](std::int64_t first, std::int64_t count, const double* in) {
+      auto values = vtk::DataArrayValueRange(array, first * C, (first + count) * C);
+      std::int64_t i = 0;
+      for (auto&& value : values)
+      {
+        value = RoundAndClamp<ValueT>(in[i++]);
+      }
+    };
+  }
+};
 
 struct CopyFromDoubles
 {
@@ -124,6 +163,75 @@ vtkSmartPointer<vtkDataArray> FromDoubles(
     worker(out.Get(), values, 1); // see ToDoubles
   }
   return out;
+}
+
+KernelSignal SignalForKernel(vtkDataArray* array, int threads)
+{
+  KernelSignal signal;
+  if (auto* floats = vtkAOSDataArrayTemplate<float>::FastDownCast(array))
+  {
+    signal.floats = floats->GetPointer(0);
+    return signal;
+  }
+  if (auto* doubles = vtkAOSDataArrayTemplate<double>::FastDownCast(array))
+  {
+    signal.doubles = doubles->GetPointer(0);
+    return signal;
+  }
+  const vtkIdType count = array->GetNumberOfValues();
+  CopyTo worker;
+  switch (array->GetDataType())
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+    case VTK_UNSIGNED_CHAR:
+    case VTK_SHORT:
+    case VTK_UNSIGNED_SHORT:
+    case VTK_FLOAT:
+      signal.floatCopy = shock::AllocateLargeArray<float>(count);
+      if (!vtkArrayDispatch::Dispatch::Execute(array, worker, signal.floatCopy.get(), threads))
+      {
+        worker(array, signal.floatCopy.get(), 1); // unusual storage: serial, as in ToDoubles
+      }
+      signal.floats = signal.floatCopy.get();
+      break;
+    default:
+      signal.doubleCopy = shock::AllocateLargeArray<double>(count);
+      ToDoubles(array, signal.doubleCopy.get(), threads);
+      signal.doubles = signal.doubleCopy.get();
+  }
+  return signal;
+}
+
+KernelOutput OutputForKernel(vtkDataArray* prototype)
+{
+  KernelOutput output;
+  output.array = vtk::TakeSmartPointer(prototype->NewInstance());
+  output.array->SetName(prototype->GetName());
+  output.array->SetNumberOfComponents(prototype->GetNumberOfComponents());
+  for (int c = 0; c < prototype->GetNumberOfComponents(); ++c)
+  {
+    if (const char* name = prototype->GetComponentName(c))
+    {
+      output.array->SetComponentName(c, name);
+    }
+  }
+  output.array->SetNumberOfTuples(prototype->GetNumberOfTuples());
+  MakeWriter maker;
+  if (!vtkArrayDispatch::Dispatch::Execute(output.array.Get(), maker, output.writer))
+  {
+    // Unusual storage, whose generic accessors need not be safe to call
+    // concurrently: one writer at a time.
+    vtkDataArray* array = output.array;
+    auto lock = std::make_shared<std::mutex>();
+    shock::SampleWriter generic;
+    maker(array, generic);
+    output.writer = [lock, generic](std::int64_t first, std::int64_t count, const double* in) {
+      const std::lock_guard<std::mutex> hold(*lock);
+      generic(first, count, in);
+    };
+  }
+  return output;
 }
 
 void ReplaceArray(vtkDataSetAttributes* attributes, vtkDataArray* original, vtkDataArray* replacement)

@@ -7,6 +7,7 @@
 #ifndef vtkShockFilterInternals_h
 #define vtkShockFilterInternals_h
 
+#include "GridShockAdvection.h"
 #include "ShockTypes.h"
 #include "vtkSmartPointer.h"
 
@@ -45,6 +46,33 @@ vtkSmartPointer<vtkDataArray> FromDoubles(vtkDataArray* prototype, const std::ve
  */
 vtkSmartPointer<vtkDataArray> FromDoubles(
   vtkDataArray* prototype, const double* values, int threads);
+
+/**
+ * The values a grid kernel reads, as float or double (exactly one pointer is
+ * set): the array's own storage when it is a contiguous float or double array
+ * (no copy), else a copy converted on `threads` threads: float for the 8- and
+ * 16-bit integer types (exact), double for the others.
+ */
+struct KernelSignal
+{
+  const float* floats = nullptr;
+  const double* doubles = nullptr;
+  shock::LargeArray<float> floatCopy;
+  shock::LargeArray<double> doubleCopy;
+};
+KernelSignal SignalForKernel(vtkDataArray* array, int threads);
+
+/**
+ * A new array like `prototype` (as FromDoubles makes it), and a writer of a
+ * grid kernel's results into it with FromDoubles' rounding and clamping, safe
+ * to call from several threads for disjoint runs of tuples.
+ */
+struct KernelOutput
+{
+  vtkSmartPointer<vtkDataArray> array;
+  shock::SampleWriter writer;
+};
+KernelOutput OutputForKernel(vtkDataArray* prototype);
 
 /**
  * Replace `original` by `replacement` in `attributes`, keeping its attribute

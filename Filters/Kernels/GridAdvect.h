@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace shock
 {
@@ -310,7 +311,8 @@ int TraceSample(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, dou
  */
 template <int D, typename T>
 bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, double time,
-  const T* source, double* out, float* positions, double progressStart, double progressSpan)
+  const T* source, const SampleWriter& out, float* positions, double progressStart,
+  double progressSpan)
 {
   const Lattice<D>& L = ctx.L;
   const int C = ctx.C;
@@ -332,7 +334,11 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
   {
     const std::int64_t begin = chunk * chunkSize;
     const std::int64_t end = std::min(blocks.Count(), begin + chunkSize);
-#pragma omp parallel for schedule(dynamic) num_threads(ctx.threads) reduction(+ : steps, truncated)
+#pragma omp parallel num_threads(ctx.threads) reduction(+ : steps, truncated)
+    {
+    // The results of one block, handed to `out` at its end.
+    std::vector<double> row(static_cast<size_t>(BlockLength * C));
+#pragma omp for schedule(dynamic)
     for (std::int64_t k = begin; k < end; ++k)
     {
       std::array<std::int64_t, D> i;
@@ -351,7 +357,7 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
       {
         const std::int64_t s = s0 + j;
         i[0] = x0 + j;
-        double* result = out + s * C;
+        double* result = row.data() + j * C;
         if (valid && !valid[s])
         {
           std::copy(source + s * C, source + (s + 1) * C, result);
@@ -397,6 +403,8 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
           result[c] = stencil.Apply(source, C, c) / traces;
         }
       }
+      out(s0, length, row.data());
+    }
     }
     if (ctx.progress &&
       !ctx.progress(progressStart + progressSpan * static_cast<double>(end) / blocks.Count()))

@@ -42,13 +42,13 @@ namespace grid
  * same along the row except at its ends (`rowStart`, `rowEnd`: the block holds
  * them). `offset` are sample offsets of the neighbours along the other axes.
  */
-template <size_t N>
-void SmoothBlockAllValid(int C, const double* in, double scale, double* out,
+template <size_t N, typename T>
+void SmoothBlockAllValid(int C, const T* in, double scale, double* out,
   std::int64_t length, bool rowStart, bool rowEnd, double alphaX, int neighbours,
   const std::array<std::int64_t, N>& offset, const std::array<double, N>& weight)
 {
   const std::int64_t count = length * C;
-  std::copy(in, in + count, out);
+  std::copy(in, in + count, out); // T to double is exact (T is float or double)
   for (std::int64_t v = rowStart ? C : 0; v < count; ++v)
   {
     out[v] += alphaX * in[v - C];
@@ -59,7 +59,7 @@ void SmoothBlockAllValid(int C, const double* in, double scale, double* out,
   }
   for (int r = 0; r < neighbours; ++r)
   {
-    const double* row = in + offset[r] * C;
+    const T* row = in + offset[r] * C;
     for (std::int64_t v = 0; v < count; ++v)
     {
       out[v] += weight[r] * row[v];
@@ -107,8 +107,8 @@ void SmoothBlockAllValid(int C, const double* in, double scale, double* out,
  * axes), scaled: out = scale x smooth(in). Invalid samples (`valid` non-null and
  * 0) neither change nor contribute.
  */
-template <int D>
-void SmoothPass(const Lattice<D>& L, int C, const double* in, double scale, double* out,
+template <int D, typename T>
+void SmoothPass(const Lattice<D>& L, int C, const T* in, double scale, double* out,
   const unsigned char* valid, int threads)
 {
   std::array<double, D> alpha{};
@@ -189,9 +189,10 @@ void SmoothPass(const Lattice<D>& L, int C, const double* in, double scale, doub
 /**
  * `passes` smoothing passes (SmoothPass) of scale x in, into out; passes = 0 gives
  * the scaled copy. `scratch`, of the size of out, is used when passes >= 2.
+ * `in` is float or double; the passes compute in double.
  */
-template <int D>
-void UmbrellaSmooth(const Lattice<D>& L, int C, const double* in, double scale, double* out,
+template <int D, typename T>
+void UmbrellaSmooth(const Lattice<D>& L, int C, const T* in, double scale, double* out,
   double* scratch, const unsigned char* valid, int passes, int threads)
 {
   if (passes == 0)
@@ -204,13 +205,14 @@ void UmbrellaSmooth(const Lattice<D>& L, int C, const double* in, double scale, 
     }
     return;
   }
-  const double* source = in;
-  for (int pass = 0; pass < passes; ++pass)
+  // Alternate between the buffers so that the last pass writes `out`.
+  double* target = (passes - 1) % 2 == 0 ? out : scratch;
+  SmoothPass<D>(L, C, in, scale, target, valid, threads);
+  for (int pass = 1; pass < passes; ++pass)
   {
-    // Alternate between the buffers so that the last pass writes `out`.
-    double* target = (passes - 1 - pass) % 2 == 0 ? out : scratch;
-    SmoothPass<D>(L, C, source, pass == 0 ? scale : 1.0, target, valid, threads);
-    source = target;
+    const double* source = target;
+    target = (passes - 1 - pass) % 2 == 0 ? out : scratch;
+    SmoothPass<D>(L, C, source, 1.0, target, valid, threads);
   }
 }
 
@@ -343,6 +345,12 @@ void BackTraceVelocity(const Lattice<D>& L, const double* potential,
  * The flow of a signal (sections 3.2-3.3): smoothing, face gradients, potential,
  * smoothing of the potential, back-trace velocity. Holds the buffers, which the
  * flow updates of a run reuse.
+ *
+ * The steps run slab by slab: consecutive layers along the last active axis,
+ * each with the 2 x passes + 1 layers beyond it on either side that its faces'
+ * flow depends on (recomputed, not stored). Every value is computed by the same
+ * operations as over the whole grid, so the flow is the same for any slab size,
+ * while the workspace holds a slab rather than the grid (and stays in cache).
  */
 template <int D>
 class FlowComputation
@@ -359,69 +367,120 @@ public:
     , Threads(threads)
     , VelocityField(AllocateLargeArray<float>(lattice.numFaces * D))
   {
+    // About 8 slabs, each at least 8 halos thick, so that the recomputed halo
+    // layers cost little; a grid thinner than that is one slab.
+    const std::int64_t layers = lattice.m[D - 1];
+    this->SlabFaces = std::max<std::int64_t>((layers + 7) / 8, 8 * this->Halo());
   }
 
-  /// Compute the flow of `signal`, intensities divided by `range`.
-  void Compute(const double* signal, double range)
+  /// Keep the potential of the whole grid (KeptPotential()), for ExportFlowFields.
+  void KeepPotential() { this->Keep = true; }
+
+  /// Face layers per slab (>= 1); a test hook: the flow does not depend on it.
+  void SetSlabFaces(std::int64_t faces) { this->SlabFaces = std::max<std::int64_t>(faces, 1); }
+
+  /// Compute the flow of `signal` (float or double), intensities divided by `range`.
+  template <typename T>
+  void Compute(const T* signal, double range)
   {
+    const std::int64_t M = L.m[D - 1];
+    const std::int64_t layerSamples = L.sampleStride[D - 1];
+    const std::int64_t layerFaces = L.faceStride[D - 1];
+    const std::int64_t slabFaces = std::min(this->SlabFaces, M);
     if (!this->Smoothed)
     {
-      this->Smoothed = AllocateLargeArray<double>(L.numSamples * C);
-      this->PotentialField = AllocateLargeArray<double>(L.numSamples);
+      const std::int64_t layers = std::min(slabFaces + 2 * this->Halo() + 1, L.n[D - 1]);
+      this->Smoothed = AllocateLargeArray<double>(layers * layerSamples * C);
+      this->Potential = AllocateLargeArray<double>(layers * layerSamples);
       if (this->Passes >= 2)
       {
-        this->Scratch = AllocateLargeArray<double>(L.numSamples * C);
+        this->Scratch = AllocateLargeArray<double>(layers * layerSamples * C);
       }
     }
-    UmbrellaSmooth<D>(L, C, signal, 1.0 / range, this->Smoothed.get(), this->Scratch.get(),
-      this->ValidSample, this->Passes, this->Threads);
-    // Each buffer serves twice, to save memory and first-touch page faults: the
-    // energy per face (there are fewer faces than samples) goes to the potential's
-    // buffer, and the raw potential to the smoothed signal's, each once its
-    // previous content has been used.
-    double* energy = this->PotentialField.get();
-    FaceEnergy<D>(L, C, this->Smoothed.get(), this->ValidFace, energy, this->Threads);
-    double* rawPotential = this->Smoothed.get();
-    FacesToSamples<D>(L, energy, this->ValidFace, rawPotential, this->Threads);
-    UmbrellaSmooth<D>(L, 1, rawPotential, 1.0, this->PotentialField.get(), this->Scratch.get(),
-      this->ValidSample, this->Passes, this->Threads);
-    BackTraceVelocity<D>(L, this->PotentialField.get(), this->ValidFace, this->VelocityField.get(),
-      this->Threads);
+    if (this->Keep && !this->PotentialField)
+    {
+      this->PotentialField = AllocateLargeArray<double>(L.numSamples);
+    }
+    for (std::int64_t f0 = 0; f0 < M; f0 += slabFaces)
+    {
+      const std::int64_t f1 = std::min(M, f0 + slabFaces);
+      // Sample layers [a, b] hold every value the flow of face layers [f0, f1) depends on.
+      const std::int64_t a = std::max<std::int64_t>(0, f0 - this->Halo());
+      const std::int64_t b = std::min(M, f1 + this->Halo());
+      const Lattice<D> slab = L.Layers(b - a + 1);
+      const unsigned char* validSample = this->ValidSample ? this->ValidSample + a * layerSamples : nullptr;
+      const unsigned char* validFace = this->ValidFace ? this->ValidFace + a * layerFaces : nullptr;
+      this->ComputeSlab(slab, signal + a * layerSamples * C, range, validSample, validFace);
+      // The velocity of the faces [f0, f1), from the potential of the samples [f0, f1].
+      const double* potential = this->Potential.get() + (f0 - a) * layerSamples;
+      BackTraceVelocity<D>(L.Layers(f1 - f0 + 1), potential,
+        this->ValidFace ? this->ValidFace + f0 * layerFaces : nullptr,
+        this->VelocityField.get() + f0 * layerFaces * D, this->Threads);
+      if (this->Keep)
+      {
+        const std::int64_t end = (f1 == M ? f1 + 1 : f1) * layerSamples;
+        std::copy(potential, potential + end - f0 * layerSamples,
+          this->PotentialField.get() + f0 * layerSamples);
+      }
+    }
   }
 
   /**
    * Release the smoothing and potential buffers (the velocity stays): after the
    * last flow of a run, so that the advection's output reuses their memory
-   * instead of raising the peak. Potential() is null until the next Compute.
+   * instead of raising the peak. The kept potential stays.
    */
   void ReleaseWorkspace()
   {
     this->Smoothed.reset();
     this->Scratch.reset();
-    this->PotentialField.reset();
+    this->Potential.reset();
   }
 
-  /// Potential P per sample, normalised units.
-  const double* Potential() const { return this->PotentialField.get(); }
+  /// Potential P per sample, normalised units; null unless KeepPotential was asked.
+  const double* KeptPotential() const { return this->PotentialField.get(); }
   /// Back-trace velocity per face in index units, -u / h with u = 1/2 grad P; D per face.
   const float* Velocity() const { return this->VelocityField.get(); }
 
 private:
+  /// Sample layers beyond a slab's faces that their flow depends on.
+  std::int64_t Halo() const { return 2 * this->Passes + 1; }
+
+  /// Smoothing, face energy, potential and its smoothing over the samples of `slab`.
+  template <typename T>
+  void ComputeSlab(const Lattice<D>& slab, const T* signal, double range,
+    const unsigned char* validSample, const unsigned char* validFace)
+  {
+    UmbrellaSmooth<D>(slab, C, signal, 1.0 / range, this->Smoothed.get(), this->Scratch.get(),
+      validSample, this->Passes, this->Threads);
+    // Each buffer serves twice, to save memory: the energy per face (there are
+    // fewer faces than samples) goes to the potential's buffer, and the raw
+    // potential to the smoothed signal's, each once its previous content has been used.
+    double* energy = this->Potential.get();
+    FaceEnergy<D>(slab, C, this->Smoothed.get(), validFace, energy, this->Threads);
+    double* rawPotential = this->Smoothed.get();
+    FacesToSamples<D>(slab, energy, validFace, rawPotential, this->Threads);
+    UmbrellaSmooth<D>(slab, 1, rawPotential, 1.0, this->Potential.get(), this->Scratch.get(),
+      validSample, this->Passes, this->Threads);
+  }
+
   const Lattice<D>& L;
   const int C;
   const int Passes;
   const unsigned char* ValidSample;
   const unsigned char* ValidFace;
   const int Threads;
-  LargeArray<double> Smoothed;       // range-normalised smoothed signal, then the raw potential
+  std::int64_t SlabFaces = 1;
+  bool Keep = false;
+  LargeArray<double> Smoothed;       // a slab's smoothed signal, then its raw potential
   LargeArray<double> Scratch;        // second smoothing buffer (2+ passes)
-  LargeArray<double> PotentialField; // face energy, then the smoothed potential
+  LargeArray<double> Potential;      // a slab's face energy, then its smoothed potential
+  LargeArray<double> PotentialField; // the whole grid's potential (KeepPotential)
   LargeArray<float> VelocityField;
 };
 
-/// The argument checks shared by the grid kernels' entry points; an empty Status when valid.
-inline Status CheckGridArguments(
-  const GridShape& shape, int components, const double* input, const double* output)
+/// The checks of the grid shape and the number of components; an empty Status when valid.
+inline Status CheckGridShape(const GridShape& shape, int components)
 {
   for (int a = 0; a < 3; ++a)
   {
@@ -437,6 +496,18 @@ inline Status CheckGridArguments(
   if (components < 1)
   {
     return { "the signal needs at least one component" };
+  }
+  return {};
+}
+
+/// The argument checks shared by the grid kernels' entry points; an empty Status when valid.
+inline Status CheckGridArguments(
+  const GridShape& shape, int components, const double* input, const double* output)
+{
+  const Status checked = CheckGridShape(shape, components);
+  if (!checked.Ok())
+  {
+    return checked;
   }
   if (!input || !output || input == output)
   {
@@ -456,7 +527,7 @@ inline void ZeroFlowFields(std::int64_t samples, std::int64_t faces, GridFlowFie
 template <int D>
 void ExportFlowFields(const Lattice<D>& L, const FlowComputation<D>& flow, GridFlowFields& fields)
 {
-  fields.potential.assign(flow.Potential(), flow.Potential() + L.numSamples);
+  fields.potential.assign(flow.KeptPotential(), flow.KeptPotential() + L.numSamples);
   fields.flow.assign(static_cast<size_t>(L.numFaces * 3), 0.0);
   const float* velocity = flow.Velocity();
   for (std::int64_t f = 0; f < L.numFaces; ++f)

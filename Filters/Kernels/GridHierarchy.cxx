@@ -131,12 +131,11 @@ std::vector<double> Restrict(const Lattice<D>& fine, const Lattice<D>& coarse, i
 }
 
 /// Levels 1 .. shapes.size() - 1 of the signal pyramid (level 0 is `signal` itself).
-template <int D>
+template <int D, typename T>
 std::vector<std::vector<double>> BuildPyramid(const std::vector<GridShape>& shapes, int C,
-  const double* signal, const unsigned char* validSample, int threads)
+  const T* signal, const unsigned char* validSample, int threads)
 {
   std::vector<std::vector<double>> levels;
-  const double* finer = signal;
   const unsigned char* valid = validSample;
   std::vector<unsigned char> levelValid;
   for (size_t l = 1; l < shapes.size(); ++l)
@@ -146,9 +145,17 @@ std::vector<std::vector<double>> BuildPyramid(const std::vector<GridShape>& shap
     const int passes = PrefilterPasses(fine);
     std::vector<double> smoothed(static_cast<size_t>(fine.numSamples * C));
     std::vector<double> scratch(passes >= 2 ? smoothed.size() : 0);
-    UmbrellaSmooth<D>(fine, C, finer, 1.0, smoothed.data(), scratch.data(), valid, passes, threads);
+    if (l == 1)
+    {
+      UmbrellaSmooth<D>(fine, C, signal, 1.0, smoothed.data(), scratch.data(), valid, passes, threads);
+    }
+    else
+    {
+      UmbrellaSmooth<D>(
+        fine, C, levels.back().data(), 1.0, smoothed.data(), scratch.data(), valid, passes, threads);
+    }
     levels.push_back(Restrict<D>(fine, coarse, C, smoothed.data(), valid, threads));
-    finer = levels.back().data();
+    const double* finer = levels.back().data();
     const ValidityMasks<D> masks(
       coarse, C, finer, ScanSignal(coarse.numSamples, C, finer, threads).allFinite, threads);
     levelValid = masks.samples;
@@ -200,8 +207,8 @@ void TraceStoredPositions(const Lattice<D>& L, const float* velocity,
 
 } // namespace
 
-template <int D>
-bool TraceThroughCoarseLevels(const std::vector<GridShape>& shapes, int C, const double* signal,
+template <int D, typename T>
+bool TraceThroughCoarseLevels(const std::vector<GridShape>& shapes, int C, const T* signal,
   double range, const unsigned char* validSample, const AdvectionParameters& p, double time,
   float* positions, AdvectionReport& report, const ProgressFunction& progress, double progressAt)
 {
@@ -242,15 +249,24 @@ bool TraceThroughCoarseLevels(const std::vector<GridShape>& shapes, int C, const
   return true;
 }
 
-template bool TraceThroughCoarseLevels<1>(const std::vector<GridShape>&, int, const double*,
-  double, const unsigned char*, const AdvectionParameters&, double, float*, AdvectionReport&,
-  const ProgressFunction&, double);
-template bool TraceThroughCoarseLevels<2>(const std::vector<GridShape>&, int, const double*,
-  double, const unsigned char*, const AdvectionParameters&, double, float*, AdvectionReport&,
-  const ProgressFunction&, double);
-template bool TraceThroughCoarseLevels<3>(const std::vector<GridShape>&, int, const double*,
-  double, const unsigned char*, const AdvectionParameters&, double, float*, AdvectionReport&,
-  const ProgressFunction&, double);
+template bool TraceThroughCoarseLevels<1, float>(const std::vector<GridShape>&, int,
+  const float*, double, const unsigned char*, const AdvectionParameters&, double, float*,
+  AdvectionReport&, const ProgressFunction&, double);
+template bool TraceThroughCoarseLevels<1, double>(const std::vector<GridShape>&, int,
+  const double*, double, const unsigned char*, const AdvectionParameters&, double, float*,
+  AdvectionReport&, const ProgressFunction&, double);
+template bool TraceThroughCoarseLevels<2, float>(const std::vector<GridShape>&, int,
+  const float*, double, const unsigned char*, const AdvectionParameters&, double, float*,
+  AdvectionReport&, const ProgressFunction&, double);
+template bool TraceThroughCoarseLevels<2, double>(const std::vector<GridShape>&, int,
+  const double*, double, const unsigned char*, const AdvectionParameters&, double, float*,
+  AdvectionReport&, const ProgressFunction&, double);
+template bool TraceThroughCoarseLevels<3, float>(const std::vector<GridShape>&, int,
+  const float*, double, const unsigned char*, const AdvectionParameters&, double, float*,
+  AdvectionReport&, const ProgressFunction&, double);
+template bool TraceThroughCoarseLevels<3, double>(const std::vector<GridShape>&, int,
+  const double*, double, const unsigned char*, const AdvectionParameters&, double, float*,
+  AdvectionReport&, const ProgressFunction&, double);
 
 } // namespace grid
 } // namespace shock

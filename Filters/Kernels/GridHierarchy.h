@@ -54,10 +54,11 @@ std::vector<GridShape> PyramidShapes(const GridShape& fine, int requested);
  * through the levels shapes.size() - 1 down to 1, for flow time `time` (input
  * units) each. Only the finest level samples (AdvectVertices from the positions). `signal` is
  * the signal whose flow is wanted, `range` its intensity scale, `validSample`
- * null when every sample is finite. Returns false when `progress` asks to stop.
+ * null when every sample is finite; T is float or double. Returns false when
+ * `progress` asks to stop.
  */
-template <int D>
-bool TraceThroughCoarseLevels(const std::vector<GridShape>& shapes, int C, const double* signal,
+template <int D, typename T>
+bool TraceThroughCoarseLevels(const std::vector<GridShape>& shapes, int C, const T* signal,
   double range, const unsigned char* validSample, const AdvectionParameters& p, double time,
   float* positions, AdvectionReport& report, const ProgressFunction& progress, double progressAt);
 

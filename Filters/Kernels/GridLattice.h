@@ -78,6 +78,21 @@ struct Lattice
     }
   }
 
+  /**
+   * The lattice of the first `layers` (>= 2) sample layers along the last active
+   * axis, with this lattice's strides and normalised spacings: a slab, addressed
+   * from a pointer to its first layer.
+   */
+  Lattice Layers(std::int64_t layers) const
+  {
+    Lattice slab = *this;
+    slab.n[D - 1] = layers;
+    slab.m[D - 1] = layers - 1;
+    slab.numSamples = this->sampleStride[D - 1] * layers;
+    slab.numFaces = this->faceStride[D - 1] * (layers - 1);
+    return slab;
+  }
+
   /// Index of the sample with coordinates i; also the lower corner of the face with coordinates i.
   std::int64_t SampleIndex(const std::array<std::int64_t, D>& i) const
   {
@@ -192,7 +207,8 @@ struct SignalRange
 
 /// The range and finiteness of a signal in one parallel pass (min and max are
 /// exact, so any thread count gives the same range).
-inline SignalRange ScanSignal(std::int64_t numSamples, int components, const double* values, int threads)
+template <typename T>
+SignalRange ScanSignal(std::int64_t numSamples, int components, const T* values, int threads)
 {
   double low = std::numeric_limits<double>::infinity();
   double high = -low;
@@ -201,7 +217,7 @@ inline SignalRange ScanSignal(std::int64_t numSamples, int components, const dou
   reduction(min : low) reduction(max : high) reduction(&& : allFinite)
   for (std::int64_t s = 0; s < numSamples; ++s)
   {
-    const double* v = values + s * components;
+    const T* v = values + s * components;
     bool finite = true;
     for (int c = 0; c < components; ++c)
     {
@@ -214,23 +230,24 @@ inline SignalRange ScanSignal(std::int64_t numSamples, int components, const dou
     }
     for (int c = 0; c < components; ++c)
     {
-      low = std::min(low, v[c]);
-      high = std::max(high, v[c]);
+      low = std::min(low, static_cast<double>(v[c]));
+      high = std::max(high, static_cast<double>(v[c]));
     }
   }
   return { low, high, allFinite };
 }
 
 /// Per-sample validity: all components finite.
-inline std::vector<unsigned char> FiniteSamples(
-  std::int64_t numSamples, int components, const double* values, int threads)
+template <typename T>
+std::vector<unsigned char> FiniteSamples(
+  std::int64_t numSamples, int components, const T* values, int threads)
 {
   std::vector<unsigned char> valid(static_cast<size_t>(numSamples));
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::int64_t s = 0; s < numSamples; ++s)
   {
-    const double* v = values + s * components;
-    valid[s] = std::all_of(v, v + components, [](double x) { return std::isfinite(x); });
+    const T* v = values + s * components;
+    valid[s] = std::all_of(v, v + components, [](T x) { return std::isfinite(x); });
   }
   return valid;
 }
@@ -268,7 +285,8 @@ struct ValidityMasks
 {
   std::vector<unsigned char> samples, faces;
 
-  ValidityMasks(const Lattice<D>& L, int C, const double* values, bool allFinite, int threads)
+  template <typename T>
+  ValidityMasks(const Lattice<D>& L, int C, const T* values, bool allFinite, int threads)
   {
     if (!allFinite)
     {

@@ -64,9 +64,9 @@ using namespace grid;
 /// The flow of the current signal, on range-normalised intensities, timed into the
 /// report. After the last update's flow, the fields are exported and the
 /// workspace released (only the velocity is needed from there on).
-template <int D>
-void ComputeFlow(const Lattice<D>& L, FlowComputation<D>& flow, const double* signal,
-  double range, bool last, GridFlowFields* fields, AdvectionReport& report)
+template <int D, typename T>
+void ComputeFlow(const Lattice<D>& L, FlowComputation<D>& flow, const T* signal, double range,
+  bool last, GridFlowFields* fields, AdvectionReport& report)
 {
   const auto flowStart = Clock::now();
   flow.Compute(signal, range);
@@ -83,9 +83,9 @@ void ComputeFlow(const Lattice<D>& L, FlowComputation<D>& flow, const double* si
 
 /// The advection of one flow update (Appendix A AdvectVertices), timed into the
 /// report; false when aborted.
-template <int D>
+template <int D, typename T>
 bool AdvectUpdate(const AdvectionContext<D>& ctx, const FlowComputation<D>& flow,
-  const AdvectionParameters& p, double stepTime, const double* source, double* target,
+  const AdvectionParameters& p, double stepTime, const T* source, const SampleWriter& target,
   float* positions, double progressStart, double progressSpan)
 {
   const auto advectStart = Clock::now();
@@ -96,8 +96,42 @@ bool AdvectUpdate(const AdvectionContext<D>& ctx, const FlowComputation<D>& flow
   return completed;
 }
 
-template <int D>
-Status RunGrid(const GridShape& shape, int C, const double* input, double* output,
+/// A writer into a double buffer of the whole signal.
+SampleWriter BufferWriter(double* buffer, int C)
+{
+  return [buffer, C](std::int64_t first, std::int64_t count, const double* values) {
+    std::copy(values, values + count * C, buffer + first * C);
+  };
+}
+
+/// Hands `values` (the whole signal) to `output`, in parallel runs.
+template <typename T>
+void WriteSignal(std::int64_t numSamples, int C, const T* values, const SampleWriter& output,
+  int threads)
+{
+  const std::int64_t run = BlockLength;
+  const std::int64_t runs = (numSamples + run - 1) / run;
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<double> row(static_cast<size_t>(run * C));
+#pragma omp for schedule(static)
+    for (std::int64_t r = 0; r < runs; ++r)
+    {
+      const std::int64_t first = r * run;
+      const std::int64_t count = std::min(run, numSamples - first);
+      std::copy(values + first * C, values + (first + count) * C, row.data());
+      output(first, count, row.data());
+    }
+  }
+}
+
+/**
+ * The grid run on a signal stored as T (float or double). The updates before the
+ * last (Composed and Naive flows) keep their results in double buffers; the
+ * last update hands its results to `output`.
+ */
+template <int D, typename T>
+Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter& output,
   const AdvectionParameters& p, AdvectionReport& report, GridFlowFields* fields,
   const ProgressFunction& progress)
 {
@@ -113,7 +147,7 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
   }
   if (!(range > 0.0) || !std::isfinite(range))
   {
-    std::copy(input, input + count, output);
+    WriteSignal(L.numSamples, C, input, output, threads);
     return {}; // constant (or entirely non-finite) signal: no flow
   }
 
@@ -122,14 +156,19 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
 
   // t = 0 gives the input, exactly (the flow fields may still be wanted).
   const bool advect = p.time > 0.0;
+  const bool naive = p.flowMode == FlowMode::Naive;
   const int updates = p.flowMode == FlowMode::Fixed ? 1 : std::max(1, p.flowUpdates);
   const double stepTime = p.time / updates;
-  // Naive flow: the resampled signal alternates between this buffer and output,
-  // arranged so that the last update writes output.
-  LargeArray<double> naiveBuffer;
-  if (advect && p.flowMode == FlowMode::Naive && updates > 1)
+  // Results of the updates before the last: the Composed flow's feed the next
+  // flow; the Naive flow's are also resampled, alternating between two buffers.
+  std::array<LargeArray<double>, 2> work;
+  if (advect && updates > 1)
   {
-    naiveBuffer = AllocateLargeArray<double>(count);
+    work[0] = AllocateLargeArray<double>(count);
+    if (naive && updates > 2)
+    {
+      work[1] = AllocateLargeArray<double>(count);
+    }
   }
   // Stored trace positions: the Composed flow's, and the coarse-to-fine traces'.
   const std::vector<GridShape> levels = PyramidShapes(shape, p.hierarchyLevels);
@@ -140,12 +179,24 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
     positions = InitialTracePositions<D>(L, threads);
   }
   FlowComputation<D> flow(L, C, p.smoothingPasses, validSample, masks.Faces(), threads);
+  if (fields)
+  {
+    flow.KeepPotential();
+  }
   const AdvectionContext<D> ctx{ L, C, threads, p.sampling, validSample, progress, report };
 
-  const double* signal = input; // the signal whose flow is computed
+  const double* previous = nullptr; // the last update's result; null: the input
   for (int k = 0; k < updates; ++k)
   {
-    ComputeFlow<D>(L, flow, signal, range, k == updates - 1, fields, report);
+    const bool last = k == updates - 1;
+    if (previous)
+    {
+      ComputeFlow<D>(L, flow, previous, range, last, fields, report);
+    }
+    else
+    {
+      ComputeFlow<D>(L, flow, input, range, last, fields, report);
+    }
     const double progressStart = (k + 0.1) / updates;
     if (progress && !progress(progressStart))
     {
@@ -160,12 +211,16 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
     {
       // Coarse-to-fine (GridHierarchy.h): the traces cross the coarser levels first;
       // a Naive step starts them afresh, as it does without levels.
-      if (p.flowMode == FlowMode::Naive && k > 0)
+      if (naive && k > 0)
       {
         positions = InitialTracePositions<D>(L, threads);
       }
-      if (!TraceThroughCoarseLevels<D>(levels, C, signal, range, validSample, p, stepTime,
-            positions.get(), report, progress, progressStart))
+      const bool completed = previous
+        ? TraceThroughCoarseLevels<D>(levels, C, previous, range, validSample, p, stepTime,
+            positions.get(), report, progress, progressStart)
+        : TraceThroughCoarseLevels<D>(levels, C, input, range, validSample, p, stepTime,
+            positions.get(), report, progress, progressStart);
+      if (!completed)
       {
         report.aborted = true;
         break;
@@ -174,34 +229,42 @@ Status RunGrid(const GridShape& shape, int C, const double* input, double* outpu
 
     // Fixed and Composed flows sample the input (Composed from the composed
     // positions, its result feeding the next flow); Naive resamples the last result.
-    const bool naive = p.flowMode == FlowMode::Naive;
-    double* target = naive && (updates - 1 - k) % 2 == 1 ? naiveBuffer.get() : output;
-    if (!AdvectUpdate<D>(ctx, flow, p, stepTime, naive ? signal : input, target, positions.get(),
-          progressStart, 0.9 / updates))
+    double* buffer = last ? nullptr : work[naive ? k % 2 : 0].get();
+    const SampleWriter target = buffer ? BufferWriter(buffer, C) : output;
+    const bool completed = naive && previous
+      ? AdvectUpdate<D>(ctx, flow, p, stepTime, previous, target, positions.get(), progressStart,
+          0.9 / updates)
+      : AdvectUpdate<D>(ctx, flow, p, stepTime, input, target, positions.get(), progressStart,
+          0.9 / updates);
+    if (!completed)
     {
       report.aborted = true;
       break;
     }
-    signal = target;
+    previous = buffer;
   }
 
   if (report.aborted || !advect)
   {
-    std::copy(input, input + count, output);
+    WriteSignal(L.numSamples, C, input, output, threads);
   }
   return {};
 }
 
-} // namespace
-
-Status AdvectGridSignal(const GridShape& shape, int components, const double* input,
-  double* output, const AdvectionParameters& parameters, AdvectionReport* report,
+/// The checks and the dispatch on the number of active axes of AdvectGridSignal.
+template <typename T>
+Status AdvectGrid(const GridShape& shape, int components, const T* input,
+  const SampleWriter& output, const AdvectionParameters& parameters, AdvectionReport* report,
   GridFlowFields* fields, const ProgressFunction& progress)
 {
-  const Status arguments = CheckGridArguments(shape, components, input, output);
+  const Status arguments = CheckGridShape(shape, components);
   if (!arguments.Ok())
   {
     return arguments;
+  }
+  if (!input || !output)
+  {
+    return { "input and output must be distinct, non-null buffers" };
   }
   const Status valid = CheckAdvectionParameters(parameters);
   if (!valid.Ok())
@@ -222,13 +285,42 @@ Status AdvectGridSignal(const GridShape& shape, int components, const double* in
       return RunGrid<3>(shape, components, input, output, parameters, r, fields, progress);
     default:
       // A single sample has no faces, hence no flow.
-      std::copy(input, input + shape.NumberOfSamples() * components, output);
+      WriteSignal(shape.NumberOfSamples(), components, input, output, 1);
       if (fields)
       {
         ZeroFlowFields(shape.NumberOfSamples(), shape.NumberOfFaces(), *fields);
       }
       return {};
   }
+}
+
+} // namespace
+
+Status AdvectGridSignal(const GridShape& shape, int components, const double* input,
+  double* output, const AdvectionParameters& parameters, AdvectionReport* report,
+  GridFlowFields* fields, const ProgressFunction& progress)
+{
+  if (output && input == output)
+  {
+    return { "input and output must be distinct, non-null buffers" };
+  }
+  return AdvectGrid(shape, components, input,
+    output ? BufferWriter(output, components) : SampleWriter(), parameters, report, fields,
+    progress);
+}
+
+Status AdvectGridSignal(const GridShape& shape, int components, const float* input,
+  const SampleWriter& output, const AdvectionParameters& parameters, AdvectionReport* report,
+  GridFlowFields* fields, const ProgressFunction& progress)
+{
+  return AdvectGrid(shape, components, input, output, parameters, report, fields, progress);
+}
+
+Status AdvectGridSignal(const GridShape& shape, int components, const double* input,
+  const SampleWriter& output, const AdvectionParameters& parameters, AdvectionReport* report,
+  GridFlowFields* fields, const ProgressFunction& progress)
+{
+  return AdvectGrid(shape, components, input, output, parameters, report, fields, progress);
 }
 
 } // namespace shock

@@ -28,6 +28,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace shock
@@ -58,6 +59,16 @@ struct GridFlowFields
 };
 
 /**
+ * Receives a kernel's results: `count` samples from sample index `first`, C
+ * interleaved values each, valid only during the call. Called from several
+ * threads at once for disjoint runs of samples, in no particular order, so that
+ * results can go straight into the caller's storage type without a full-size
+ * double buffer.
+ */
+using SampleWriter =
+  std::function<void(std::int64_t first, std::int64_t count, const double* values)>;
+
+/**
  * Run the shock filter on a grid signal.
  *
  * @param shape     grid shape; every spacing must be > 0.
@@ -73,6 +84,20 @@ struct GridFlowFields
 Status AdvectGridSignal(const GridShape& shape, int components, const double* input,
   double* output, const AdvectionParameters& parameters, AdvectionReport* report = nullptr,
   GridFlowFields* fields = nullptr, const ProgressFunction& progress = ProgressFunction());
+
+/**
+ * AdvectGridSignal on a signal stored as float or double (read in place; the
+ * computation is in double, so a float signal gives the result of its exact
+ * double copy), results handed to `output` (see SampleWriter).
+ */
+Status AdvectGridSignal(const GridShape& shape, int components, const float* input,
+  const SampleWriter& output, const AdvectionParameters& parameters,
+  AdvectionReport* report = nullptr, GridFlowFields* fields = nullptr,
+  const ProgressFunction& progress = ProgressFunction());
+Status AdvectGridSignal(const GridShape& shape, int components, const double* input,
+  const SampleWriter& output, const AdvectionParameters& parameters,
+  AdvectionReport* report = nullptr, GridFlowFields* fields = nullptr,
+  const ProgressFunction& progress = ProgressFunction());
 
 } // namespace shock
 

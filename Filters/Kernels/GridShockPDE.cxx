@@ -297,6 +297,9 @@ public:
     report.reachedTime = report.steadyState ? p.time : t;
   }
 
+  /// Keep the whole potential of each flow, for the flow fields of Finish.
+  void KeepPotential() { this->Flow.KeepPotential(); }
+
   /// After Run: the remaining checkpoints, the flow fields and the output.
   void Finish(double* output, GridFlowFields* fields)
   {
@@ -403,6 +406,10 @@ Status RunPDE(const GridShape& shape, int C, const double* input, double* output
   const ValidityMasks<D> masks(L, C, input, scan.allFinite, threads);
   PDEIntegration<D> integration(
     L, C, input, range, p, masks.Samples(), masks.Faces(), threads, report, checkpoint);
+  if (fields)
+  {
+    integration.KeepPotential();
+  }
   integration.Run(progress);
   integration.Finish(output, fields);
   return {};
