@@ -221,16 +221,23 @@ template <int D>
 std::array<double, D> FaceGradient(
   const Lattice<D>& L, const double* values, int C, int c, std::int64_t base)
 {
+  constexpr int Corners = Lattice<D>::Corners;
+  // Each corner value is read once.
+  double corner[Corners];
+  for (int b = 0; b < Corners; ++b)
+  {
+    corner[b] = values[(base + L.corner[b]) * C + c];
+  }
   std::array<double, D> g{};
-  constexpr double edgesPerAxis = Lattice<D>::Corners / 2;
+  constexpr double edgesPerAxis = Corners / 2;
   for (int d = 0; d < D; ++d)
   {
     double sum = 0.0;
-    for (int b = 0; b < Lattice<D>::Corners; ++b)
+    for (int b = 0; b < Corners; ++b)
     {
       if (!((b >> d) & 1))
       {
-        sum += values[(base + L.corner[b | (1 << d)]) * C + c] - values[(base + L.corner[b]) * C + c];
+        sum += corner[b | (1 << d)] - corner[b];
       }
     }
     g[d] = sum / (edgesPerAxis * L.h[d]);
