@@ -159,8 +159,13 @@ struct Neighbourhood
   static constexpr int Corners = Lattice<D>::Corners;
   std::array<std::int64_t, Size> offset{}; // sample offset of neighbourhood entry k
   std::array<int, Corners> lower{};        // entry of the lower corner of the face through b
-  std::array<int, Corners> step{};         // entry step from a face's lower corner to its corner b
   std::array<double, 2> start{};           // start coordinate in its face, per corner bit
+
+  /// Entry step from a face's lower corner to its corner c (a constant once unrolled).
+  static constexpr int Step(int c)
+  {
+    return (c & 1) + ((c >> 1) & 1) * 3 + ((c >> 2) & 1) * 9;
+  }
 
   explicit Neighbourhood(const Lattice<D>& L)
   {
@@ -181,7 +186,6 @@ struct Neighbourhood
       {
         const int bit = (b >> d) & 1;
         this->lower[b] += (1 - bit) * power;
-        this->step[b] += bit * power;
       }
     }
     // The start, offset from the sample towards the face centre, measured from
@@ -244,7 +248,7 @@ SHOCK_ALWAYS_INLINE bool TraceWithinFace(
   double* face = weights + hood.lower[b];
   for (int c = 0; c < Lattice<D>::Corners; ++c)
   {
-    face[hood.step[c]] += corner[c];
+    face[Neighbourhood<D>::Step(c)] += corner[c];
   }
   return true;
 }
