@@ -108,7 +108,7 @@ void UpdateOrThrow(vtkAlgorithm* algorithm, const std::string& context)
 
 std::uint64_t ImageFilterBytes(vtkIdType samples, int components)
 {
-  return static_cast<std::uint64_t>(samples) * (40 + 20 * static_cast<std::uint64_t>(components));
+  return static_cast<std::uint64_t>(samples) * (16 + 16 * static_cast<std::uint64_t>(components));
 }
 
 std::uint64_t MeshFilterBytes(vtkIdType points)

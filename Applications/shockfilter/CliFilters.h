@@ -68,11 +68,12 @@ void ConfigureFilter(vtkShockAdvectionFilter* filter, const ShockOptions& option
 void UpdateOrThrow(vtkAlgorithm* algorithm, const std::string& context);
 
 /**
- * What a filter needs, measured as peak memory above the program's own (about
- * 50 MiB), on images of 4 megapixels and meshes of 60,000 points: an image or
- * volume about 40 bytes per sample plus 20 per sample and component (90 for
- * RGB), a mesh about 1200 bytes per point (the surface and the sharpen
- * commands alike), the input and the output included.
+ * What a filter needs, the input and the output included, as an upper bound of
+ * the peak memory above the program's own (about 50 MiB): an image or volume
+ * at most 16 bytes per sample plus 16 per sample and component (measured: 32
+ * per pixel of an RGB photo, 20 per voxel of a float volume), a mesh about
+ * 1200 bytes per point (measured on meshes of 60,000 points; the surface and
+ * the sharpen commands alike).
  */
 std::uint64_t ImageFilterBytes(vtkIdType samples, int components);
 std::uint64_t MeshFilterBytes(vtkIdType points);
