@@ -48,7 +48,7 @@ ROWS = [
     Row("sharpen4x", "2.56M-vertex scan sharpened (dragon 4×), t = 2048", "sharpen",
         lambda i: i.dragon(4), ["--time", "2048"], "scaling", "vertex"),
     Row("volume512", "512³ float volume, t = 64", "image", lambda i: i.volume(512),
-        ["--time", "64"], "time, peak", "voxel"),
+        ["--time", "64", "--max-samples", "200000000"], "time, peak", "voxel"),
     Row("small-image", "64×48 RGB photo window, t = 64", "image", Inputs.photo_64x48,
         ["--time", "64"], "2 threads not slower than 1"),
     Row("small-mesh", "482-vertex sphere colours, t = 64", "surface", Inputs.small_mesh,
