@@ -228,7 +228,7 @@ SHOCK_ALWAYS_INLINE bool TraceWithinFace(
   for (int d = 0; d < D; ++d)
   {
     frac[d] = hood.start[(b >> d) & 1] + static_cast<double>(v[d]) * time;
-    inside = inside && frac[d] >= 0.0 && frac[d] <= 1.0;
+    inside = inside & (frac[d] >= 0.0) & (frac[d] <= 1.0); // no branches
   }
   if (!inside)
   {
@@ -326,6 +326,11 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
   const Hood hood(L);
   const bool shortRoad =
     !positions && !valid && ctx.sampling == Sampling::Linear && tracer.CrossesFaces();
+  std::array<std::int64_t, Hood::Size> valueOffset; // of the neighbourhood's values
+  for (int e = 0; e < Hood::Size; ++e)
+  {
+    valueOffset[e] = hood.offset[e] * C;
+  }
   const RowBlocks<D> blocks(L.n);
   // Progress is reported, and an abort honoured, between chunks of blocks.
   const std::int64_t chunkCount =
@@ -388,13 +393,22 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
           }
           for (int c = 0; c < C; ++c)
           {
+            // Four partial sums: short chains of dependent additions.
             const T* value = source + s * C + c;
-            double sum = stencil.Apply(source, C, c);
-            for (int e = 0; e < Hood::Size; ++e)
+            double partial[4] = { stencil.Apply(source, C, c), 0.0, 0.0, 0.0 };
+            int e = 0;
+            for (; e + 4 <= Hood::Size; e += 4)
             {
-              sum += weights[e] * static_cast<double>(value[hood.offset[e] * C]);
+              for (int r = 0; r < 4; ++r)
+              {
+                partial[r] += weights[e + r] * static_cast<double>(value[valueOffset[e + r]]);
+              }
             }
-            result[c] = sum / Corners;
+            for (; e < Hood::Size; ++e)
+            {
+              partial[0] += weights[e] * static_cast<double>(value[valueOffset[e]]);
+            }
+            result[c] = ((partial[0] + partial[1]) + (partial[2] + partial[3])) / Corners;
           }
           continue;
         }

@@ -22,6 +22,7 @@ namespace shock
 namespace grid
 {
 
+
 /**
  * Appendix A Trace on the grid, in index coordinates. The flow is constant per
  * face; a trace stops when the time is used up, when the flow reverses
@@ -144,20 +145,29 @@ private:
     std::int64_t steps = 0;
     while (t > 0.0)
     {
-      // First boundary reached; written with selects rather than branches, as
-      // the exit axis is unpredictable (a division by 0 is computed, then ignored).
-      double exitTime = std::numeric_limits<double>::infinity();
-      int exitAxis = -1;
+      // First boundary reached, without branches (the exit axis is not
+      // predictable): with r = 1 / v, (c + 1 - q) r is the time to the upper
+      // boundary when v > 0 and <= 0 otherwise, (c - q) r the time to the lower
+      // one when v < 0 and <= 0 otherwise; the larger is the boundary ahead.
+      // An axis without motion (r infinite) or the one slid along is never left.
+      constexpr double never = std::numeric_limits<double>::infinity();
+      std::array<double, D> te;
       for (int d = 0; d < D; ++d)
       {
-        const double distance = v[d] > 0.0 ? c[d] + 1 - q[d] : c[d] - q[d];
-        const double quotient = distance / v[d];
-        const double te =
-          (d == pinned || v[d] == 0.0) ? std::numeric_limits<double>::infinity() : quotient;
-        exitAxis = te < exitTime ? d : exitAxis;
-        exitTime = te < exitTime ? te : exitTime;
+        const double r = 1.0 / v[d];
+        const double lower = static_cast<double>(c[d]);
+        const double ahead = std::max((lower + 1.0 - q[d]) * r, (lower - q[d]) * r);
+        te[d] = (d != pinned && std::abs(r) < never) ? ahead : never;
       }
-      if (exitAxis < 0)
+      int exitAxis = 0;
+      double exitTime = te[0];
+      for (int d = 1; d < D; ++d)
+      {
+        const int earlier = te[d] < exitTime;
+        exitAxis += earlier * (d - exitAxis);
+        exitTime = std::min(exitTime, te[d]);
+      }
+      if (!(exitTime < never))
       {
         break; // no motion left (a sliding velocity of zero)
       }
@@ -168,7 +178,7 @@ private:
         {
           q[d] += v[d] * t;
         }
-        break;
+        break; // the time is used up in this face
       }
       for (int d = 0; d < D; ++d)
       {
