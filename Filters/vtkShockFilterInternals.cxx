@@ -50,6 +50,33 @@ T RoundAndClamp(double v)
   }
 }
 
+/// RoundAndClamp to the value type `dataType`, as a double: for arrays seen
+/// through the generic vtkDataArray interface, whose accessors take doubles.
+double RoundAndClampTo(int dataType, double v)
+{
+  switch (dataType)
+  {
+    vtkTemplateMacro(return static_cast<double>(RoundAndClamp<VTK_TT>(v)));
+    default:
+      return v;
+  }
+}
+
+/// RoundAndClamp for the values of ArrayT (by the array's real type for a
+/// generic vtkDataArray).
+template <typename ArrayT>
+vtk::GetAPIType<ArrayT> RoundAndClampFor(ArrayT* array, double v)
+{
+  if constexpr (std::is_same<ArrayT, vtkDataArray>::value)
+  {
+    return RoundAndClampTo(array->GetDataType(), v);
+  }
+  else
+  {
+    return RoundAndClamp<vtk::GetAPIType<ArrayT>>(v);
+  }
+}
+
 /// Copies any array into float or double storage (the value types a kernel reads).
 struct CopyTo
 {
@@ -73,14 +100,13 @@ struct MakeWriter
   template <typename ArrayT>
   void operator()(ArrayT* array, shock::SampleWriter& writer) const
   {
-    using ValueT = vtk::GetAPIType<ArrayT>;
     const int C = array->GetNumberOfComponents();
     writer = [array, C](std::int64_t first, std::int64_t count, const double* in) {
       auto values = vtk::DataArrayValueRange(array, first * C, (first + count) * C);
       std::int64_t i = 0;
       for (auto&& value : values)
       {
-        value = RoundAndClamp<ValueT>(in[i++]);
+        value = RoundAndClampFor(array, in[i++]);
       }
     };
   }
@@ -91,12 +117,11 @@ struct CopyFromDoubles
   template <typename ArrayT>
   void operator()(ArrayT* array, const double* in, int threads) const
   {
-    using ValueT = vtk::GetAPIType<ArrayT>;
     auto values = vtk::DataArrayValueRange(array);
     shock::ParallelFor(values.size(), shock::ThreadsForWork(threads, values.size()), [&](std::int64_t begin, std::int64_t end) {
       for (std::int64_t i = begin; i < end; ++i)
       {
-        values[i] = RoundAndClamp<ValueT>(in[i]);
+        values[i] = RoundAndClampFor(array, in[i]);
       }
     });
   }

@@ -2,6 +2,7 @@
 // array types, pass-through, flow arrays, errors, progress and abort.
 #include "vtkImageShockAdvectionFilter.h"
 
+#include "GridShockAdvection.h"
 #include "GridShockPDE.h"
 #include "TestFilterHelpers.h"
 
@@ -21,6 +22,7 @@
 #include "vtkPNGReader.h"
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
+#include "vtkSOADataArrayTemplate.h"
 #include "vtkShortArray.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
@@ -215,6 +217,56 @@ TEST(ImageShockAdvectionFilter, EveryNumericTypeKeepsItsTypeAndMatchesDouble)
       mean += std::abs(values[i] - expected[i]);
     }
     EXPECT_LT(mean / static_cast<double>(values.size()), 1.0) << array->GetClassName();
+  }
+}
+
+TEST(ImageShockAdvectionFilter, EveryStorageIsReadAndWrittenAsTheKernelComputesIt)
+{
+  // The filter reads float and double arrays in place and other types through
+  // a copy, and writes the results straight into an array of the input's type:
+  // for every storage and flow mode, the output is the kernel's double result on
+  // the same values, rounded and clamped for integers, and the input is untouched.
+  std::vector<vtkSmartPointer<vtkDataArray>> arrays = { vtkSmartPointer<vtkUnsignedCharArray>::New(),
+    vtkSmartPointer<vtkShortArray>::New(), vtkSmartPointer<vtkIntArray>::New(),
+    vtkSmartPointer<vtkFloatArray>::New(), vtkSmartPointer<vtkDoubleArray>::New(),
+    vtkSmartPointer<vtkSOADataArrayTemplate<float>>::New(),
+    vtkSmartPointer<vtkSOADataArrayTemplate<unsigned char>>::New() };
+  for (int mode : { vtkShockAdvectionFilter::FIXED, vtkShockAdvectionFilter::COMPOSED,
+         vtkShockAdvectionFilter::NAIVE })
+  {
+    for (auto& array : arrays)
+    {
+      auto image = MakeImage(array, 33, 27, 1, 2, 180.0, 20.0);
+      const auto samples = Values(array);
+      vtkNew<vtkImageShockAdvectionFilter> filter;
+      filter->SetInputData(image);
+      filter->SetFlowTime(500.0);
+      filter->SetFlowMode(mode);
+      filter->SetNumberOfFlowUpdates(3);
+      ASSERT_TRUE(UpdateSucceeds(filter));
+
+      shock::GridShape shape;
+      shape.dimensions = { 33, 27, 1 };
+      shape.spacing = { 0.5, 0.5, 0.5 };
+      shock::AdvectionParameters p;
+      p.time = 500.0;
+      p.flowMode = static_cast<shock::FlowMode>(mode);
+      p.flowUpdates = 3;
+      std::vector<double> expected(samples.size());
+      ASSERT_TRUE(shock::AdvectGridSignal(shape, 2, samples.data(), expected.data(), p).Ok());
+      const bool integral = array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE;
+      for (double& v : expected)
+      {
+        v = integral ? std::round(v) : (array->GetDataType() == VTK_FLOAT ? static_cast<float>(v) : v);
+      }
+      vtkDataArray* output = filter->GetOutput()->GetPointData()->GetArray("Intensity");
+      ASSERT_NE(output, nullptr);
+      EXPECT_STREQ(output->GetClassName(), array->GetClassName());
+      EXPECT_EQ(output->GetNumberOfComponents(), 2);
+      EXPECT_EQ(Values(output), expected) << array->GetClassName() << " mode " << mode;
+      EXPECT_NE(Values(output), samples) << array->GetClassName(); // something changed
+      EXPECT_EQ(Values(array), samples); // the input is untouched
+    }
   }
 }
 
