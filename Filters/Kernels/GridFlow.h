@@ -229,7 +229,6 @@ std::array<double, D> FaceGradient(
     corner[b] = values[(base + L.corner[b]) * C + c];
   }
   std::array<double, D> g{};
-  constexpr double edgesPerAxis = Corners / 2;
   for (int d = 0; d < D; ++d)
   {
     double sum = 0.0;
@@ -240,7 +239,7 @@ std::array<double, D> FaceGradient(
         sum += corner[b | (1 << d)] - corner[b];
       }
     }
-    g[d] = sum / (edgesPerAxis * L.h[d]);
+    g[d] = sum * L.meanDifference[d]; // sum / (edges per axis x h)
   }
   return g;
 }
@@ -297,6 +296,34 @@ void FacesToSamples(const Lattice<D>& L, const double* energy, const unsigned ch
     const std::int64_t length = blocks.Get(k, i);
     const std::int64_t s0 = L.SampleIndex(i);
     const AdjacentFaces<D> faces(L, i);
+    if (!validFace)
+    {
+      // Every face valid: the same sums in the same order, without a test per face.
+      std::array<std::int64_t, Lattice<D>::Corners / 2> rows;
+      int rowCount = 0;
+      for (int r = 0; r < Lattice<D>::Corners / 2; ++r)
+      {
+        if (faces.RowStart(r) >= 0)
+        {
+          rows[rowCount++] = faces.RowStart(r);
+        }
+      }
+      for (std::int64_t j = 0; j < length; ++j)
+      {
+        const std::int64_t x = i[0] + j;
+        const bool right = x < L.m[0]; // the face from x to x + 1 exists
+        const bool left = x > 0;       // the face from x - 1 to x exists
+        double sum = 0.0;
+        for (int r = 0; r < rowCount; ++r)
+        {
+          sum += right ? energy[rows[r] + x] : 0.0;
+          sum += left ? energy[rows[r] + x - 1] : 0.0;
+        }
+        const int count = rowCount * ((right ? 1 : 0) + (left ? 1 : 0));
+        potential[s0 + j] = count > 0 ? sum / count : 0.0;
+      }
+      continue;
+    }
     for (std::int64_t j = 0; j < length; ++j)
     {
       double sum = 0.0;
@@ -323,6 +350,12 @@ template <int D>
 void BackTraceVelocity(const Lattice<D>& L, const double* potential,
   const unsigned char* validFace, float* velocity, int threads)
 {
+  // -u / h with u = 1/2 grad P: index units of the back trace.
+  std::array<double, D> toIndex;
+  for (int d = 0; d < D; ++d)
+  {
+    toIndex[d] = -0.5 / L.h[d];
+  }
   const RowBlocks<D> blocks(L.m);
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::int64_t k = 0; k < blocks.Count(); ++k)
@@ -342,7 +375,7 @@ void BackTraceVelocity(const Lattice<D>& L, const double* potential,
       const auto g = FaceGradient<D>(L, potential, 1, 0, base0 + j);
       for (int d = 0; d < D; ++d)
       {
-        v[d] = static_cast<float>(-0.5 * g[d] / L.h[d]);
+        v[d] = static_cast<float>(g[d] * toIndex[d]);
       }
     }
   }

@@ -37,6 +37,7 @@ struct Lattice
   std::array<std::int64_t, D> faceStride{};
   std::array<double, D> h{};                // spacing / mean edge length
   std::array<double, D> h2{};               // h^2: metric for dot products of index velocities
+  std::array<double, D> meanDifference{};   // 1 / (edges per axis x h): mean edge difference to gradient
   std::array<std::int64_t, Corners> corner{}; // sample offset of face corner with bit pattern b
   std::int64_t numSamples = 0;
   std::int64_t numFaces = 0;
@@ -56,6 +57,8 @@ struct Lattice
         this->sampleStride[k] = stride;
         this->h[k] = shape.spacing[a] / meanEdge;
         this->h2[k] = this->h[k] * this->h[k];
+        // A face has 2^(D-1) edges along each axis.
+        this->meanDifference[k] = 1.0 / (static_cast<double>(Corners / 2) * this->h[k]);
         ++k;
       }
       stride *= shape.dimensions[a];
@@ -180,21 +183,24 @@ public:
         inside = inside && c >= 0 && c < L.m[d];
         f += c * L.faceStride[d];
       }
-      this->RowStart[r] = inside ? f : -1;
+      this->RowStarts[r] = inside ? f : -1;
     }
   }
+
+  /// The face at x = 0 of the row of faces through corner patterns 2r and 2r + 1; -1 outside.
+  std::int64_t RowStart(int r) const { return this->RowStarts[r]; }
 
   /// The face adjacent to sample x of the row through corner pattern b; -1 outside the grid.
   std::int64_t Face(std::int64_t x, int b) const
   {
-    const std::int64_t start = this->RowStart[b >> 1];
+    const std::int64_t start = this->RowStarts[b >> 1];
     const std::int64_t fx = x - (b & 1);
     return (start < 0 || fx < 0 || fx >= L.m[0]) ? -1 : start + fx;
   }
 
 private:
   const Lattice<D>& L;
-  std::array<std::int64_t, Lattice<D>::Corners / 2> RowStart{}; // face at x = 0, or -1
+  std::array<std::int64_t, Lattice<D>::Corners / 2> RowStarts{}; // face at x = 0, or -1
 };
 
 /// Data range over the samples whose components are all finite.
