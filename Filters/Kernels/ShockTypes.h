@@ -11,11 +11,14 @@
 #ifndef ShockTypes_h
 #define ShockTypes_h
 
-// Forces the inlining of a small function on a hot path (GCC and Clang).
+// Forces the inlining of a small function on a hot path, or keeps a rare path
+// out of line (GCC and Clang).
 #if defined(__GNUC__) || defined(__clang__)
 #define SHOCK_ALWAYS_INLINE inline __attribute__((always_inline))
+#define SHOCK_NOINLINE __attribute__((noinline))
 #else
 #define SHOCK_ALWAYS_INLINE inline
+#define SHOCK_NOINLINE
 #endif
 
 #include <cstddef>
