@@ -668,7 +668,7 @@ TEST(GridSteps, AdvectVerticesReadsWhereTracesThatStayInTheirFacesEnd)
                 stays = stays && q[d] >= face[d] && q[d] <= face[d] + 1;
               }
               allStay = allStay && stays;
-              for (int c = 0; c < C; ++c)
+              for (int c = 0; c < C && stays; ++c) // a trace that leaves may end outside the grid
                 sum[c] += RefTrilinear(g, C, values, c, q);
               ++traces;
             }
