@@ -40,9 +40,22 @@ T RoundAndClamp(double v)
     }
     const double low = static_cast<double>(std::numeric_limits<T>::lowest());
     const double high = static_cast<double>(std::numeric_limits<T>::max());
-    const double rounded = std::round(v);
-    return rounded <= low ? std::numeric_limits<T>::lowest()
-                          : (rounded >= high ? std::numeric_limits<T>::max() : static_cast<T>(rounded));
+    if constexpr (sizeof(T) <= 4)
+    {
+      // Clamped first (rounding is monotone, and the limits are integers), then
+      // rounded half away from zero as std::round does, without its library
+      // call: the clamped value and its truncation fit an int64 exactly.
+      const double clamped = std::min(std::max(v, low), high);
+      const auto truncated = static_cast<std::int64_t>(clamped);
+      const double rest = clamped - static_cast<double>(truncated);
+      return static_cast<T>(truncated + (rest >= 0.5 ? 1 : 0) - (rest <= -0.5 ? 1 : 0));
+    }
+    else
+    {
+      const double rounded = std::round(v);
+      return rounded <= low ? std::numeric_limits<T>::lowest()
+                            : (rounded >= high ? std::numeric_limits<T>::max() : static_cast<T>(rounded));
+    }
   }
   else
   {
