@@ -86,13 +86,15 @@ bool ConvexQuad(vtkPoints* points, const vtkIdType* ids)
 /**
  * The common case of ExtractTriangles: polygons that are all triangles, no
  * strips. The cell array's connectivity then is the triangle list: copied in
- * parallel. False (nothing kept) when the case does not apply or an id is out
- * of range (the general path then reports it).
+ * parallel, while checking that every cell has 3 points (offset 3 i for cell
+ * i). False (nothing kept) when the case does not apply or an id is out of
+ * range (the general path then reports it).
  */
 template <typename IdArray>
-bool CopyTriangles(IdArray* ids, vtkIdType firstPolygon, vtkIdType numberOfPoints,
-  std::vector<std::int64_t>& triangles, std::vector<vtkIdType>& sourceCell)
+bool CopyTriangles(IdArray* offsetArray, IdArray* ids, vtkIdType firstPolygon,
+  vtkIdType numberOfPoints, std::vector<std::int64_t>& triangles, std::vector<vtkIdType>& sourceCell)
 {
+  const auto* offsets = offsetArray->GetPointer(0);
   const auto* from = ids->GetPointer(0);
   const std::int64_t n = ids->GetNumberOfValues() / 3;
   triangles.resize(static_cast<size_t>(3 * n));
@@ -102,6 +104,7 @@ bool CopyTriangles(IdArray* ids, vtkIdType firstPolygon, vtkIdType numberOfPoint
     bool ok = true;
     for (std::int64_t f = begin; f < end; ++f)
     {
+      ok = ok && offsets[f + 1] == 3 * (f + 1);
       for (std::int64_t k = 3 * f; k < 3 * f + 3; ++k)
       {
         triangles[static_cast<size_t>(k)] = from[k];
@@ -123,15 +126,17 @@ bool OnlyTriangles(vtkPolyData* input, std::vector<std::int64_t>& triangles,
   vtkCellArray* polys = input->GetPolys();
   const vtkIdType n = polys->GetNumberOfCells();
   if (input->GetNumberOfStrips() > 0 || n == 0 || polys->GetNumberOfConnectivityIds() != 3 * n ||
-    polys->GetMaxCellSize() != 3)
+    polys->GetNumberOfOffsets() != n + 1)
   {
     return false;
   }
   const vtkIdType first = input->GetNumberOfVerts() + input->GetNumberOfLines();
   const vtkIdType points = input->GetNumberOfPoints();
   return polys->IsStorage64Bit()
-    ? CopyTriangles(polys->GetConnectivityArray64(), first, points, triangles, sourceCell)
-    : CopyTriangles(polys->GetConnectivityArray32(), first, points, triangles, sourceCell);
+    ? CopyTriangles(polys->GetOffsetsArray64(), polys->GetConnectivityArray64(), first, points,
+        triangles, sourceCell)
+    : CopyTriangles(polys->GetOffsetsArray32(), polys->GetConnectivityArray32(), first, points,
+        triangles, sourceCell);
 }
 }
 

@@ -80,10 +80,6 @@ private:
   // The steps of Build, in order.
   void BuildPointTriangles(int threads);
   void BuildOneRingAndNeighbours(int threads);
-  // Parts of BuildOneRingAndNeighbours.
-  struct EdgeEnd;
-  void CollectEdgeEnds(std::int64_t p, std::vector<EdgeEnd>& ends) const;
-  void JoinAcross(const EdgeEnd* begin, const EdgeEnd* end, bool join);
 
   std::int64_t numberOfPoints = 0;
   std::int64_t numberOfEdges = 0;
