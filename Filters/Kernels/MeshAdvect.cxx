@@ -12,6 +12,9 @@ namespace
 // Offset of a vertex-advection start towards the adjacent face centre (the paper's epsilon).
 constexpr double VertexOffset = 0.001;
 
+// Traces ahead whose first triangles are prefetched (SurfaceTracer::Prefetch).
+constexpr std::int64_t PrefetchDistance = 4;
+
 bool SampleNearest(const TriangleMesh& mesh, const SurfacePoint& q, const MeshSource& source,
   double* acc)
 {
@@ -165,8 +168,13 @@ bool AdvectFaces(
 {
   const int C = source.components;
   const TriangleMesh& mesh = pass.mesh;
-  return pass.ForEach(mesh.NumberOfTriangles(),
+  const std::int64_t nt = mesh.NumberOfTriangles();
+  return pass.ForEach(nt,
     [&](std::int64_t f, std::uint64_t& steps, std::uint64_t& cut) {
+      if (f + PrefetchDistance < nt)
+      {
+        pass.tracer.PrefetchAcross(f + PrefetchDistance); // its own data streams in order
+      }
       double* acc = out + f * C;
       const double* own = source.cells + f * C;
       if (mesh.Degenerate(f) || !AllFinite(own, C))
@@ -191,7 +199,15 @@ bool AdvectVertices(
   const int C = source.components;
   const TriangleMesh& mesh = pass.mesh;
   const CompressedLists& around = mesh.PointTriangles();
-  return pass.ForEach(mesh.NumberOfPoints(), [&](std::int64_t p, std::uint64_t& steps, std::uint64_t& cut) {
+  const std::int64_t np = mesh.NumberOfPoints();
+  return pass.ForEach(np, [&](std::int64_t p, std::uint64_t& steps, std::uint64_t& cut) {
+    if (p + PrefetchDistance < np)
+    {
+      for (std::int64_t k = around.Begin(p + PrefetchDistance); k < around.End(p + PrefetchDistance); ++k)
+      {
+        pass.tracer.Prefetch(around.items[static_cast<size_t>(k)]);
+      }
+    }
     double* acc = out + p * C;
     const double* own = source.points + p * C;
     std::fill(acc, acc + C, 0.0);

@@ -49,6 +49,21 @@ public:
    */
   Status Build(std::int64_t numberOfPoints, std::vector<std::int64_t> triangles, int threads);
 
+  /**
+   * The connectivity of `source` with its points split into copies: point q of
+   * the result copies point original[q] (every source point has at least one
+   * copy, the copies of a point are consecutive and in the order of the points
+   * they copy), and `triangles` are the source's, in the same order, with each
+   * corner replaced by a copy of it (equal corners by the same copy). The
+   * result is what Build(original.size(), triangles) gives; only the lists
+   * around split points and their neighbours are recomputed. Falls back to
+   * Build when the arguments are not such a split.
+   */
+  Status BuildSplit(const MeshConnectivity& source, const std::vector<std::int64_t>& original,
+    std::vector<std::int64_t> triangles, int threads);
+  /// Whether the last BuildSplit derived the lists from its source (not the fallback).
+  bool DerivedFromSource() const { return this->derived; }
+
   std::int64_t NumberOfPoints() const { return this->numberOfPoints; }
   std::int64_t NumberOfTriangles() const
   {
@@ -83,6 +98,7 @@ private:
 
   std::int64_t numberOfPoints = 0;
   std::int64_t numberOfEdges = 0;
+  bool derived = false;
   std::vector<std::int64_t> triangles;
   CompressedLists pointTriangles;
   CompressedLists oneRing;

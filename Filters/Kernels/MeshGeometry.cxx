@@ -19,6 +19,15 @@ std::unique_ptr<T[]> CopyOf(const std::unique_ptr<T[]>& from, std::int64_t n)
   return to;
 }
 
+/// A copy of the first n items of `from` (null when it is null).
+template <typename T>
+std::shared_ptr<T[]> CopyOf(const std::shared_ptr<T[]>& from, std::int64_t n)
+{
+  std::shared_ptr<T[]> to(from ? new T[static_cast<size_t>(n)] : nullptr);
+  std::copy(from.get(), from.get() + (from ? n : 0), to.get());
+  return to;
+}
+
 /// Below this area (relative to l-bar^2) a triangle has no reliable normal or gradient.
 constexpr double DegenerateAreaFraction = 1e-12;
 } // namespace
@@ -123,6 +132,28 @@ void MeshGeometry::ComputeTriangles(const MeshConnectivity& connectivity, int th
       }
     }
   }
+}
+
+void MeshGeometry::ComputeFromCopies(
+  const MeshGeometry& source, const std::vector<std::int64_t>& original, int threads)
+{
+  const auto np = static_cast<std::int64_t>(original.size());
+  this->numberOfPoints = np;
+  this->numberOfTriangles = source.numberOfTriangles;
+  this->meanEdgeLength = source.meanEdgeLength; // the same perimeters, summed in the same order
+  this->points.reset(new double[static_cast<size_t>(3 * np)]);
+  const int team = ThreadsForWork(threads, np);
+#pragma omp parallel for num_threads(team) schedule(static)
+  for (std::int64_t q = 0; q < np; ++q)
+  {
+    std::copy(source.Point(original[static_cast<size_t>(q)]),
+      source.Point(original[static_cast<size_t>(q)]) + 3, &this->points[static_cast<size_t>(3 * q)]);
+  }
+  this->area = source.area;
+  this->degenerate = source.degenerate;
+  this->normal = source.normal;
+  this->centroid = source.centroid;
+  this->hatGradient = source.hatGradient;
 }
 
 Status MeshGeometry::Compute(const MeshConnectivity& connectivity, const double* points, int threads)

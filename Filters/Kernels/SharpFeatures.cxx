@@ -188,7 +188,6 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
     firstCopy[static_cast<size_t>(p) + 1] += firstCopy[static_cast<size_t>(p)];
   }
   const std::int64_t copies = firstCopy.back();
-  std::vector<double> points(static_cast<size_t>(3 * copies));
   split.original.resize(static_cast<size_t>(copies));
 #pragma omp parallel for num_threads(nthreads) schedule(static)
   for (std::int64_t p = 0; p < np; ++p)
@@ -196,7 +195,6 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
     for (std::int64_t q = firstCopy[static_cast<size_t>(p)]; q < firstCopy[static_cast<size_t>(p) + 1]; ++q)
     {
       split.original[static_cast<size_t>(q)] = p;
-      std::copy(mesh.Point(p), mesh.Point(p) + 3, &points[static_cast<size_t>(3 * q)]);
     }
   }
   std::vector<std::int64_t> triangles(static_cast<size_t>(3 * nt));
@@ -216,13 +214,9 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
         firstCopy[static_cast<size_t>(p)] + label[static_cast<size_t>(k)];
     }
   }
-  TriangleMeshView view;
-  view.numberOfPoints = copies;
-  view.points = points.data();
-  view.numberOfTriangles = nt;
-  view.triangles = triangles.data();
   split.featureEdges = edges;
-  return split.mesh.Build(view, nthreads);
+  // The same mesh as built from the copied points and these triangles, derived from `mesh`.
+  return split.mesh.BuildSplit(mesh, split.original, std::move(triangles), nthreads);
 }
 
 } // namespace shock

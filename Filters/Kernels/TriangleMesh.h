@@ -63,6 +63,16 @@ public:
   Status Build(std::shared_ptr<const MeshConnectivity> connectivity, const double* points,
     int threads);
 
+  /**
+   * Build the mesh of `source` with its points split into copies (see
+   * MeshConnectivity::BuildSplit: point q copies original[q], `triangles` are
+   * the source's with each corner replaced by a copy of it): the same mesh as
+   * Build with those points and triangles, derived from the source's lists and
+   * sharing its per-triangle geometry.
+   */
+  Status BuildSplit(const TriangleMesh& source, const std::vector<std::int64_t>& original,
+    std::vector<std::int64_t> triangles, int threads);
+
   const MeshConnectivity& Connectivity() const { return *this->connectivity; }
   /// The connectivity, to build another mesh over it.
   std::shared_ptr<const MeshConnectivity> SharedConnectivity() const { return this->connectivity; }
@@ -91,6 +101,8 @@ public:
     const std::int64_t g = this->neighbours[3 * f + e];
     return g >= 0 && !this->Degenerate(f) && !this->Degenerate(g) ? g : -1;
   }
+  /// Neighbour(f, e) before the degeneracy test: -1 only on boundary and non-manifold edges.
+  std::int64_t RawNeighbour(std::int64_t f, int e) const { return this->neighbours[3 * f + e]; }
   /// Triangles that use point p.
   const CompressedLists& PointTriangles() const { return this->connectivity->PointTriangles(); }
   /// Points joined to p by an edge (each once).
