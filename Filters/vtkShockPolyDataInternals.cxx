@@ -35,7 +35,7 @@ namespace
  * For each point, the first point with exactly the same coordinates (itself when
  * unique). Coincident copies then share one vertex of the mesh. Coordinates must be finite.
  */
-std::vector<std::int64_t> CoincidentRepresentatives(const std::vector<double>& points)
+std::vector<std::int64_t> CoincidentRepresentatives(const std::vector<double>& points, int threads)
 {
   const std::int64_t n = static_cast<std::int64_t>(points.size() / 3);
   std::vector<std::int64_t> order(static_cast<size_t>(n));
@@ -44,10 +44,29 @@ std::vector<std::int64_t> CoincidentRepresentatives(const std::vector<double>& p
     return std::array<double, 3>{ points[3 * p], points[3 * p + 1], points[3 * p + 2] };
   };
   // Sorting by (coordinates, id) puts every group of copies together, lowest id first.
-  std::sort(order.begin(), order.end(), [&key](std::int64_t a, std::int64_t b) {
+  // A strict total order (finite coordinates, distinct ids): the sorted order is
+  // unique, so the pieces sorted in parallel and merged give exactly it.
+  auto less = [&key](std::int64_t a, std::int64_t b) {
     const auto ka = key(a), kb = key(b);
     return ka != kb ? ka < kb : a < b;
+  };
+  const int pieces = static_cast<int>(std::min<std::int64_t>(
+    std::min(8, shock::ResolveThreadCount(threads)), std::max<std::int64_t>(1, n / 65536)));
+  auto begin = [n, pieces](int i) { return n / pieces * i + std::min<std::int64_t>(i, n % pieces); };
+  shock::ParallelFor(pieces, pieces, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t i = first; i < last; ++i)
+    {
+      std::sort(order.begin() + begin(static_cast<int>(i)), order.begin() + begin(static_cast<int>(i) + 1), less);
+    }
   });
+  for (int width = 1; width < pieces; width *= 2)
+  {
+    for (int i = 0; i + width < pieces; i += 2 * width)
+    {
+      std::inplace_merge(order.begin() + begin(i), order.begin() + begin(i + width),
+        order.begin() + begin(std::min(pieces, i + 2 * width)), less);
+    }
+  }
   std::vector<std::int64_t> representative(static_cast<size_t>(n));
   for (size_t k = 0; k < order.size(); ++k)
   {
@@ -348,7 +367,7 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
   }
   if (mergeCoincidentPoints)
   {
-    out.representative = CoincidentRepresentatives(points);
+    out.representative = CoincidentRepresentatives(points, threads);
     for (std::int64_t& id : out.triangles.triangles)
     {
       id = out.representative[static_cast<size_t>(id)];

@@ -197,6 +197,34 @@ void BuildPattern(const TriangleMesh& mesh, int threads, FitSystemData& system)
   }
 }
 
+/// The target gradients of the triangles last asked for, by triangle modulo its size.
+class TargetGradientCache
+{
+public:
+  TargetGradientCache()
+    : tags(Size, -1)
+    , gradients(9 * Size)
+  {
+  }
+  /// fit::TargetGradients of triangle f (computed on a miss).
+  const double* Get(const TriangleMesh& mesh, const fit::Targets& targets, std::int64_t f)
+  {
+    const size_t slot = static_cast<size_t>(f) & (Size - 1);
+    double* w = &this->gradients[9 * slot];
+    if (this->tags[slot] != f)
+    {
+      fit::TargetGradients(mesh, targets.normals, targets.target, f, w);
+      this->tags[slot] = f;
+    }
+    return w;
+  }
+
+private:
+  static constexpr size_t Size = 4096;
+  std::vector<std::int64_t> tags;
+  std::vector<double> gradients;
+};
+
 /**
  * The values of A = alpha M + beta S (normalised: stiffness A g.g, mass s^2 A/12),
  * the mass term alpha M c0 and the inverse diagonal, row by row in parallel;
@@ -216,7 +244,12 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
   system.fitted.assign(static_cast<size_t>(np), 0);
   rhs.resize(targets ? np : 0, 3);
   const double weight = system.beta * s;
-#pragma omp parallel for num_threads(threads) schedule(static)
+#pragma omp parallel num_threads(threads)
+  {
+  // Each triangle's target gradients serve its three corners' rows, which the
+  // visit order reaches at nearby times: kept in a small direct-mapped cache.
+  TargetGradientCache cache;
+#pragma omp for schedule(static)
   for (std::int64_t i = 0; i < np; ++i)
   {
     const std::int64_t p = system.visit[static_cast<size_t>(i)];
@@ -246,7 +279,7 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
       const Vec3 gp = Load(mesh.HatGradient(f, self));
       if (targets)
       {
-        fit::AddTargetDivergence(mesh, targets->normals, targets->target, f, gp.data(), divergence);
+        fit::AddDivergence(mesh, f, gp.data(), cache.Get(mesh, *targets, f), divergence);
       }
       for (int c = 0; c < 3; ++c)
       {
@@ -277,6 +310,7 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
         rhs(r, k) = b[k] + weight * divergence[k];
       }
     }
+  }
   }
 }
 Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
