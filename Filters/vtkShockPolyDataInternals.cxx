@@ -368,10 +368,14 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
   if (mergeCoincidentPoints)
   {
     out.representative = CoincidentRepresentatives(points, threads);
-    for (std::int64_t& id : out.triangles.triangles)
-    {
-      id = out.representative[static_cast<size_t>(id)];
-    }
+    std::vector<std::int64_t>& ids = out.triangles.triangles;
+    const auto count = static_cast<std::int64_t>(ids.size());
+    shock::ParallelFor(count, shock::ThreadsForWork(threads, count), [&](std::int64_t begin, std::int64_t end) {
+      for (std::int64_t i = begin; i < end; ++i)
+      {
+        ids[static_cast<size_t>(i)] = out.representative[static_cast<size_t>(ids[static_cast<size_t>(i)])];
+      }
+    });
   }
   const shock::Status built = out.mesh.Build(out.triangles.View(), threads);
   if (!built.Ok())

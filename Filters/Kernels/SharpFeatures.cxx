@@ -127,8 +127,21 @@ std::vector<std::int64_t> FindRepeatedTriangles(const TriangleMesh& mesh, int th
 #pragma omp parallel for num_threads(ResolveThreadCount(threads)) schedule(static)
   for (std::int64_t f = 0; f < nt; ++f)
   {
-    // Every copy of f uses f's smallest point: look among that point's triangles.
     const std::array<std::int64_t, 3> corners = SortedCorners(mesh, f);
+    // Every copy of f has each of f's edges. An edge joined to one other triangle
+    // g (two triangles have both its ends) leaves g as the only candidate.
+    const MeshConnectivity& connectivity = mesh.Connectivity();
+    std::int64_t only = -1;
+    for (int e = 0; e < 3 && only < 0; ++e)
+    {
+      only = connectivity.Neighbour(f, e);
+    }
+    if (only >= 0)
+    {
+      first[static_cast<size_t>(f)] = only < f && SortedCorners(mesh, only) == corners ? only : -1;
+      continue;
+    }
+    // Else: every copy of f uses f's smallest point: look among that point's triangles.
     std::int64_t earliest = f;
     for (std::int64_t k = around.Begin(corners[0]); k < around.End(corners[0]); ++k)
     {
