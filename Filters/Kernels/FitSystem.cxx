@@ -24,7 +24,7 @@ Frame UnitAreaFrame(const TriangleMesh& mesh, const MeshPartition* partition, in
     partition ? &partition->ownedTriangles : nullptr, partition,
     [&](std::int64_t f, std::array<double, 4>& sum) {
       const double a = mesh.Area(f); // 0 for degenerate triangles
-      const double* c = mesh.Centroid(f);
+      const Vec3 c = mesh.Centroid(f);
       sum[0] += a;
       for (int k = 0; k < 3; ++k)
       {

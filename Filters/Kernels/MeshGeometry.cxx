@@ -43,7 +43,6 @@ MeshGeometry& MeshGeometry::operator=(const MeshGeometry& other)
   this->area = CopyOf(other.area, nt);
   this->degenerate = CopyOf(other.degenerate, nt);
   this->normal = CopyOf(other.normal, 3 * nt);
-  this->centroid = CopyOf(other.centroid, 3 * nt);
   this->hatGradient = CopyOf(other.hatGradient, 9 * nt);
   return *this;
 }
@@ -77,7 +76,7 @@ void MeshGeometry::ComputeMeanEdgeLength(const MeshConnectivity& connectivity, i
   this->meanEdgeLength = nt > 0 ? total / (3.0 * static_cast<double>(nt)) : 0.0;
 }
 
-/// Per-triangle area, degeneracy, normal, centroid and hat gradients:
+/// Per-triangle area, degeneracy, normal and hat gradients:
 /// grad(phi_c) = N x (edge opposite c, counter-clockwise) / (2A).
 void MeshGeometry::ComputeTriangles(const MeshConnectivity& connectivity, int threads)
 {
@@ -85,7 +84,6 @@ void MeshGeometry::ComputeTriangles(const MeshConnectivity& connectivity, int th
   this->area.reset(new double[static_cast<size_t>(nt)]);
   this->degenerate.reset(new unsigned char[static_cast<size_t>(nt)]);
   this->normal.reset(new double[static_cast<size_t>(3 * nt)]);
-  this->centroid.reset(new double[static_cast<size_t>(3 * nt)]);
   this->hatGradient.reset(new double[static_cast<size_t>(9 * nt)]);
   const double minArea = DegenerateAreaFraction * this->meanEdgeLength * this->meanEdgeLength;
 #pragma omp parallel for num_threads(threads) schedule(static)
@@ -98,7 +96,6 @@ void MeshGeometry::ComputeTriangles(const MeshConnectivity& connectivity, int th
     {
       e1[k] = x[1][k] - x[0][k];
       e2[k] = x[2][k] - x[0][k];
-      this->centroid[3 * f + k] = (x[0][k] + x[1][k] + x[2][k]) / 3.0;
     }
     const Vec3 n = Cross(e1, e2);
     const double twiceArea = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -152,7 +149,6 @@ void MeshGeometry::ComputeFromCopies(
   this->area = source.area;
   this->degenerate = source.degenerate;
   this->normal = source.normal;
-  this->centroid = source.centroid;
   this->hatGradient = source.hatGradient;
 }
 

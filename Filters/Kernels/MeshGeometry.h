@@ -1,8 +1,8 @@
 /**
  * @file MeshGeometry.h
  * @brief The geometry of a triangle mesh, computed from point positions over
- * its connectivity (MeshConnectivity.h): per-triangle area, unit normal,
- * centroid and the gradients of the three linear "hat" basis functions, and
+ * its connectivity (MeshConnectivity.h): per-triangle area, unit normal
+ * and the gradients of the three linear "hat" basis functions, and
  * the mean edge length (the paper's l-bar).
  *
  * l-bar is taken over the triangles' edges: each triangle contributes its
@@ -60,10 +60,6 @@ public:
   bool Degenerate(std::int64_t f) const { return this->degenerate[static_cast<size_t>(f)] != 0; }
   /// Unit normal (zero for degenerate triangles), counter-clockwise orientation.
   const double* Normal(std::int64_t f) const { return &this->normal[static_cast<size_t>(3 * f)]; }
-  const double* Centroid(std::int64_t f) const
-  {
-    return &this->centroid[static_cast<size_t>(3 * f)];
-  }
   /// Gradient of the hat function of corner c (0..2) on triangle f (zero when degenerate).
   const double* HatGradient(std::int64_t f, int c) const
   {
@@ -87,7 +83,6 @@ private:
   std::shared_ptr<double[]> area;
   std::shared_ptr<unsigned char[]> degenerate;
   std::shared_ptr<double[]> normal;
-  std::shared_ptr<double[]> centroid;
   std::shared_ptr<double[]> hatGradient;
 };
 

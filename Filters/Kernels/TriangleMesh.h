@@ -24,6 +24,7 @@
 #include "MeshConnectivity.h"
 #include "MeshGeometry.h"
 #include "ShockTypes.h"
+#include "Vec3.h"
 
 #include <cstdint>
 #include <memory>
@@ -86,7 +87,14 @@ public:
   bool Degenerate(std::int64_t f) const { return this->geometry.Degenerate(f); }
   /// Unit normal (zero for degenerate triangles), counter-clockwise orientation.
   const double* Normal(std::int64_t f) const { return this->geometry.Normal(f); }
-  const double* Centroid(std::int64_t f) const { return this->geometry.Centroid(f); }
+  /// Centroid (x0 + x1 + x2) / 3 of the corners (computed when asked: nothing stored).
+  Vec3 Centroid(std::int64_t f) const
+  {
+    const std::int64_t* t = this->Corners(f);
+    const double* x[3] = { this->Point(t[0]), this->Point(t[1]), this->Point(t[2]) };
+    return { (x[0][0] + x[1][0] + x[2][0]) / 3.0, (x[0][1] + x[1][1] + x[2][1]) / 3.0,
+      (x[0][2] + x[1][2] + x[2][2]) / 3.0 };
+  }
   /// Gradient of the hat function of corner c (0..2) on triangle f (zero when degenerate).
   const double* HatGradient(std::int64_t f, int c) const
   {
