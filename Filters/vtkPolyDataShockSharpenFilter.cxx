@@ -73,19 +73,39 @@ std::vector<double> CellNormals(vtkPolyData* output, const vtkShockPolyDataInter
 
 /// Give `output` new points of the input's type; coincident copies take their representative's position.
 void SetNewPoints(vtkPolyData* output, vtkPolyData* input, const std::vector<std::int64_t>& representative,
-  std::vector<double>& positions)
+  std::vector<double>& positions, int threads)
 {
-  for (size_t p = 0; p < representative.size(); ++p)
-  {
-    const size_t r = static_cast<size_t>(representative[p]);
-    std::copy(&positions[3 * r], &positions[3 * r] + 3, &positions[3 * p]);
-  }
+  // A representative is the first of its copies (never a copy itself): the copies read
+  // positions nobody writes, so the points are independent.
+  const auto n = static_cast<std::int64_t>(representative.size());
+  shock::ParallelFor(n, shock::ThreadsForWork(threads, n), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t p = begin; p < end; ++p)
+    {
+      const size_t r = static_cast<size_t>(representative[static_cast<size_t>(p)]);
+      if (r != static_cast<size_t>(p))
+      {
+        std::copy(&positions[3 * r], &positions[3 * r] + 3, &positions[3 * static_cast<size_t>(p)]);
+      }
+    }
+  });
+  // The input's point type, the values converted as vtkPoints::SetPoint does (a cast).
+  vtkDataArray* prototype = input->GetPoints()->GetData();
   vtkNew<vtkPoints> points;
-  points->SetDataType(input->GetPoints()->GetDataType());
-  points->SetNumberOfPoints(input->GetNumberOfPoints());
-  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+  if (prototype->GetDataType() == VTK_FLOAT || prototype->GetDataType() == VTK_DOUBLE)
   {
-    points->SetPoint(p, &positions[static_cast<size_t>(3 * p)]);
+    vtkSmartPointer<vtkDataArray> data = vtkShockFilterInternals::FromDoubles(prototype,
+      positions.data(), shock::ThreadsForWork(threads, 3 * input->GetNumberOfPoints()));
+    data->SetName("Points"); // as vtkPoints names its own arrays
+    points->SetData(data);
+  }
+  else
+  {
+    points->SetDataType(prototype->GetDataType());
+    points->SetNumberOfPoints(input->GetNumberOfPoints());
+    for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+    {
+      points->SetPoint(p, &positions[static_cast<size_t>(3 * p)]);
+    }
   }
   output->SetPoints(points);
 }
@@ -483,7 +503,7 @@ void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
   const shock::TriangleMesh& mesh = prepared.mesh;
   const vtkShockPolyDataInternals::Triangles& triangles = prepared.triangles;
   output->ShallowCopy(input);
-  SetNewPoints(output, input, prepared.representative, positions);
+  SetNewPoints(output, input, prepared.representative, positions, this->NumberOfThreads);
   RecomputeActiveNormals(output, triangles, positions);
   ReportRun(this, report, input, output);
   if (this->GenerateSharpenedNormals)
