@@ -1,5 +1,6 @@
 #include "vtkShockPolyDataInternals.h"
 
+#include "vtkAOSDataArrayTemplate.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
@@ -305,13 +306,88 @@ bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error)
   return AddStrips(input, cellId, out, error);
 }
 
+namespace
+{
+/**
+ * The bounds of float or double points whose coordinates are all finite,
+ * computed in parallel (the same values as vtkPoints::GetBounds: a minimum
+ * and a maximum of finite numbers). False for other arrays or when a
+ * coordinate is not finite.
+ */
+template <typename T>
+bool FiniteBounds(const T* values, vtkIdType n, double bounds[6])
+{
+  const int pieces = static_cast<int>(std::min<vtkIdType>(
+    std::min(8, shock::ResolveThreadCount(0)), std::max<vtkIdType>(1, n / 65536)));
+  std::vector<std::array<double, 6>> partial(static_cast<size_t>(pieces));
+  std::vector<char> finite(static_cast<size_t>(pieces), 1);
+  shock::ParallelFor(pieces, pieces, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t i = first; i < last; ++i)
+    {
+      std::array<double, 6> b{ std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+        std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+        std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity() };
+      bool ok = true;
+      const vtkIdType begin = n / pieces * i + std::min<vtkIdType>(i, n % pieces);
+      const vtkIdType end = n / pieces * (i + 1) + std::min<vtkIdType>(i + 1, n % pieces);
+      for (vtkIdType p = begin; p < end; ++p)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          const double x = static_cast<double>(values[3 * p + a]);
+          ok = ok && std::isfinite(x);
+          b[2 * a] = std::min(b[2 * a], x);
+          b[2 * a + 1] = std::max(b[2 * a + 1], x);
+        }
+      }
+      partial[static_cast<size_t>(i)] = b;
+      finite[static_cast<size_t>(i)] = ok ? 1 : 0;
+    }
+  });
+  for (int i = 0; i < pieces; ++i)
+  {
+    if (!finite[static_cast<size_t>(i)])
+    {
+      return false;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = i == 0 ? partial[0][2 * a] : std::min(bounds[2 * a], partial[static_cast<size_t>(i)][2 * a]);
+      bounds[2 * a + 1] =
+        i == 0 ? partial[0][2 * a + 1] : std::max(bounds[2 * a + 1], partial[static_cast<size_t>(i)][2 * a + 1]);
+    }
+  }
+  return true;
+}
+
+bool FiniteBounds(vtkDataArray* points, double bounds[6])
+{
+  if (!points || points->GetNumberOfComponents() != 3 || points->GetNumberOfTuples() == 0)
+  {
+    return false;
+  }
+  if (auto* f = vtkAOSDataArrayTemplate<float>::FastDownCast(points))
+  {
+    return FiniteBounds(f->GetPointer(0), f->GetNumberOfTuples(), bounds);
+  }
+  if (auto* d = vtkAOSDataArrayTemplate<double>::FastDownCast(points))
+  {
+    return FiniteBounds(d->GetPointer(0), d->GetNumberOfTuples(), bounds);
+  }
+  return false;
+}
+}
+
 double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece)
 {
   double side = 0.0;
   if (piece && piece->GetNumberOfPoints() > 0)
   {
     double bounds[6];
-    piece->GetBounds(bounds);
+    if (!FiniteBounds(piece->GetPoints()->GetData(), bounds))
+    {
+      piece->GetBounds(bounds); // VTK's rules for non-finite coordinates
+    }
     for (int a = 0; a < 3; ++a)
     {
       side = std::max(side, bounds[2 * a + 1] - bounds[2 * a]);
