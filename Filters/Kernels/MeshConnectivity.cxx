@@ -46,7 +46,8 @@ void MeshConnectivity::BuildPointTriangles(int threads)
   const std::int64_t maxChunk = std::numeric_limits<std::int32_t>::max() / 3;
   const int chunks = static_cast<int>(std::max<std::int64_t>(
     std::max(1, threads), (nt + maxChunk - 1) / maxChunk));
-  std::vector<std::int32_t> counts(static_cast<size_t>(chunks) * static_cast<size_t>(np));
+  std::vector<std::int32_t, UninitialisedAllocator<std::int32_t>> counts(
+    static_cast<size_t>(chunks) * static_cast<size_t>(np)); // each chunk zeroes its counts
   CompressedLists& lists = this->pointTriangles;
   lists.offsets.resize(static_cast<size_t>(np) + 1);
 #pragma omp parallel num_threads(threads)

@@ -23,16 +23,53 @@
 #include "ShockTypes.h"
 
 #include <cstdint>
+#include <memory>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace shock
 {
 
+/**
+ * An allocator whose value-initialisation leaves plain values uninitialised, so
+ * that resize() writes nothing: the parallel loops that fill a large array then
+ * touch its pages first, each thread its own part, instead of one thread
+ * zero-filling it all before.
+ */
+template <typename T>
+struct UninitialisedAllocator : std::allocator<T>
+{
+  template <typename U>
+  struct rebind
+  {
+    using other = UninitialisedAllocator<U>;
+  };
+  UninitialisedAllocator() = default;
+  template <typename U>
+  UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept
+  {
+  }
+  template <typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
+  {
+    ::new (static_cast<void*>(p)) U; // default-initialised: nothing written for plain values
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+/// A vector of ids whose resize() leaves the new ids unwritten (see UninitialisedAllocator).
+using IdVector = std::vector<std::int64_t, UninitialisedAllocator<std::int64_t>>;
+
 /// Compressed lists: the items of entry i are items[offsets[i] .. offsets[i+1]).
 struct CompressedLists
 {
-  std::vector<std::int64_t> offsets;
-  std::vector<std::int64_t> items;
+  IdVector offsets;
+  IdVector items;
   std::int64_t Begin(std::int64_t i) const { return this->offsets[static_cast<size_t>(i)]; }
   std::int64_t End(std::int64_t i) const { return this->offsets[static_cast<size_t>(i) + 1]; }
 };
@@ -102,7 +139,7 @@ private:
   std::vector<std::int64_t> triangles;
   CompressedLists pointTriangles;
   CompressedLists oneRing;
-  std::vector<std::int64_t> neighbour;
+  IdVector neighbour;
 };
 
 } // namespace shock
