@@ -186,15 +186,30 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
     return {};
   }
 
-  // Copies per point, their first new id, and the group of each (point, triangle) entry.
+  // The points on feature edges: only they can split.
+  std::vector<unsigned char> touched(static_cast<size_t>(np), 0);
+  for (std::int64_t f = 0; f < nt; ++f)
+  {
+    for (int e = 0; e < 3; ++e)
+    {
+      if (feature[static_cast<size_t>(3 * f + e)])
+      {
+        touched[static_cast<size_t>(mesh.Corners(f)[e])] = 1;
+        touched[static_cast<size_t>(mesh.Corners(f)[(e + 1) % 3])] = 1;
+      }
+    }
+  }
+  // Copies per point, their first new id, and the group of each (point, triangle)
+  // entry of a touched point (the only ones read).
   const CompressedLists& around = mesh.PointTriangles();
-  std::vector<std::int64_t> label(around.items.size());
+  IdVector label(around.items.size());
   std::vector<std::int64_t> firstCopy(static_cast<size_t>(np) + 1, 0);
 #pragma omp parallel for num_threads(nthreads) schedule(dynamic, 1024)
   for (std::int64_t p = 0; p < np; ++p)
   {
-    firstCopy[static_cast<size_t>(p) + 1] =
-      GroupAroundPoint(mesh, feature, p, label.data() + around.Begin(p));
+    firstCopy[static_cast<size_t>(p) + 1] = touched[static_cast<size_t>(p)]
+      ? GroupAroundPoint(mesh, feature, p, label.data() + around.Begin(p))
+      : 1;
   }
   for (std::int64_t p = 0; p < np; ++p)
   {
@@ -218,6 +233,11 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
     for (int c = 0; c < 3; ++c)
     {
       const std::int64_t p = t[c];
+      if (!touched[static_cast<size_t>(p)])
+      {
+        triangles[static_cast<size_t>(3 * f + c)] = firstCopy[static_cast<size_t>(p)]; // its only copy
+        continue;
+      }
       std::int64_t k = around.Begin(p);
       while (around.items[static_cast<size_t>(k)] != f)
       {
