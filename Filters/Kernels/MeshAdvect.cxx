@@ -81,14 +81,22 @@ bool SampleSurface(const TriangleMesh& mesh, const SurfacePoint& q, Sampling sam
   }
   const int C = source.components;
   const std::int64_t* t = mesh.Corners(q.triangle);
+  bool valid[3];
   double total = 0.0;
   for (int k = 0; k < 3; ++k)
   {
-    total += source.validPoint[static_cast<size_t>(t[k])] ? q.barycentric[k] : 0.0;
+    valid[k] = source.validPoint[static_cast<size_t>(t[k])] != 0;
+    total += valid[k] ? q.barycentric[k] : 0.0;
   }
   if (!(total > 0.0))
   {
     return false;
+  }
+  // The corners' weights, the same for every channel (computed once).
+  double weight[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    weight[k] = q.barycentric[k] / total;
   }
   for (int c = 0; c < C; ++c)
   {
@@ -98,10 +106,10 @@ bool SampleSurface(const TriangleMesh& mesh, const SurfacePoint& q, Sampling sam
     double high = -low;
     for (int k = 0; k < 3; ++k)
     {
-      if (source.validPoint[static_cast<size_t>(t[k])])
+      if (valid[k])
       {
         const double v = source.points[t[k] * C + c];
-        value += (q.barycentric[k] / total) * v;
+        value += weight[k] * v;
         low = std::min(low, v);
         high = std::max(high, v);
       }
