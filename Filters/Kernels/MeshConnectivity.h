@@ -65,6 +65,9 @@ struct UninitialisedAllocator : std::allocator<T>
 /// A vector of ids whose resize() leaves the new ids unwritten (see UninitialisedAllocator).
 using IdVector = std::vector<std::int64_t, UninitialisedAllocator<std::int64_t>>;
 
+/// A vector of values whose resize() leaves the new values unwritten (see UninitialisedAllocator).
+using ValueVector = std::vector<double, UninitialisedAllocator<double>>;
+
 /// Compressed lists: the items of entry i are items[offsets[i] .. offsets[i+1]).
 struct CompressedLists
 {

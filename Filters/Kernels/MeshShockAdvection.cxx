@@ -25,7 +25,7 @@ struct MeshRun
   double range = 0.0;
   std::vector<unsigned char> validPoint;    // point has a finite value (or, for cells, a finite neighbour)
   std::vector<unsigned char> validTriangle; // non-degenerate, finite corners (and value): carries flow
-  std::vector<double> umbrellaWeight;       // per one-ring entry, exp(-|(v-w)/l|^2)
+  ValueVector umbrellaWeight;               // per one-ring entry, exp(-|(v-w)/l|^2)
   std::vector<unsigned char> cellValid;     // cell signals: the triangle's value is finite
 
   std::int64_t Points() const { return this->mesh.NumberOfPoints(); }
@@ -61,7 +61,7 @@ std::vector<double> ComputeFlow(const MeshRun& run, std::vector<double> signal, 
 {
   UmbrellaSmooth(run.mesh, run.umbrellaWeight, run.validPoint, run.C, signal, run.p.smoothingPasses,
     run.threads);
-  const std::vector<double> energy =
+  const ValueVector energy =
     TriangleEnergy(run.mesh, signal.data(), run.C, run.validTriangle, run.length, run.threads);
   std::vector<double> potential;
   TrianglesToPoints(run.mesh, 1, energy.data(), run.validTriangle, potential, run.threads);
@@ -76,7 +76,7 @@ std::vector<double> ComputeFlow(const MeshRun& run, std::vector<double> signal, 
  * `currentPoints`, when not null, holds the per-point values of a cell signal `current`.
  */
 std::vector<double> UpdateFlow(const MeshRun& run, const double* current,
-  const std::vector<double>* currentPoints, std::vector<double>& flow, std::vector<double>& velocity)
+  const std::vector<double>* currentPoints, std::vector<double>& flow, ValueVector& velocity)
 {
   std::vector<double> normalised =
     currentPoints && run.CellSignal() ? *currentPoints : run.PointValues(current);
@@ -258,7 +258,7 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
   }
 
   std::vector<double> flow;
-  std::vector<double> velocity;
+  ValueVector velocity; // written whole by every flow update
   const std::int64_t traces = run.CellSignal() ? run.Triangles()
                                                : static_cast<std::int64_t>(mesh.PointTriangles().items.size());
   const int traceThreads = ThreadsForWork(p.numberOfThreads, traces);
