@@ -43,12 +43,12 @@ vtkSmartPointer<vtkDataArray> SingleValue(const char* name, T value)
 
 /// Unit normal of every cell of `output` with its new points: the normalised sum of its triangles' area vectors.
 std::vector<double> CellNormals(vtkPolyData* output, const vtkShockPolyDataInternals::Triangles& triangles,
-  const std::vector<double>& positions)
+  const shock::TriangleMesh& mesh, const std::vector<double>& positions)
 {
   std::vector<double> normals(static_cast<size_t>(3 * output->GetNumberOfCells()), 0.0);
   for (size_t f = 0; f < triangles.sourceCell.size(); ++f)
   {
-    const std::int64_t* t = &triangles.triangles[3 * f];
+    const std::int64_t* t = mesh.Corners(static_cast<std::int64_t>(f));
     const double* a = &positions[static_cast<size_t>(3 * t[0])];
     const double* b = &positions[static_cast<size_t>(3 * t[1])];
     const double* c = &positions[static_cast<size_t>(3 * t[2])];
@@ -155,7 +155,7 @@ void ReportRun(vtkPolyDataShockSharpenFilter* self, const shock::SharpeningRepor
  * the cells around each point (points without cells keep theirs).
  */
 void RecomputeActiveNormals(vtkPolyData* output, const vtkShockPolyDataInternals::Triangles& triangles,
-  const std::vector<double>& positions)
+  const shock::TriangleMesh& mesh, const std::vector<double>& positions)
 {
   vtkDataArray* pointNormals = output->GetPointData()->GetNormals();
   vtkDataArray* cellNormals = output->GetCellData()->GetNormals();
@@ -163,7 +163,7 @@ void RecomputeActiveNormals(vtkPolyData* output, const vtkShockPolyDataInternals
   {
     return;
   }
-  const std::vector<double> cells = CellNormals(output, triangles, positions);
+  const std::vector<double> cells = CellNormals(output, triangles, mesh, positions);
   if (cellNormals)
   {
     vtkSmartPointer<vtkDataArray> fresh = vtk::TakeSmartPointer(cellNormals->NewInstance());
@@ -314,7 +314,7 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
     if (owned)
     {
       lengths[0] += shock::TrianglePerimeter(
-        prepared.triangles.points.data(), &prepared.triangles.triangles[static_cast<size_t>(3 * f)]);
+        prepared.triangles.points.data(), mesh.Corners(f));
       lengths[1] += 3.0;
     }
   }
@@ -504,7 +504,7 @@ void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
   const vtkShockPolyDataInternals::Triangles& triangles = prepared.triangles;
   output->ShallowCopy(input);
   SetNewPoints(output, input, prepared.representative, positions, this->NumberOfThreads);
-  RecomputeActiveNormals(output, triangles, positions);
+  RecomputeActiveNormals(output, triangles, mesh, positions);
   ReportRun(this, report, input, output);
   if (this->GenerateSharpenedNormals)
   {

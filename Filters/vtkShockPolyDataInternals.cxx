@@ -453,7 +453,11 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
       }
     });
   }
-  const shock::Status built = out.mesh.Build(out.triangles.View(), threads);
+  // The ids are taken over by the mesh (not copied): read them back with mesh.Corners.
+  const auto numberOfPoints = static_cast<std::int64_t>(out.triangles.points.size() / 3);
+  const shock::Status built = out.mesh.Build(
+    numberOfPoints, out.triangles.points.data(), std::move(out.triangles.triangles), threads);
+  out.triangles.triangles.clear();
   if (!built.Ok())
   {
     error = "Cannot use the mesh: " + built.error + ".";

@@ -50,6 +50,7 @@ bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error);
 /// The triangles of a vtkPolyData and the TriangleMesh built from them.
 struct PreparedMesh
 {
+  /// The triangles' ids are moved into `mesh` (triangles.triangles is empty: read mesh.Corners).
   Triangles triangles;
   shock::TriangleMesh mesh;
   /// With merging: for each point, the first point with the same coordinates; else empty.

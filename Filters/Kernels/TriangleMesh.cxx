@@ -33,6 +33,22 @@ Status TriangleMesh::Build(const TriangleMeshView& view, int threads)
   return this->Build(std::move(built), view.points, threads);
 }
 
+Status TriangleMesh::Build(
+  std::int64_t numberOfPoints, const double* points, std::vector<std::int64_t> triangles, int threads)
+{
+  if (numberOfPoints < 0 || (numberOfPoints > 0 && !points) || triangles.size() % 3 != 0)
+  {
+    return { "invalid mesh arrays" };
+  }
+  auto built = std::make_shared<MeshConnectivity>();
+  const Status status = built->Build(numberOfPoints, std::move(triangles), threads);
+  if (!status.Ok())
+  {
+    return status;
+  }
+  return this->Build(std::move(built), points, threads);
+}
+
 Status TriangleMesh::BuildSplit(const TriangleMesh& source,
   const std::vector<std::int64_t>& original, std::vector<std::int64_t> triangles, int threads)
 {

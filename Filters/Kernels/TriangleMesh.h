@@ -57,6 +57,13 @@ public:
   Status Build(const TriangleMeshView& view, int threads);
 
   /**
+   * Build as from a view, taking the triangles' ids over instead of copying
+   * them (3 per triangle; read them back with Corners).
+   */
+  Status Build(std::int64_t numberOfPoints, const double* points, std::vector<std::int64_t> triangles,
+    int threads);
+
+  /**
    * Build over an existing connectivity (shared, not copied) with new point
    * positions (3 per point of the connectivity, copied): only the geometry is
    * computed. Fails when a coordinate is not finite.
