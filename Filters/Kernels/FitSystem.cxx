@@ -137,6 +137,21 @@ void BreadthFirstOrder(const TriangleMesh& mesh, FitSystemData& system)
     system.order.push_back(seed);
     for (size_t next = system.order.size() - 1; next < system.order.size(); ++next)
     {
+      // The queue is known ahead: ask for the ranks of the ring of a point a few
+      // places on, whose loads are scattered over the rank array.
+      if (next + 8 < system.order.size())
+      {
+        const std::int64_t ahead = system.order[next + 8];
+        for (std::int64_t e = ring.Begin(ahead); e < ring.End(ahead); ++e)
+        {
+          __builtin_prefetch(&system.rank[static_cast<size_t>(ring.items[static_cast<size_t>(e)])]);
+        }
+      }
+      else if (next + 2 < system.order.size())
+      {
+        const std::int64_t ahead = system.order[next + 2];
+        __builtin_prefetch(&ring.items[static_cast<size_t>(ring.Begin(ahead))]);
+      }
       const std::int64_t p = system.order[next];
       for (std::int64_t e = ring.Begin(p); e < ring.End(p); ++e)
       {
