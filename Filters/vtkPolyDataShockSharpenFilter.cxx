@@ -390,7 +390,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   }
   // The triangle mesh of the piece (with its ghost cells), in the whole mesh's
   // length unit, kept between executions.
-  const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work);
+  const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work, this->NumberOfThreads);
   const bool empty = piece.work->GetNumberOfPoints() == 0;
   const vtkShockPolyDataInternals::PreparedMesh* kept =
     empty ? nullptr : this->Prepare(piece.work, unit, error);

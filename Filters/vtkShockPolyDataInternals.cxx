@@ -315,10 +315,10 @@ namespace
  * coordinate is not finite.
  */
 template <typename T>
-bool FiniteBounds(const T* values, vtkIdType n, double bounds[6])
+bool FiniteBounds(const T* values, vtkIdType n, int threads, double bounds[6])
 {
   const int pieces = static_cast<int>(std::min<vtkIdType>(
-    std::min(8, shock::ResolveThreadCount(0)), std::max<vtkIdType>(1, n / 65536)));
+    std::min(8, shock::ResolveThreadCount(threads)), std::max<vtkIdType>(1, n / 65536)));
   std::vector<std::array<double, 6>> partial(static_cast<size_t>(pieces));
   std::vector<char> finite(static_cast<size_t>(pieces), 1);
   shock::ParallelFor(pieces, pieces, [&](std::int64_t first, std::int64_t last) {
@@ -360,7 +360,7 @@ bool FiniteBounds(const T* values, vtkIdType n, double bounds[6])
   return true;
 }
 
-bool FiniteBounds(vtkDataArray* points, double bounds[6])
+bool FiniteBounds(vtkDataArray* points, int threads, double bounds[6])
 {
   if (!points || points->GetNumberOfComponents() != 3 || points->GetNumberOfTuples() == 0)
   {
@@ -368,23 +368,23 @@ bool FiniteBounds(vtkDataArray* points, double bounds[6])
   }
   if (auto* f = vtkAOSDataArrayTemplate<float>::FastDownCast(points))
   {
-    return FiniteBounds(f->GetPointer(0), f->GetNumberOfTuples(), bounds);
+    return FiniteBounds(f->GetPointer(0), f->GetNumberOfTuples(), threads, bounds);
   }
   if (auto* d = vtkAOSDataArrayTemplate<double>::FastDownCast(points))
   {
-    return FiniteBounds(d->GetPointer(0), d->GetNumberOfTuples(), bounds);
+    return FiniteBounds(d->GetPointer(0), d->GetNumberOfTuples(), threads, bounds);
   }
   return false;
 }
 }
 
-double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece)
+double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece, int threads)
 {
   double side = 0.0;
   if (piece && piece->GetNumberOfPoints() > 0)
   {
     double bounds[6];
-    if (!FiniteBounds(piece->GetPoints()->GetData(), bounds))
+    if (!FiniteBounds(piece->GetPoints()->GetData(), threads, bounds))
     {
       piece->GetBounds(bounds); // VTK's rules for non-finite coordinates
     }

@@ -75,8 +75,9 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
  * and lengths to the fourth power of meshes beyond about 1e+-75 would leave
  * the double range (NaN, no change, false flipped triangles). 0 when the side
  * is not finite. With a controller all processes agree (collective).
+ * `threads`: for the bounds of large float or double point arrays (0 = all cores).
  */
-double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece);
+double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece, int threads = 0);
 
 /**
  * The prepared mesh of a filter's input, kept between executions: a filter
