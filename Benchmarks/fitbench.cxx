@@ -177,7 +177,7 @@ int main(int argc, char** argv)
         for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
         {
           const double* n = mesh.Normal(f);
-          const double* c = mesh.Centroid(f);
+          const shock::Vec3 c = mesh.Centroid(f);
           const double t[3] = { n[0] + 0.3 * std::sin(9.0 * c[1]), n[1] + 0.3 * std::cos(7.0 * c[2]),
             n[2] + 0.3 * std::sin(11.0 * c[0]) };
           const double length = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);

@@ -96,7 +96,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   // Normalise like the whole surface: data range and mean edge length over all
   // pieces, lengths in the unit of the whole surface (collective).
   this->ParallelValueScale = this->GlobalValueScale(piece.controller, inputVector);
-  const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work);
+  const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work, this->NumberOfThreads);
   this->ParallelLengthScale = this->GlobalMeanEdgeLength(piece.controller, piece.work) / (unit > 0.0 ? unit : 1.0);
   if (input->GetNumberOfPoints() == 0)
   {

@@ -43,12 +43,12 @@ vtkSmartPointer<vtkDataArray> SingleValue(const char* name, T value)
 
 /// Unit normal of every cell of `output` with its new points: the normalised sum of its triangles' area vectors.
 std::vector<double> CellNormals(vtkPolyData* output, const vtkShockPolyDataInternals::Triangles& triangles,
-  const std::vector<double>& positions)
+  const shock::TriangleMesh& mesh, const std::vector<double>& positions)
 {
   std::vector<double> normals(static_cast<size_t>(3 * output->GetNumberOfCells()), 0.0);
   for (size_t f = 0; f < triangles.sourceCell.size(); ++f)
   {
-    const std::int64_t* t = &triangles.triangles[3 * f];
+    const std::int64_t* t = mesh.Corners(static_cast<std::int64_t>(f));
     const double* a = &positions[static_cast<size_t>(3 * t[0])];
     const double* b = &positions[static_cast<size_t>(3 * t[1])];
     const double* c = &positions[static_cast<size_t>(3 * t[2])];
@@ -73,19 +73,39 @@ std::vector<double> CellNormals(vtkPolyData* output, const vtkShockPolyDataInter
 
 /// Give `output` new points of the input's type; coincident copies take their representative's position.
 void SetNewPoints(vtkPolyData* output, vtkPolyData* input, const std::vector<std::int64_t>& representative,
-  std::vector<double>& positions)
+  std::vector<double>& positions, int threads)
 {
-  for (size_t p = 0; p < representative.size(); ++p)
-  {
-    const size_t r = static_cast<size_t>(representative[p]);
-    std::copy(&positions[3 * r], &positions[3 * r] + 3, &positions[3 * p]);
-  }
+  // A representative is the first of its copies (never a copy itself): the copies read
+  // positions nobody writes, so the points are independent.
+  const auto n = static_cast<std::int64_t>(representative.size());
+  shock::ParallelFor(n, shock::ThreadsForWork(threads, n), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t p = begin; p < end; ++p)
+    {
+      const size_t r = static_cast<size_t>(representative[static_cast<size_t>(p)]);
+      if (r != static_cast<size_t>(p))
+      {
+        std::copy(&positions[3 * r], &positions[3 * r] + 3, &positions[3 * static_cast<size_t>(p)]);
+      }
+    }
+  });
+  // The input's point type, the values converted as vtkPoints::SetPoint does (a cast).
+  vtkDataArray* prototype = input->GetPoints()->GetData();
   vtkNew<vtkPoints> points;
-  points->SetDataType(input->GetPoints()->GetDataType());
-  points->SetNumberOfPoints(input->GetNumberOfPoints());
-  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+  if (prototype->GetDataType() == VTK_FLOAT || prototype->GetDataType() == VTK_DOUBLE)
   {
-    points->SetPoint(p, &positions[static_cast<size_t>(3 * p)]);
+    vtkSmartPointer<vtkDataArray> data = vtkShockFilterInternals::FromDoubles(prototype,
+      positions.data(), shock::ThreadsForWork(threads, 3 * input->GetNumberOfPoints()));
+    data->SetName("Points"); // as vtkPoints names its own arrays
+    points->SetData(data);
+  }
+  else
+  {
+    points->SetDataType(prototype->GetDataType());
+    points->SetNumberOfPoints(input->GetNumberOfPoints());
+    for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+    {
+      points->SetPoint(p, &positions[static_cast<size_t>(3 * p)]);
+    }
   }
   output->SetPoints(points);
 }
@@ -135,7 +155,7 @@ void ReportRun(vtkPolyDataShockSharpenFilter* self, const shock::SharpeningRepor
  * the cells around each point (points without cells keep theirs).
  */
 void RecomputeActiveNormals(vtkPolyData* output, const vtkShockPolyDataInternals::Triangles& triangles,
-  const std::vector<double>& positions)
+  const shock::TriangleMesh& mesh, const std::vector<double>& positions)
 {
   vtkDataArray* pointNormals = output->GetPointData()->GetNormals();
   vtkDataArray* cellNormals = output->GetCellData()->GetNormals();
@@ -143,7 +163,7 @@ void RecomputeActiveNormals(vtkPolyData* output, const vtkShockPolyDataInternals
   {
     return;
   }
-  const std::vector<double> cells = CellNormals(output, triangles, positions);
+  const std::vector<double> cells = CellNormals(output, triangles, mesh, positions);
   if (cellNormals)
   {
     vtkSmartPointer<vtkDataArray> fresh = vtk::TakeSmartPointer(cellNormals->NewInstance());
@@ -294,7 +314,7 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
     if (owned)
     {
       lengths[0] += shock::TrianglePerimeter(
-        prepared.triangles.points.data(), &prepared.triangles.triangles[static_cast<size_t>(3 * f)]);
+        prepared.triangles.points.data(), mesh.Corners(f));
       lengths[1] += 3.0;
     }
   }
@@ -370,7 +390,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   }
   // The triangle mesh of the piece (with its ghost cells), in the whole mesh's
   // length unit, kept between executions.
-  const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work);
+  const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work, this->NumberOfThreads);
   const bool empty = piece.work->GetNumberOfPoints() == 0;
   const vtkShockPolyDataInternals::PreparedMesh* kept =
     empty ? nullptr : this->Prepare(piece.work, unit, error);
@@ -483,8 +503,8 @@ void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
   const shock::TriangleMesh& mesh = prepared.mesh;
   const vtkShockPolyDataInternals::Triangles& triangles = prepared.triangles;
   output->ShallowCopy(input);
-  SetNewPoints(output, input, prepared.representative, positions);
-  RecomputeActiveNormals(output, triangles, positions);
+  SetNewPoints(output, input, prepared.representative, positions, this->NumberOfThreads);
+  RecomputeActiveNormals(output, triangles, mesh, positions);
   ReportRun(this, report, input, output);
   if (this->GenerateSharpenedNormals)
   {

@@ -1,5 +1,6 @@
 #include "vtkShockPolyDataInternals.h"
 
+#include "vtkAOSDataArrayTemplate.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
@@ -35,7 +36,7 @@ namespace
  * For each point, the first point with exactly the same coordinates (itself when
  * unique). Coincident copies then share one vertex of the mesh. Coordinates must be finite.
  */
-std::vector<std::int64_t> CoincidentRepresentatives(const std::vector<double>& points)
+std::vector<std::int64_t> CoincidentRepresentatives(const std::vector<double>& points, int threads)
 {
   const std::int64_t n = static_cast<std::int64_t>(points.size() / 3);
   std::vector<std::int64_t> order(static_cast<size_t>(n));
@@ -44,10 +45,29 @@ std::vector<std::int64_t> CoincidentRepresentatives(const std::vector<double>& p
     return std::array<double, 3>{ points[3 * p], points[3 * p + 1], points[3 * p + 2] };
   };
   // Sorting by (coordinates, id) puts every group of copies together, lowest id first.
-  std::sort(order.begin(), order.end(), [&key](std::int64_t a, std::int64_t b) {
+  // A strict total order (finite coordinates, distinct ids): the sorted order is
+  // unique, so the pieces sorted in parallel and merged give exactly it.
+  auto less = [&key](std::int64_t a, std::int64_t b) {
     const auto ka = key(a), kb = key(b);
     return ka != kb ? ka < kb : a < b;
+  };
+  const int pieces = static_cast<int>(std::min<std::int64_t>(
+    std::min(8, shock::ResolveThreadCount(threads)), std::max<std::int64_t>(1, n / 65536)));
+  auto begin = [n, pieces](int i) { return n / pieces * i + std::min<std::int64_t>(i, n % pieces); };
+  shock::ParallelFor(pieces, pieces, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t i = first; i < last; ++i)
+    {
+      std::sort(order.begin() + begin(static_cast<int>(i)), order.begin() + begin(static_cast<int>(i) + 1), less);
+    }
   });
+  for (int width = 1; width < pieces; width *= 2)
+  {
+    for (int i = 0; i + width < pieces; i += 2 * width)
+    {
+      std::inplace_merge(order.begin() + begin(i), order.begin() + begin(i + width),
+        order.begin() + begin(std::min(pieces, i + 2 * width)), less);
+    }
+  }
   std::vector<std::int64_t> representative(static_cast<size_t>(n));
   for (size_t k = 0; k < order.size(); ++k)
   {
@@ -86,13 +106,15 @@ bool ConvexQuad(vtkPoints* points, const vtkIdType* ids)
 /**
  * The common case of ExtractTriangles: polygons that are all triangles, no
  * strips. The cell array's connectivity then is the triangle list: copied in
- * parallel. False (nothing kept) when the case does not apply or an id is out
- * of range (the general path then reports it).
+ * parallel, while checking that every cell has 3 points (offset 3 i for cell
+ * i). False (nothing kept) when the case does not apply or an id is out of
+ * range (the general path then reports it).
  */
 template <typename IdArray>
-bool CopyTriangles(IdArray* ids, vtkIdType firstPolygon, vtkIdType numberOfPoints,
-  std::vector<std::int64_t>& triangles, std::vector<vtkIdType>& sourceCell)
+bool CopyTriangles(IdArray* offsetArray, IdArray* ids, vtkIdType firstPolygon,
+  vtkIdType numberOfPoints, std::vector<std::int64_t>& triangles, std::vector<vtkIdType>& sourceCell)
 {
+  const auto* offsets = offsetArray->GetPointer(0);
   const auto* from = ids->GetPointer(0);
   const std::int64_t n = ids->GetNumberOfValues() / 3;
   triangles.resize(static_cast<size_t>(3 * n));
@@ -102,6 +124,7 @@ bool CopyTriangles(IdArray* ids, vtkIdType firstPolygon, vtkIdType numberOfPoint
     bool ok = true;
     for (std::int64_t f = begin; f < end; ++f)
     {
+      ok = ok && offsets[f + 1] == 3 * (f + 1);
       for (std::int64_t k = 3 * f; k < 3 * f + 3; ++k)
       {
         triangles[static_cast<size_t>(k)] = from[k];
@@ -123,15 +146,17 @@ bool OnlyTriangles(vtkPolyData* input, std::vector<std::int64_t>& triangles,
   vtkCellArray* polys = input->GetPolys();
   const vtkIdType n = polys->GetNumberOfCells();
   if (input->GetNumberOfStrips() > 0 || n == 0 || polys->GetNumberOfConnectivityIds() != 3 * n ||
-    polys->GetMaxCellSize() != 3)
+    polys->GetNumberOfOffsets() != n + 1)
   {
     return false;
   }
   const vtkIdType first = input->GetNumberOfVerts() + input->GetNumberOfLines();
   const vtkIdType points = input->GetNumberOfPoints();
   return polys->IsStorage64Bit()
-    ? CopyTriangles(polys->GetConnectivityArray64(), first, points, triangles, sourceCell)
-    : CopyTriangles(polys->GetConnectivityArray32(), first, points, triangles, sourceCell);
+    ? CopyTriangles(polys->GetOffsetsArray64(), polys->GetConnectivityArray64(), first, points,
+        triangles, sourceCell)
+    : CopyTriangles(polys->GetOffsetsArray32(), polys->GetConnectivityArray32(), first, points,
+        triangles, sourceCell);
 }
 }
 
@@ -281,13 +306,88 @@ bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error)
   return AddStrips(input, cellId, out, error);
 }
 
-double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece)
+namespace
+{
+/**
+ * The bounds of float or double points whose coordinates are all finite,
+ * computed in parallel (the same values as vtkPoints::GetBounds: a minimum
+ * and a maximum of finite numbers). False for other arrays or when a
+ * coordinate is not finite.
+ */
+template <typename T>
+bool FiniteBounds(const T* values, vtkIdType n, int threads, double bounds[6])
+{
+  const int pieces = static_cast<int>(std::min<vtkIdType>(
+    std::min(8, shock::ResolveThreadCount(threads)), std::max<vtkIdType>(1, n / 65536)));
+  std::vector<std::array<double, 6>> partial(static_cast<size_t>(pieces));
+  std::vector<char> finite(static_cast<size_t>(pieces), 1);
+  shock::ParallelFor(pieces, pieces, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t i = first; i < last; ++i)
+    {
+      std::array<double, 6> b{ std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+        std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+        std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity() };
+      bool ok = true;
+      const vtkIdType begin = n / pieces * i + std::min<vtkIdType>(i, n % pieces);
+      const vtkIdType end = n / pieces * (i + 1) + std::min<vtkIdType>(i + 1, n % pieces);
+      for (vtkIdType p = begin; p < end; ++p)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          const double x = static_cast<double>(values[3 * p + a]);
+          ok = ok && std::isfinite(x);
+          b[2 * a] = std::min(b[2 * a], x);
+          b[2 * a + 1] = std::max(b[2 * a + 1], x);
+        }
+      }
+      partial[static_cast<size_t>(i)] = b;
+      finite[static_cast<size_t>(i)] = ok ? 1 : 0;
+    }
+  });
+  for (int i = 0; i < pieces; ++i)
+  {
+    if (!finite[static_cast<size_t>(i)])
+    {
+      return false;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = i == 0 ? partial[0][2 * a] : std::min(bounds[2 * a], partial[static_cast<size_t>(i)][2 * a]);
+      bounds[2 * a + 1] =
+        i == 0 ? partial[0][2 * a + 1] : std::max(bounds[2 * a + 1], partial[static_cast<size_t>(i)][2 * a + 1]);
+    }
+  }
+  return true;
+}
+
+bool FiniteBounds(vtkDataArray* points, int threads, double bounds[6])
+{
+  if (!points || points->GetNumberOfComponents() != 3 || points->GetNumberOfTuples() == 0)
+  {
+    return false;
+  }
+  if (auto* f = vtkAOSDataArrayTemplate<float>::FastDownCast(points))
+  {
+    return FiniteBounds(f->GetPointer(0), f->GetNumberOfTuples(), threads, bounds);
+  }
+  if (auto* d = vtkAOSDataArrayTemplate<double>::FastDownCast(points))
+  {
+    return FiniteBounds(d->GetPointer(0), d->GetNumberOfTuples(), threads, bounds);
+  }
+  return false;
+}
+}
+
+double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece, int threads)
 {
   double side = 0.0;
   if (piece && piece->GetNumberOfPoints() > 0)
   {
     double bounds[6];
-    piece->GetBounds(bounds);
+    if (!FiniteBounds(piece->GetPoints()->GetData(), threads, bounds))
+    {
+      piece->GetBounds(bounds); // VTK's rules for non-finite coordinates
+    }
     for (int a = 0; a < 3; ++a)
     {
       side = std::max(side, bounds[2 * a + 1] - bounds[2 * a]);
@@ -343,13 +443,21 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
   }
   if (mergeCoincidentPoints)
   {
-    out.representative = CoincidentRepresentatives(points);
-    for (std::int64_t& id : out.triangles.triangles)
-    {
-      id = out.representative[static_cast<size_t>(id)];
-    }
+    out.representative = CoincidentRepresentatives(points, threads);
+    std::vector<std::int64_t>& ids = out.triangles.triangles;
+    const auto count = static_cast<std::int64_t>(ids.size());
+    shock::ParallelFor(count, shock::ThreadsForWork(threads, count), [&](std::int64_t begin, std::int64_t end) {
+      for (std::int64_t i = begin; i < end; ++i)
+      {
+        ids[static_cast<size_t>(i)] = out.representative[static_cast<size_t>(ids[static_cast<size_t>(i)])];
+      }
+    });
   }
-  const shock::Status built = out.mesh.Build(out.triangles.View(), threads);
+  // The ids are taken over by the mesh (not copied): read them back with mesh.Corners.
+  const auto numberOfPoints = static_cast<std::int64_t>(out.triangles.points.size() / 3);
+  const shock::Status built = out.mesh.Build(
+    numberOfPoints, out.triangles.points.data(), std::move(out.triangles.triangles), threads);
+  out.triangles.triangles.clear();
   if (!built.Ok())
   {
     error = "Cannot use the mesh: " + built.error + ".";

@@ -50,6 +50,7 @@ bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error);
 /// The triangles of a vtkPolyData and the TriangleMesh built from them.
 struct PreparedMesh
 {
+  /// The triangles' ids are moved into `mesh` (triangles.triangles is empty: read mesh.Corners).
   Triangles triangles;
   shock::TriangleMesh mesh;
   /// With merging: for each point, the first point with the same coordinates; else empty.
@@ -74,8 +75,9 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
  * and lengths to the fourth power of meshes beyond about 1e+-75 would leave
  * the double range (NaN, no change, false flipped triangles). 0 when the side
  * is not finite. With a controller all processes agree (collective).
+ * `threads`: for the bounds of large float or double point arrays (0 = all cores).
  */
-double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece);
+double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece, int threads = 0);
 
 /**
  * The prepared mesh of a filter's input, kept between executions: a filter

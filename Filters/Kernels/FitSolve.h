@@ -10,6 +10,7 @@
 #include "MeshPartition.h"
 #include "ScreenedPoissonFit.h"
 #include "ShockTypes.h"
+#include "Vec3.h"
 
 #include <Eigen/SparseCore>
 
@@ -111,6 +112,20 @@ namespace fit
  */
 void AddTargetDivergence(const TriangleMesh& mesh, const double* normals, FitTarget target,
   std::int64_t f, const double gp[3], double out[3]);
+
+/// The target gradients w (FitTargetGradients, 9 values) of triangle f for its target normal.
+void TargetGradients(const TriangleMesh& mesh, const double* normals, FitTarget target,
+  std::int64_t f, double w[9]);
+
+/// out += A_f (gp . w_k) for k = 0, 1, 2: AddTargetDivergence with the gradients w at hand.
+inline void AddDivergence(const TriangleMesh& mesh, std::int64_t f, const double gp[3],
+  const double w[9], double out[3])
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    out[k] += mesh.Area(f) * Dot(Load(gp), Load(w + 3 * k));
+  }
+}
 
 /// The target normals whose divergence the assembly adds to the right-hand sides.
 struct Targets

@@ -24,7 +24,7 @@ Frame UnitAreaFrame(const TriangleMesh& mesh, const MeshPartition* partition, in
     partition ? &partition->ownedTriangles : nullptr, partition,
     [&](std::int64_t f, std::array<double, 4>& sum) {
       const double a = mesh.Area(f); // 0 for degenerate triangles
-      const double* c = mesh.Centroid(f);
+      const Vec3 c = mesh.Centroid(f);
       sum[0] += a;
       for (int k = 0; k < 3; ++k)
       {
@@ -137,6 +137,21 @@ void BreadthFirstOrder(const TriangleMesh& mesh, FitSystemData& system)
     system.order.push_back(seed);
     for (size_t next = system.order.size() - 1; next < system.order.size(); ++next)
     {
+      // The queue is known ahead: ask for the ranks of the ring of a point a few
+      // places on, whose loads are scattered over the rank array.
+      if (next + 8 < system.order.size())
+      {
+        const std::int64_t ahead = system.order[next + 8];
+        for (std::int64_t e = ring.Begin(ahead); e < ring.End(ahead); ++e)
+        {
+          __builtin_prefetch(&system.rank[static_cast<size_t>(ring.items[static_cast<size_t>(e)])]);
+        }
+      }
+      else if (next + 2 < system.order.size())
+      {
+        const std::int64_t ahead = system.order[next + 2];
+        __builtin_prefetch(&ring.items[static_cast<size_t>(ring.Begin(ahead))]);
+      }
       const std::int64_t p = system.order[next];
       for (std::int64_t e = ring.Begin(p); e < ring.End(p); ++e)
       {
@@ -197,6 +212,34 @@ void BuildPattern(const TriangleMesh& mesh, int threads, FitSystemData& system)
   }
 }
 
+/// The target gradients of the triangles last asked for, by triangle modulo its size.
+class TargetGradientCache
+{
+public:
+  TargetGradientCache()
+    : tags(Size, -1)
+    , gradients(9 * Size)
+  {
+  }
+  /// fit::TargetGradients of triangle f (computed on a miss).
+  const double* Get(const TriangleMesh& mesh, const fit::Targets& targets, std::int64_t f)
+  {
+    const size_t slot = static_cast<size_t>(f) & (Size - 1);
+    double* w = &this->gradients[9 * slot];
+    if (this->tags[slot] != f)
+    {
+      fit::TargetGradients(mesh, targets.normals, targets.target, f, w);
+      this->tags[slot] = f;
+    }
+    return w;
+  }
+
+private:
+  static constexpr size_t Size = 4096;
+  std::vector<std::int64_t> tags;
+  std::vector<double> gradients;
+};
+
 /**
  * The values of A = alpha M + beta S (normalised: stiffness A g.g, mass s^2 A/12),
  * the mass term alpha M c0 and the inverse diagonal, row by row in parallel;
@@ -216,7 +259,12 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
   system.fitted.assign(static_cast<size_t>(np), 0);
   rhs.resize(targets ? np : 0, 3);
   const double weight = system.beta * s;
-#pragma omp parallel for num_threads(threads) schedule(static)
+#pragma omp parallel num_threads(threads)
+  {
+  // Each triangle's target gradients serve its three corners' rows, which the
+  // visit order reaches at nearby times: kept in a small direct-mapped cache.
+  TargetGradientCache cache;
+#pragma omp for schedule(static)
   for (std::int64_t i = 0; i < np; ++i)
   {
     const std::int64_t p = system.visit[static_cast<size_t>(i)];
@@ -246,7 +294,7 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
       const Vec3 gp = Load(mesh.HatGradient(f, self));
       if (targets)
       {
-        fit::AddTargetDivergence(mesh, targets->normals, targets->target, f, gp.data(), divergence);
+        fit::AddDivergence(mesh, f, gp.data(), cache.Get(mesh, *targets, f), divergence);
       }
       for (int c = 0; c < 3; ++c)
       {
@@ -277,6 +325,7 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
         rhs(r, k) = b[k] + weight * divergence[k];
       }
     }
+  }
   }
 }
 Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,

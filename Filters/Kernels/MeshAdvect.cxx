@@ -12,6 +12,9 @@ namespace
 // Offset of a vertex-advection start towards the adjacent face centre (the paper's epsilon).
 constexpr double VertexOffset = 0.001;
 
+// Traces ahead whose first triangles are prefetched (SurfaceTracer::Prefetch).
+constexpr std::int64_t PrefetchDistance = 4;
+
 bool SampleNearest(const TriangleMesh& mesh, const SurfacePoint& q, const MeshSource& source,
   double* acc)
 {
@@ -78,14 +81,22 @@ bool SampleSurface(const TriangleMesh& mesh, const SurfacePoint& q, Sampling sam
   }
   const int C = source.components;
   const std::int64_t* t = mesh.Corners(q.triangle);
+  bool valid[3];
   double total = 0.0;
   for (int k = 0; k < 3; ++k)
   {
-    total += source.validPoint[static_cast<size_t>(t[k])] ? q.barycentric[k] : 0.0;
+    valid[k] = source.validPoint[static_cast<size_t>(t[k])] != 0;
+    total += valid[k] ? q.barycentric[k] : 0.0;
   }
   if (!(total > 0.0))
   {
     return false;
+  }
+  // The corners' weights, the same for every channel (computed once).
+  double weight[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    weight[k] = q.barycentric[k] / total;
   }
   for (int c = 0; c < C; ++c)
   {
@@ -95,10 +106,10 @@ bool SampleSurface(const TriangleMesh& mesh, const SurfacePoint& q, Sampling sam
     double high = -low;
     for (int k = 0; k < 3; ++k)
     {
-      if (source.validPoint[static_cast<size_t>(t[k])])
+      if (valid[k])
       {
         const double v = source.points[t[k] * C + c];
-        value += (q.barycentric[k] / total) * v;
+        value += weight[k] * v;
         low = std::min(low, v);
         high = std::max(high, v);
       }
@@ -165,8 +176,13 @@ bool AdvectFaces(
 {
   const int C = source.components;
   const TriangleMesh& mesh = pass.mesh;
-  return pass.ForEach(mesh.NumberOfTriangles(),
+  const std::int64_t nt = mesh.NumberOfTriangles();
+  return pass.ForEach(nt,
     [&](std::int64_t f, std::uint64_t& steps, std::uint64_t& cut) {
+      if (f + PrefetchDistance < nt)
+      {
+        pass.tracer.PrefetchAcross(f + PrefetchDistance); // its own data streams in order
+      }
       double* acc = out + f * C;
       const double* own = source.cells + f * C;
       if (mesh.Degenerate(f) || !AllFinite(own, C))
@@ -191,7 +207,15 @@ bool AdvectVertices(
   const int C = source.components;
   const TriangleMesh& mesh = pass.mesh;
   const CompressedLists& around = mesh.PointTriangles();
-  return pass.ForEach(mesh.NumberOfPoints(), [&](std::int64_t p, std::uint64_t& steps, std::uint64_t& cut) {
+  const std::int64_t np = mesh.NumberOfPoints();
+  return pass.ForEach(np, [&](std::int64_t p, std::uint64_t& steps, std::uint64_t& cut) {
+    if (p + PrefetchDistance < np)
+    {
+      for (std::int64_t k = around.Begin(p + PrefetchDistance); k < around.End(p + PrefetchDistance); ++k)
+      {
+        pass.tracer.Prefetch(around.items[static_cast<size_t>(k)]);
+      }
+    }
     double* acc = out + p * C;
     const double* own = source.points + p * C;
     std::fill(acc, acc + C, 0.0);

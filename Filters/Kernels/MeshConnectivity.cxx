@@ -1,185 +1,508 @@
 #include "MeshConnectivity.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <numeric>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace shock
 {
 
 namespace
 {
-/// Offsets from per-entry counts (a prefix sum); items sized to the total.
-void SetOffsets(const std::vector<std::int64_t>& counts, CompressedLists& lists)
+/**
+ * Contiguous ranges that split [0, n) into `parts` pieces (as even as possible):
+ * piece i is [PartBegin(n, parts, i), PartBegin(n, parts, i + 1)).
+ */
+std::int64_t PartBegin(std::int64_t n, int parts, int i)
 {
-  lists.offsets.resize(counts.size() + 1);
-  lists.offsets[0] = 0;
-  std::partial_sum(counts.begin(), counts.end(), lists.offsets.begin() + 1);
-  lists.items.resize(static_cast<size_t>(lists.offsets.back()));
+  return n / parts * i + std::min<std::int64_t>(i, n % parts);
 }
 
-/// The first counts[i] items of each list of `lists` (whose lists may be longer).
-CompressedLists Compact(
-  const CompressedLists& lists, const std::vector<std::int64_t>& counts, int threads)
+/// Whether corner c of a triangle repeats one of its earlier corners (then it is not listed again).
+bool RepeatsEarlierCorner(const std::int64_t* t, int c)
 {
-  CompressedLists compact;
-  SetOffsets(counts, compact);
-  const auto n = static_cast<std::int64_t>(counts.size());
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t i = 0; i < n; ++i)
-  {
-    std::copy(lists.items.begin() + lists.Begin(i), lists.items.begin() + lists.Begin(i) + counts[i],
-      compact.items.begin() + compact.Begin(i));
-  }
-  return compact;
-}
-
-/// Sort the range and drop repeated items; returns the new length.
-std::int64_t SortUnique(std::int64_t* begin, std::int64_t* end)
-{
-  std::sort(begin, end);
-  return std::unique(begin, end) - begin;
+  return (c >= 1 && t[c] == t[0]) || (c == 2 && t[2] == t[1]);
 }
 } // namespace
 
-/// Triangles around each point: counted and placed in parallel (atomics), then
-/// each list sorted, so it is in triangle order whatever the threads did.
+/**
+ * Triangles around each point, by a counting sort over contiguous chunks of the
+ * triangles: each chunk counts its corners per point, the counts give every
+ * chunk its own slots in every point's list, and each chunk fills its slots in
+ * triangle order. The lists are then in increasing order whatever the chunks,
+ * and a triangle with a repeated id is listed once per point.
+ */
 void MeshConnectivity::BuildPointTriangles(int threads)
 {
   const std::int64_t np = this->numberOfPoints;
-  const auto corners = static_cast<std::int64_t>(this->triangles.size());
+  const std::int64_t nt = this->NumberOfTriangles();
   const std::int64_t* ids = this->triangles.data();
-  std::vector<std::int64_t> counts(static_cast<size_t>(np), 0);
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t i = 0; i < corners; ++i)
+  // Per-chunk counts fit 32 bits: a chunk holds fewer than 2^31 / 3 triangles.
+  const std::int64_t maxChunk = std::numeric_limits<std::int32_t>::max() / 3;
+  const int chunks = static_cast<int>(std::max<std::int64_t>(
+    std::max(1, threads), (nt + maxChunk - 1) / maxChunk));
+  std::vector<std::int32_t, UninitialisedAllocator<std::int32_t>> counts(
+    static_cast<size_t>(chunks) * static_cast<size_t>(np)); // each chunk zeroes its counts
+  CompressedLists& lists = this->pointTriangles;
+  lists.offsets.resize(static_cast<size_t>(np) + 1);
+#pragma omp parallel num_threads(threads)
   {
-#pragma omp atomic
-    ++counts[static_cast<size_t>(ids[i])];
+#pragma omp for schedule(static)
+    for (int chunk = 0; chunk < chunks; ++chunk)
+    {
+      std::int32_t* count = counts.data() + static_cast<size_t>(chunk) * static_cast<size_t>(np);
+      std::fill(count, count + np, 0);
+      for (std::int64_t f = PartBegin(nt, chunks, chunk); f < PartBegin(nt, chunks, chunk + 1); ++f)
+      {
+        const std::int64_t* t = ids + 3 * f;
+        for (int c = 0; c < 3; ++c)
+        {
+          count[t[c]] += RepeatsEarlierCorner(t, c) ? 0 : 1;
+        }
+      }
+    }
+    // Per point: the total (into offsets, shifted by one), and each chunk's first slot
+    // relative to the point's list.
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < np; ++p)
+    {
+      std::int64_t total = 0;
+      for (int chunk = 0; chunk < chunks; ++chunk)
+      {
+        std::int32_t& count = counts[static_cast<size_t>(chunk) * static_cast<size_t>(np) + static_cast<size_t>(p)];
+        const std::int64_t mine = count;
+        count = static_cast<std::int32_t>(total); // below 2^31: a point's triangles are distinct
+        total += mine;
+      }
+      lists.offsets[static_cast<size_t>(p) + 1] = total;
+    }
+#pragma omp single
+    {
+      lists.offsets[0] = 0;
+      std::partial_sum(lists.offsets.begin(), lists.offsets.end(), lists.offsets.begin());
+      lists.items.resize(static_cast<size_t>(lists.offsets.back()));
+    }
+#pragma omp for schedule(static)
+    for (int chunk = 0; chunk < chunks; ++chunk)
+    {
+      std::int32_t* slot = counts.data() + static_cast<size_t>(chunk) * static_cast<size_t>(np);
+      for (std::int64_t f = PartBegin(nt, chunks, chunk); f < PartBegin(nt, chunks, chunk + 1); ++f)
+      {
+        const std::int64_t* t = ids + 3 * f;
+        for (int c = 0; c < 3; ++c)
+        {
+          if (!RepeatsEarlierCorner(t, c))
+          {
+            lists.items[static_cast<size_t>(lists.offsets[static_cast<size_t>(t[c])] + slot[t[c]]++)] = f;
+          }
+        }
+      }
+    }
   }
-  CompressedLists lists;
-  SetOffsets(counts, lists);
-  std::vector<std::int64_t> cursor(lists.offsets.begin(), lists.offsets.end() - 1);
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t i = 0; i < corners; ++i)
-  {
-    std::int64_t slot;
-#pragma omp atomic capture
-    slot = cursor[static_cast<size_t>(ids[i])]++;
-    lists.items[static_cast<size_t>(slot)] = i / 3;
-  }
-  // Sorted; a triangle with a repeated id is listed once per point.
-  bool repeated = false;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(|| : repeated)
-  for (std::int64_t p = 0; p < np; ++p)
-  {
-    std::int64_t* items = lists.items.data();
-    const std::int64_t kept = SortUnique(items + lists.Begin(p), items + lists.End(p));
-    repeated = repeated || kept != counts[static_cast<size_t>(p)];
-    counts[static_cast<size_t>(p)] = kept;
-  }
-  this->pointTriangles = repeated ? Compact(lists, counts, threads) : std::move(lists);
 }
 
-/// An edge of a triangle around a point: its other end, the triangle, the edge's index in it.
-struct MeshConnectivity::EdgeEnd
-{
-  std::int64_t other;
-  std::int64_t triangle;
-  int edge;
-  bool operator<(const EdgeEnd& e) const
-  {
-    return this->other != e.other ? this->other < e.other : this->triangle < e.triangle;
-  }
-};
-
 /**
- * One pass over the points: the edges of the triangles around p, sorted by their
- * other end, give p's one-ring (the distinct other ends) and, for the edges
- * whose other end is larger (each edge is seen once there), the edge
- * neighbours: the triangles that have both ends join when they are exactly two.
+ * One pass over the points, each thread over a contiguous range: the edges of
+ * the triangles around p that end at p, sorted by their other end (then
+ * triangle), give p's one-ring (the distinct other ends, collected per thread
+ * and then copied to their place) and, for the edges whose other end is larger
+ * (each edge is seen once there), the edge neighbours: the triangles that have
+ * both ends join when they are exactly two. The corners of the triangles a few
+ * points ahead are prefetched: their loads, scattered over the triangle array,
+ * dominate the pass.
  */
 void MeshConnectivity::BuildOneRingAndNeighbours(int threads)
 {
   const std::int64_t np = this->numberOfPoints;
   const CompressedLists& around = this->pointTriangles;
-  std::vector<std::int64_t> counts(static_cast<size_t>(np));
-  for (std::int64_t p = 0; p < np; ++p)
-  {
-    counts[static_cast<size_t>(p)] = 2 * (around.End(p) - around.Begin(p)); // an upper bound
-  }
-  CompressedLists bound;
-  SetOffsets(counts, bound);
+  CompressedLists& ring = this->oneRing;
+  ring.offsets.resize(static_cast<size_t>(np) + 1);
+  ring.offsets[0] = 0;
   this->neighbour.resize(this->triangles.size());
+  const int team = std::max(1, threads);
+  std::vector<std::vector<std::int64_t>> local(static_cast<size_t>(team));
+  const std::int64_t* corners = this->triangles.data();
+  const std::int64_t* items = around.items.data();
+  const std::int64_t* offsets = around.offsets.data();
+  std::int64_t* neighbours = this->neighbour.data();
   std::int64_t edges = 0;
-#pragma omp parallel num_threads(threads) reduction(+ : edges)
+#pragma omp parallel num_threads(team) reduction(+ : edges)
   {
-    std::vector<EdgeEnd> ends;
-#pragma omp for schedule(static)
-    for (std::int64_t p = 0; p < np; ++p)
+#ifdef _OPENMP
+    const int me = omp_get_thread_num();
+    const int size = omp_get_num_threads();
+#else
+    const int me = 0;
+    const int size = 1;
+#endif
+    std::vector<std::int64_t>& mine = local[static_cast<size_t>(me)];
+    const std::int64_t first = PartBegin(np, size, me);
+    const std::int64_t last = PartBegin(np, size, me + 1);
+    mine.reserve(static_cast<size_t>(2 * (offsets[last] - offsets[first])));
+    std::int64_t* sizes = ring.offsets.data() + 1;
+    // The edge ends at p: their other ends, and 4 x triangle + edge index (two
+    // arrays of single words: a 16-byte load of a just stored pair would not be
+    // forwarded from the store buffer).
+    std::vector<std::int64_t> other;
+    std::vector<std::int64_t> slot;
+    constexpr std::int64_t Ahead = 4;
+    for (std::int64_t p = first; p < last; ++p)
     {
-      this->CollectEdgeEnds(p, ends);
-      std::int64_t* ring = bound.items.data() + bound.Begin(p);
-      std::int64_t size = 0;
-      for (size_t i = 0; i < ends.size();)
+      if (p + Ahead < last)
       {
-        size_t j = i + 1; // [i, j): the edges from p to ends[i].other
+        for (std::int64_t k = offsets[p + Ahead]; k < offsets[p + Ahead + 1]; ++k)
+        {
+          __builtin_prefetch(corners + 3 * items[k]);
+        }
+      }
+      other.clear();
+      slot.clear();
+      for (std::int64_t k = offsets[p]; k < offsets[p + 1]; ++k)
+      {
+        const std::int64_t f = items[k];
+        const std::int64_t* t = corners + 3 * f;
+        for (int e = 0; e < 3; ++e)
+        {
+          const std::int64_t a = t[e];
+          const std::int64_t b = t[e == 2 ? 0 : e + 1];
+          if (a == p || b == p)
+          {
+            other.push_back(a == p ? b : a);
+            slot.push_back(4 * f + e);
+          }
+        }
+      }
+      // Insertion sort by (other end, slot): a few edges per point.
+      const size_t n = other.size();
+      for (size_t i = 1; i < n; ++i)
+      {
+        const std::int64_t o = other[i];
+        const std::int64_t s = slot[i];
+        size_t j = i;
+        for (; j > 0 && (o < other[j - 1] || (o == other[j - 1] && s < slot[j - 1])); --j)
+        {
+          other[j] = other[j - 1];
+          slot[j] = slot[j - 1];
+        }
+        other[j] = o;
+        slot[j] = s;
+      }
+      std::int64_t count = 0;
+      for (size_t i = 0; i < n;)
+      {
+        const std::int64_t q = other[i];
+        size_t j = i + 1; // [i, j): the edges from p to q
         std::int64_t sharing = 1;
-        for (; j < ends.size() && ends[j].other == ends[i].other; ++j)
+        for (; j < n && other[j] == q; ++j)
         {
-          sharing += ends[j].triangle != ends[j - 1].triangle ? 1 : 0;
+          sharing += (slot[j] >> 2) != (slot[j - 1] >> 2) ? 1 : 0;
         }
-        if (ends[i].other != p)
+        if (q != p)
         {
-          ring[size++] = ends[i].other;
+          mine.push_back(q);
+          ++count;
         }
-        if (ends[i].other >= p) // an edge from p to p (a repeated id) joins nothing
+        if (q >= p) // an edge from p to p (a repeated id) joins nothing
         {
-          edges += ends[i].other > p ? 1 : 0;
-          this->JoinAcross(ends.data() + i, ends.data() + j, ends[i].other > p && sharing == 2);
+          edges += q > p ? 1 : 0;
+          const bool join = q > p && sharing == 2;
+          const std::int64_t low = slot[i] >> 2;
+          const std::int64_t high = slot[j - 1] >> 2;
+          for (size_t k = i; k < j; ++k)
+          {
+            const std::int64_t f = slot[k] >> 2;
+            neighbours[3 * f + (slot[k] & 3)] = join ? (f == low ? high : low) : -1;
+          }
         }
         i = j;
       }
-      counts[static_cast<size_t>(p)] = size;
+      sizes[p] = count;
     }
+#pragma omp barrier
+#pragma omp single
+    {
+      std::partial_sum(ring.offsets.begin(), ring.offsets.end(), ring.offsets.begin());
+      ring.items.resize(static_cast<size_t>(ring.offsets.back()));
+    }
+    if (first < last)
+    {
+      std::copy(mine.begin(), mine.end(), ring.items.begin() + ring.offsets[static_cast<size_t>(first)]);
+    }
+    std::vector<std::int64_t>().swap(mine);
   }
-  this->oneRing = Compact(bound, counts, threads);
   this->numberOfEdges = edges;
 }
 
-void MeshConnectivity::CollectEdgeEnds(std::int64_t p, std::vector<EdgeEnd>& ends) const
+namespace
 {
-  ends.clear();
-  for (std::int64_t k = this->pointTriangles.Begin(p); k < this->pointTriangles.End(p); ++k)
+/// Whether the sorted lists [i, iEnd) and [j, jEnd) share exactly two items; `other` gets the one that is not f.
+bool ExactlyTwoShared(const std::int64_t* i, const std::int64_t* iEnd, const std::int64_t* j,
+  const std::int64_t* jEnd, std::int64_t f, std::int64_t& other)
+{
+  int sharing = 0;
+  other = -1;
+  while (i != iEnd && j != jEnd && sharing <= 2)
   {
-    const std::int64_t f = this->pointTriangles.items[static_cast<size_t>(k)];
-    const std::int64_t* t = this->Corners(f);
+    if (*i < *j)
+    {
+      ++i;
+    }
+    else if (*j < *i)
+    {
+      ++j;
+    }
+    else
+    {
+      ++sharing;
+      other = *i != f ? *i : other;
+      ++i;
+      ++j;
+    }
+  }
+  return sharing == 2;
+}
+
+/// Whether triangle t has corner p.
+bool HasCorner(const std::int64_t* t, std::int64_t p)
+{
+  return t[0] == p || t[1] == p || t[2] == p;
+}
+} // namespace
+
+Status MeshConnectivity::BuildSplit(const MeshConnectivity& source,
+  const std::vector<std::int64_t>& original, std::vector<std::int64_t> ids, int threads)
+{
+  const std::int64_t np = source.numberOfPoints;
+  const auto copies = static_cast<std::int64_t>(original.size());
+  const auto corners = static_cast<std::int64_t>(ids.size());
+  const int team = ThreadsForWork(threads, std::max(copies, corners));
+  // A split: copies in order (steps of 0 or 1 from 0 to np - 1), each corner a copy of the source's.
+  bool split = ids.size() == source.triangles.size() && copies >= np &&
+    (copies == 0 || (original.front() == 0 && original.back() == np - 1));
+#pragma omp parallel for num_threads(team) reduction(&& : split) schedule(static)
+  for (std::int64_t q = 1; q < copies; ++q)
+  {
+    const std::int64_t step = original[static_cast<size_t>(q)] - original[static_cast<size_t>(q) - 1];
+    split = split && (step == 0 || step == 1);
+  }
+#pragma omp parallel for num_threads(team) reduction(&& : split) schedule(static)
+  for (std::int64_t i = 0; i < (split ? corners : 0); ++i)
+  {
+    const std::int64_t q = ids[static_cast<size_t>(i)];
+    split = split && q >= 0 && q < copies && original[static_cast<size_t>(q)] == source.triangles[static_cast<size_t>(i)];
+  }
+  // Equal corners of a triangle must be the same copy (the lists count a triangle once per point).
+#pragma omp parallel for num_threads(team) reduction(&& : split) schedule(static)
+  for (std::int64_t f = 0; f < (split ? corners / 3 : 0); ++f)
+  {
+    const std::int64_t* t = source.triangles.data() + 3 * f;
+    const std::int64_t* u = ids.data() + 3 * f;
+    for (int c = 0; c < 3; ++c)
+    {
+      const int d = (c + 1) % 3;
+      split = split && ((t[c] == t[d]) == (u[c] == u[d]));
+    }
+  }
+  if (!split)
+  {
+    this->derived = false;
+    return this->Build(copies, std::move(ids), threads);
+  }
+  this->derived = true;
+  this->numberOfPoints = copies;
+  this->triangles = std::move(ids);
+  const std::int64_t nt = this->NumberOfTriangles();
+  std::vector<std::int64_t> firstCopy(static_cast<size_t>(np) + 1);
+  firstCopy[static_cast<size_t>(np)] = copies;
+#pragma omp parallel for num_threads(team) schedule(static)
+  for (std::int64_t q = 0; q < copies; ++q)
+  {
+    if (q == 0 || original[static_cast<size_t>(q)] != original[static_cast<size_t>(q) - 1])
+    {
+      firstCopy[static_cast<size_t>(original[static_cast<size_t>(q)])] = q;
+    }
+  }
+  auto copiesOf = [&firstCopy](std::int64_t p) {
+    return firstCopy[static_cast<size_t>(p) + 1] - firstCopy[static_cast<size_t>(p)];
+  };
+  // The copy of p that triangle f uses.
+  auto copyIn = [this, &source](std::int64_t f, std::int64_t p) {
+    const std::int64_t* t = source.Corners(f);
+    return this->triangles[static_cast<size_t>(3 * f + (t[0] == p ? 0 : (t[1] == p ? 1 : 2)))];
+  };
+
+  // Triangles around each copy: its point's, those that use this copy (in order).
+  const CompressedLists& around = source.pointTriangles;
+  CompressedLists& lists = this->pointTriangles;
+  lists.offsets.assign(static_cast<size_t>(copies) + 1, 0);
+#pragma omp parallel for num_threads(team) schedule(static)
+  for (std::int64_t p = 0; p < np; ++p)
+  {
+    if (copiesOf(p) == 1)
+    {
+      lists.offsets[static_cast<size_t>(firstCopy[static_cast<size_t>(p)]) + 1] = around.End(p) - around.Begin(p);
+      continue;
+    }
+    for (std::int64_t k = around.Begin(p); k < around.End(p); ++k)
+    {
+      ++lists.offsets[static_cast<size_t>(copyIn(around.items[static_cast<size_t>(k)], p)) + 1];
+    }
+  }
+  std::partial_sum(lists.offsets.begin(), lists.offsets.end(), lists.offsets.begin());
+  lists.items.resize(static_cast<size_t>(lists.offsets.back()));
+#pragma omp parallel for num_threads(team) schedule(static)
+  for (std::int64_t p = 0; p < np; ++p)
+  {
+    if (copiesOf(p) == 1)
+    {
+      std::copy(around.items.begin() + around.Begin(p), around.items.begin() + around.End(p),
+        lists.items.begin() + lists.Begin(firstCopy[static_cast<size_t>(p)]));
+      continue;
+    }
+    std::vector<std::int64_t> cursor(static_cast<size_t>(copiesOf(p)));
+    for (std::int64_t k = around.Begin(p); k < around.End(p); ++k)
+    {
+      const std::int64_t f = around.items[static_cast<size_t>(k)];
+      const std::int64_t q = copyIn(f, p);
+      const std::int64_t n = cursor[static_cast<size_t>(q - firstCopy[static_cast<size_t>(p)])]++;
+      lists.items[static_cast<size_t>(lists.Begin(q) + n)] = f;
+    }
+  }
+
+  // Edge neighbours: those of the source between unsplit points; across a split
+  // point, the source's neighbour if it still has both ends, else (a
+  // non-manifold source edge) recomputed from the new lists.
+  this->neighbour.resize(this->triangles.size());
+#pragma omp parallel for num_threads(team) schedule(static)
+  for (std::int64_t f = 0; f < nt; ++f)
+  {
+    const std::int64_t* t = source.Corners(f);
+    const std::int64_t* u = this->Corners(f);
     for (int e = 0; e < 3; ++e)
     {
-      const std::int64_t a = t[e];
-      const std::int64_t b = t[(e + 1) % 3];
-      if (a == p || b == p)
+      const int e1 = (e + 1) % 3;
+      const std::int64_t g = source.Neighbour(f, e);
+      std::int64_t joined = g;
+      if (copiesOf(t[e]) > 1 || copiesOf(t[e1]) > 1)
       {
-        ends.push_back({ a == p ? b : a, f, e });
+        if (g >= 0)
+        {
+          joined = HasCorner(this->Corners(g), u[e]) && HasCorner(this->Corners(g), u[e1]) ? g : -1;
+        }
+        else if (u[e] != u[e1])
+        {
+          const std::int64_t* items = lists.items.data();
+          std::int64_t other = -1;
+          joined = ExactlyTwoShared(items + lists.Begin(u[e]), items + lists.End(u[e]),
+                     items + lists.Begin(u[e1]), items + lists.End(u[e1]), f, other)
+            ? other
+            : -1;
+        }
+      }
+      this->neighbour[static_cast<size_t>(3 * f + e)] = joined;
+    }
+  }
+
+  // One-rings: the source's, renumbered, for a point with one copy and no split
+  // point in its ring (renumbering keeps the order); else collected anew.
+  const CompressedLists& sourceRing = source.oneRing;
+  auto renumbered = [&](std::int64_t p) {
+    if (copiesOf(p) > 1)
+    {
+      return false;
+    }
+    for (std::int64_t k = sourceRing.Begin(p); k < sourceRing.End(p); ++k)
+    {
+      if (copiesOf(sourceRing.items[static_cast<size_t>(k)]) > 1)
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  auto collect = [this](std::int64_t q, std::vector<std::int64_t>& ring) {
+    ring.clear();
+    for (std::int64_t k = this->pointTriangles.Begin(q); k < this->pointTriangles.End(q); ++k)
+    {
+      const std::int64_t* t = this->Corners(this->pointTriangles.items[static_cast<size_t>(k)]);
+      for (int c = 0; c < 3; ++c)
+      {
+        if (t[c] != q)
+        {
+          ring.push_back(t[c]);
+        }
+      }
+    }
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  };
+  CompressedLists& ring = this->oneRing;
+  ring.offsets.assign(static_cast<size_t>(copies) + 1, 0);
+  std::vector<unsigned char> same(static_cast<size_t>(np));
+#pragma omp parallel num_threads(team)
+  {
+    std::vector<std::int64_t> scratch;
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < np; ++p)
+    {
+      same[static_cast<size_t>(p)] = renumbered(p) ? 1 : 0;
+      if (same[static_cast<size_t>(p)])
+      {
+        ring.offsets[static_cast<size_t>(firstCopy[static_cast<size_t>(p)]) + 1] = sourceRing.End(p) - sourceRing.Begin(p);
+        continue;
+      }
+      for (std::int64_t q = firstCopy[static_cast<size_t>(p)]; q < firstCopy[static_cast<size_t>(p) + 1]; ++q)
+      {
+        collect(q, scratch);
+        ring.offsets[static_cast<size_t>(q) + 1] = static_cast<std::int64_t>(scratch.size());
       }
     }
   }
-  std::sort(ends.begin(), ends.end());
-}
-
-void MeshConnectivity::JoinAcross(const EdgeEnd* begin, const EdgeEnd* end, bool join)
-{
-  const std::int64_t first = begin->triangle;
-  const std::int64_t last = (end - 1)->triangle;
-  for (const EdgeEnd* e = begin; e != end; ++e)
+  std::partial_sum(ring.offsets.begin(), ring.offsets.end(), ring.offsets.begin());
+  ring.items.resize(static_cast<size_t>(ring.offsets.back()));
+  std::int64_t edges = 0;
+#pragma omp parallel num_threads(team) reduction(+ : edges)
   {
-    this->neighbour[static_cast<size_t>(3 * e->triangle + e->edge)] =
-      join ? (e->triangle == first ? last : first) : -1;
+    std::vector<std::int64_t> scratch;
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < np; ++p)
+    {
+      if (same[static_cast<size_t>(p)])
+      {
+        const std::int64_t q = firstCopy[static_cast<size_t>(p)];
+        std::int64_t* out = ring.items.data() + ring.Begin(q);
+        for (std::int64_t k = sourceRing.Begin(p); k < sourceRing.End(p); ++k)
+        {
+          const std::int64_t r = firstCopy[static_cast<size_t>(sourceRing.items[static_cast<size_t>(k)])];
+          *out++ = r;
+          edges += r > q ? 1 : 0;
+        }
+        continue;
+      }
+      for (std::int64_t q = firstCopy[static_cast<size_t>(p)]; q < firstCopy[static_cast<size_t>(p) + 1]; ++q)
+      {
+        collect(q, scratch);
+        std::copy(scratch.begin(), scratch.end(), ring.items.begin() + ring.Begin(q));
+        for (std::int64_t r : scratch)
+        {
+          edges += r > q ? 1 : 0;
+        }
+      }
+    }
   }
+  this->numberOfEdges = edges;
+  return {};
 }
 
 Status MeshConnectivity::Build(
   std::int64_t numberOfPoints, std::vector<std::int64_t> ids, int threads)
 {
+  this->derived = false;
   if (numberOfPoints < 0 || ids.size() % 3 != 0)
   {
     return { "invalid mesh arrays" };

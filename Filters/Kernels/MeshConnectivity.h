@@ -23,16 +23,56 @@
 #include "ShockTypes.h"
 
 #include <cstdint>
+#include <memory>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace shock
 {
 
+/**
+ * An allocator whose value-initialisation leaves plain values uninitialised, so
+ * that resize() writes nothing: the parallel loops that fill a large array then
+ * touch its pages first, each thread its own part, instead of one thread
+ * zero-filling it all before.
+ */
+template <typename T>
+struct UninitialisedAllocator : std::allocator<T>
+{
+  template <typename U>
+  struct rebind
+  {
+    using other = UninitialisedAllocator<U>;
+  };
+  UninitialisedAllocator() = default;
+  template <typename U>
+  UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept
+  {
+  }
+  template <typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
+  {
+    ::new (static_cast<void*>(p)) U; // default-initialised: nothing written for plain values
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+/// A vector of ids whose resize() leaves the new ids unwritten (see UninitialisedAllocator).
+using IdVector = std::vector<std::int64_t, UninitialisedAllocator<std::int64_t>>;
+
+/// A vector of values whose resize() leaves the new values unwritten (see UninitialisedAllocator).
+using ValueVector = std::vector<double, UninitialisedAllocator<double>>;
+
 /// Compressed lists: the items of entry i are items[offsets[i] .. offsets[i+1]).
 struct CompressedLists
 {
-  std::vector<std::int64_t> offsets;
-  std::vector<std::int64_t> items;
+  IdVector offsets;
+  IdVector items;
   std::int64_t Begin(std::int64_t i) const { return this->offsets[static_cast<size_t>(i)]; }
   std::int64_t End(std::int64_t i) const { return this->offsets[static_cast<size_t>(i) + 1]; }
 };
@@ -48,6 +88,21 @@ public:
    * @param threads OpenMP threads (0 = all cores; fewer for small meshes).
    */
   Status Build(std::int64_t numberOfPoints, std::vector<std::int64_t> triangles, int threads);
+
+  /**
+   * The connectivity of `source` with its points split into copies: point q of
+   * the result copies point original[q] (every source point has at least one
+   * copy, the copies of a point are consecutive and in the order of the points
+   * they copy), and `triangles` are the source's, in the same order, with each
+   * corner replaced by a copy of it (equal corners by the same copy). The
+   * result is what Build(original.size(), triangles) gives; only the lists
+   * around split points and their neighbours are recomputed. Falls back to
+   * Build when the arguments are not such a split.
+   */
+  Status BuildSplit(const MeshConnectivity& source, const std::vector<std::int64_t>& original,
+    std::vector<std::int64_t> triangles, int threads);
+  /// Whether the last BuildSplit derived the lists from its source (not the fallback).
+  bool DerivedFromSource() const { return this->derived; }
 
   std::int64_t NumberOfPoints() const { return this->numberOfPoints; }
   std::int64_t NumberOfTriangles() const
@@ -80,17 +135,14 @@ private:
   // The steps of Build, in order.
   void BuildPointTriangles(int threads);
   void BuildOneRingAndNeighbours(int threads);
-  // Parts of BuildOneRingAndNeighbours.
-  struct EdgeEnd;
-  void CollectEdgeEnds(std::int64_t p, std::vector<EdgeEnd>& ends) const;
-  void JoinAcross(const EdgeEnd* begin, const EdgeEnd* end, bool join);
 
   std::int64_t numberOfPoints = 0;
   std::int64_t numberOfEdges = 0;
+  bool derived = false;
   std::vector<std::int64_t> triangles;
   CompressedLists pointTriangles;
   CompressedLists oneRing;
-  std::vector<std::int64_t> neighbour;
+  IdVector neighbour;
 };
 
 } // namespace shock

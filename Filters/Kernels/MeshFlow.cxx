@@ -6,11 +6,11 @@
 namespace shock
 {
 
-std::vector<double> UmbrellaWeights(const TriangleMesh& mesh, double length, int threads)
+ValueVector UmbrellaWeights(const TriangleMesh& mesh, double length, int threads)
 {
   const CompressedLists& ring = mesh.OneRing();
   const double l = length;
-  std::vector<double> weights(ring.items.size());
+  ValueVector weights(ring.items.size()); // every entry written below
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t p = 0; p < mesh.NumberOfPoints(); ++p)
   {
@@ -24,7 +24,7 @@ std::vector<double> UmbrellaWeights(const TriangleMesh& mesh, double length, int
   return weights;
 }
 
-void UmbrellaSmooth(const TriangleMesh& mesh, const std::vector<double>& weights,
+void UmbrellaSmooth(const TriangleMesh& mesh, const ValueVector& weights,
   const std::vector<unsigned char>& validPoint, int C, std::vector<double>& values, int passes,
   int threads)
 {
@@ -79,15 +79,16 @@ Vec3 TriangleGradient(
   return { g[0] * l, g[1] * l, g[2] * l };
 }
 
-std::vector<double> TriangleEnergy(const TriangleMesh& mesh, const double* values, int C,
+ValueVector TriangleEnergy(const TriangleMesh& mesh, const double* values, int C,
   const std::vector<unsigned char>& validTriangle, double length, int threads)
 {
-  std::vector<double> energy(static_cast<size_t>(mesh.NumberOfTriangles()), 0.0);
+  ValueVector energy(static_cast<size_t>(mesh.NumberOfTriangles())); // every entry written below
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
   {
     if (!validTriangle[static_cast<size_t>(f)])
     {
+      energy[static_cast<size_t>(f)] = 0.0;
       continue;
     }
     double e = 0.0;

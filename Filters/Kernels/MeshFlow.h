@@ -28,7 +28,7 @@ namespace shock
 {
 
 /// Umbrella weight exp(-|(v-w)/l|^2) of each entry of mesh.OneRing().
-std::vector<double> UmbrellaWeights(const TriangleMesh& mesh, double length, int threads);
+ValueVector UmbrellaWeights(const TriangleMesh& mesh, double length, int threads);
 
 /**
  * `passes` passes of Appendix A umbrella smoothing of a point signal (C values
@@ -36,7 +36,7 @@ std::vector<double> UmbrellaWeights(const TriangleMesh& mesh, double length, int
  * valid one-ring neighbours w, with `weights` from UmbrellaWeights. Invalid
  * points neither change nor contribute.
  */
-void UmbrellaSmooth(const TriangleMesh& mesh, const std::vector<double>& weights,
+void UmbrellaSmooth(const TriangleMesh& mesh, const ValueVector& weights,
   const std::vector<unsigned char>& validPoint, int C, std::vector<double>& values, int passes,
   int threads);
 
@@ -45,7 +45,7 @@ Vec3 TriangleGradient(
   const TriangleMesh& mesh, const double* values, int C, int c, std::int64_t f, double length);
 
 /// |grad I|^2 per triangle summed over the C channels (section 3.3); 0 on invalid triangles.
-std::vector<double> TriangleEnergy(const TriangleMesh& mesh, const double* values, int C,
+ValueVector TriangleEnergy(const TriangleMesh& mesh, const double* values, int C,
   const std::vector<unsigned char>& validTriangle, double length, int threads);
 
 /**

@@ -19,6 +19,15 @@ std::unique_ptr<T[]> CopyOf(const std::unique_ptr<T[]>& from, std::int64_t n)
   return to;
 }
 
+/// A copy of the first n items of `from` (null when it is null).
+template <typename T>
+std::shared_ptr<T[]> CopyOf(const std::shared_ptr<T[]>& from, std::int64_t n)
+{
+  std::shared_ptr<T[]> to(from ? new T[static_cast<size_t>(n)] : nullptr);
+  std::copy(from.get(), from.get() + (from ? n : 0), to.get());
+  return to;
+}
+
 /// Below this area (relative to l-bar^2) a triangle has no reliable normal or gradient.
 constexpr double DegenerateAreaFraction = 1e-12;
 } // namespace
@@ -34,7 +43,6 @@ MeshGeometry& MeshGeometry::operator=(const MeshGeometry& other)
   this->area = CopyOf(other.area, nt);
   this->degenerate = CopyOf(other.degenerate, nt);
   this->normal = CopyOf(other.normal, 3 * nt);
-  this->centroid = CopyOf(other.centroid, 3 * nt);
   this->hatGradient = CopyOf(other.hatGradient, 9 * nt);
   return *this;
 }
@@ -68,7 +76,7 @@ void MeshGeometry::ComputeMeanEdgeLength(const MeshConnectivity& connectivity, i
   this->meanEdgeLength = nt > 0 ? total / (3.0 * static_cast<double>(nt)) : 0.0;
 }
 
-/// Per-triangle area, degeneracy, normal, centroid and hat gradients:
+/// Per-triangle area, degeneracy, normal and hat gradients:
 /// grad(phi_c) = N x (edge opposite c, counter-clockwise) / (2A).
 void MeshGeometry::ComputeTriangles(const MeshConnectivity& connectivity, int threads)
 {
@@ -76,7 +84,6 @@ void MeshGeometry::ComputeTriangles(const MeshConnectivity& connectivity, int th
   this->area.reset(new double[static_cast<size_t>(nt)]);
   this->degenerate.reset(new unsigned char[static_cast<size_t>(nt)]);
   this->normal.reset(new double[static_cast<size_t>(3 * nt)]);
-  this->centroid.reset(new double[static_cast<size_t>(3 * nt)]);
   this->hatGradient.reset(new double[static_cast<size_t>(9 * nt)]);
   const double minArea = DegenerateAreaFraction * this->meanEdgeLength * this->meanEdgeLength;
 #pragma omp parallel for num_threads(threads) schedule(static)
@@ -89,7 +96,6 @@ void MeshGeometry::ComputeTriangles(const MeshConnectivity& connectivity, int th
     {
       e1[k] = x[1][k] - x[0][k];
       e2[k] = x[2][k] - x[0][k];
-      this->centroid[3 * f + k] = (x[0][k] + x[1][k] + x[2][k]) / 3.0;
     }
     const Vec3 n = Cross(e1, e2);
     const double twiceArea = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -123,6 +129,27 @@ void MeshGeometry::ComputeTriangles(const MeshConnectivity& connectivity, int th
       }
     }
   }
+}
+
+void MeshGeometry::ComputeFromCopies(
+  const MeshGeometry& source, const std::vector<std::int64_t>& original, int threads)
+{
+  const auto np = static_cast<std::int64_t>(original.size());
+  this->numberOfPoints = np;
+  this->numberOfTriangles = source.numberOfTriangles;
+  this->meanEdgeLength = source.meanEdgeLength; // the same perimeters, summed in the same order
+  this->points.reset(new double[static_cast<size_t>(3 * np)]);
+  const int team = ThreadsForWork(threads, np);
+#pragma omp parallel for num_threads(team) schedule(static)
+  for (std::int64_t q = 0; q < np; ++q)
+  {
+    std::copy(source.Point(original[static_cast<size_t>(q)]),
+      source.Point(original[static_cast<size_t>(q)]) + 3, &this->points[static_cast<size_t>(3 * q)]);
+  }
+  this->area = source.area;
+  this->degenerate = source.degenerate;
+  this->normal = source.normal;
+  this->hatGradient = source.hatGradient;
 }
 
 Status MeshGeometry::Compute(const MeshConnectivity& connectivity, const double* points, int threads)

@@ -1,8 +1,8 @@
 /**
  * @file MeshGeometry.h
  * @brief The geometry of a triangle mesh, computed from point positions over
- * its connectivity (MeshConnectivity.h): per-triangle area, unit normal,
- * centroid and the gradients of the three linear "hat" basis functions, and
+ * its connectivity (MeshConnectivity.h): per-triangle area, unit normal
+ * and the gradients of the three linear "hat" basis functions, and
  * the mean edge length (the paper's l-bar).
  *
  * l-bar is taken over the triangles' edges: each triangle contributes its
@@ -46,15 +46,20 @@ public:
    */
   Status Compute(const MeshConnectivity& connectivity, const double* points, int threads);
 
+  /**
+   * The geometry of a mesh whose points copy those of `source`'s mesh (point q
+   * copies original[q]) and whose triangles are the source's with each corner
+   * replaced by one of its copies: what Compute would give, without computing
+   * it. The points are copied; the per-triangle arrays (which depend only on
+   * the corners' positions) are shared with `source`.
+   */
+  void ComputeFromCopies(const MeshGeometry& source, const std::vector<std::int64_t>& original, int threads);
+
   const double* Point(std::int64_t p) const { return &this->points[static_cast<size_t>(3 * p)]; }
   double Area(std::int64_t f) const { return this->area[static_cast<size_t>(f)]; }
   bool Degenerate(std::int64_t f) const { return this->degenerate[static_cast<size_t>(f)] != 0; }
   /// Unit normal (zero for degenerate triangles), counter-clockwise orientation.
   const double* Normal(std::int64_t f) const { return &this->normal[static_cast<size_t>(3 * f)]; }
-  const double* Centroid(std::int64_t f) const
-  {
-    return &this->centroid[static_cast<size_t>(3 * f)];
-  }
   /// Gradient of the hat function of corner c (0..2) on triangle f (zero when degenerate).
   const double* HatGradient(std::int64_t f, int c) const
   {
@@ -69,15 +74,16 @@ private:
   void ComputeTriangles(const MeshConnectivity& connectivity, int threads);
 
   // Arrays allocated without zero-filling: the parallel loops write (first touch) them all.
+  // The per-triangle arrays are never written after Compute: meshes whose
+  // triangles have the same corner positions share them (ComputeFromCopies).
   std::int64_t numberOfPoints = 0;
   std::int64_t numberOfTriangles = 0;
   double meanEdgeLength = 0.0;
   std::unique_ptr<double[]> points;
-  std::unique_ptr<double[]> area;
-  std::unique_ptr<unsigned char[]> degenerate;
-  std::unique_ptr<double[]> normal;
-  std::unique_ptr<double[]> centroid;
-  std::unique_ptr<double[]> hatGradient;
+  std::shared_ptr<double[]> area;
+  std::shared_ptr<unsigned char[]> degenerate;
+  std::shared_ptr<double[]> normal;
+  std::shared_ptr<double[]> hatGradient;
 };
 
 } // namespace shock

@@ -124,8 +124,20 @@ Status WithoutRepeatedTriangles(const TriangleMesh& mesh, int threads, Sharpenin
 {
   const std::int64_t nt = mesh.NumberOfTriangles();
   const std::vector<std::int64_t> first = FindRepeatedTriangles(mesh, threads);
-  cache.source.assign(static_cast<size_t>(nt), -1);
   cache.cleaned = true;
+  bool any = false;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(|| : any)
+  for (std::int64_t f = 0; f < nt; ++f)
+  {
+    any = any || first[static_cast<size_t>(f)] >= 0 || mesh.Degenerate(f);
+  }
+  if (!any)
+  {
+    cache.removed = false; // every triangle kept: nothing to build
+    cache.source.clear();
+    return {};
+  }
+  cache.source.assign(static_cast<size_t>(nt), -1);
   std::vector<std::int64_t> corners;
   for (std::int64_t f = 0; f < nt; ++f)
   {

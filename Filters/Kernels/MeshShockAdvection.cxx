@@ -25,7 +25,7 @@ struct MeshRun
   double range = 0.0;
   std::vector<unsigned char> validPoint;    // point has a finite value (or, for cells, a finite neighbour)
   std::vector<unsigned char> validTriangle; // non-degenerate, finite corners (and value): carries flow
-  std::vector<double> umbrellaWeight;       // per one-ring entry, exp(-|(v-w)/l|^2)
+  ValueVector umbrellaWeight;               // per one-ring entry, exp(-|(v-w)/l|^2)
   std::vector<unsigned char> cellValid;     // cell signals: the triangle's value is finite
 
   std::int64_t Points() const { return this->mesh.NumberOfPoints(); }
@@ -61,7 +61,7 @@ std::vector<double> ComputeFlow(const MeshRun& run, std::vector<double> signal, 
 {
   UmbrellaSmooth(run.mesh, run.umbrellaWeight, run.validPoint, run.C, signal, run.p.smoothingPasses,
     run.threads);
-  const std::vector<double> energy =
+  const ValueVector energy =
     TriangleEnergy(run.mesh, signal.data(), run.C, run.validTriangle, run.length, run.threads);
   std::vector<double> potential;
   TrianglesToPoints(run.mesh, 1, energy.data(), run.validTriangle, potential, run.threads);
@@ -71,22 +71,31 @@ std::vector<double> ComputeFlow(const MeshRun& run, std::vector<double> signal, 
   return potential;
 }
 
-/// The flow of `current` (one update): fills the back-trace velocity -l u, returns the potential.
-std::vector<double> UpdateFlow(const MeshRun& run, const double* current, std::vector<double>& flow,
-  std::vector<double>& velocity)
+/**
+ * The flow of `current` (one update): fills the back-trace velocity -l u, returns the potential.
+ * `currentPoints`, when not null, holds the per-point values of a cell signal `current`.
+ */
+std::vector<double> UpdateFlow(const MeshRun& run, const double* current,
+  const std::vector<double>* currentPoints, std::vector<double>& flow, ValueVector& velocity)
 {
-  std::vector<double> normalised = run.PointValues(current);
-  for (double& v : normalised)
+  std::vector<double> normalised =
+    currentPoints && run.CellSignal() ? *currentPoints : run.PointValues(current);
+  const double range = run.range;
+  const auto n = static_cast<std::int64_t>(normalised.size());
+#pragma omp parallel for num_threads(run.threads) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i)
   {
-    v /= run.range;
+    normalised[static_cast<size_t>(i)] /= range;
   }
   std::vector<double> potential = ComputeFlow(run, std::move(normalised), flow);
   // Back-trace velocity in world units per unit normalised time: -u scaled by l-bar.
   velocity.resize(flow.size());
   const double l = run.length;
-  for (size_t i = 0; i < flow.size(); ++i)
+  const auto m = static_cast<std::int64_t>(flow.size());
+#pragma omp parallel for num_threads(run.threads) schedule(static)
+  for (std::int64_t i = 0; i < m; ++i)
   {
-    velocity[i] = -l * flow[i];
+    velocity[static_cast<size_t>(i)] = -l * flow[static_cast<size_t>(i)];
   }
   return potential;
 }
@@ -226,7 +235,12 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
   const bool advect = p.time > 0.0 || signal.sampleAtTimeZero; // t = 0: the input, exactly
   const int updates = p.flowMode == FlowMode::Fixed ? 1 : std::max(1, p.flowUpdates);
   MeshSteps steps;
-  steps.current.assign(input, input + count);
+  // The fixed flow reads only the input: no copy of it as the current signal.
+  const bool fixed = p.flowMode == FlowMode::Fixed;
+  if (!fixed)
+  {
+    steps.current.assign(input, input + count);
+  }
   steps.next.resize(p.flowMode == FlowMode::Naive ? count : 0);
   if (p.flowMode == FlowMode::Composed && advect)
   {
@@ -235,6 +249,7 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
   if (run.CellSignal())
   {
     run.cellValid.resize(static_cast<size_t>(run.Triangles()));
+#pragma omp parallel for num_threads(run.threads) schedule(static)
     for (std::int64_t f = 0; f < run.Triangles(); ++f)
     {
       run.cellValid[static_cast<size_t>(f)] = AllFinite(input + f * run.C, run.C) ? 1 : 0;
@@ -243,14 +258,17 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
   }
 
   std::vector<double> flow;
-  std::vector<double> velocity;
+  ValueVector velocity; // written whole by every flow update
   const std::int64_t traces = run.CellSignal() ? run.Triangles()
                                                : static_cast<std::int64_t>(mesh.PointTriangles().items.size());
   const int traceThreads = ThreadsForWork(p.numberOfThreads, traces);
   for (int k = 0; k < updates; ++k)
   {
     const auto flowStart = Clock::now();
-    std::vector<double> potential = UpdateFlow(run, steps.current.data(), flow, velocity);
+    // The first update of every mode starts from the input, whose per-point values are at hand.
+    const double* current = fixed ? input : steps.current.data();
+    std::vector<double> potential =
+      UpdateFlow(run, current, k == 0 ? &steps.inputPoints : nullptr, flow, velocity);
     report.flowSeconds += SecondsSince(flowStart);
     if (fields && k == updates - 1)
     {

@@ -109,17 +109,48 @@ public:
                                                : this->TraceStepped(q, t, truncated);
   }
 
+  /**
+   * Ask the memory system for what a trace through triangle f reads first (its
+   * velocity, hat gradients and corners): advection loops call it some traces
+   * ahead, so that the loads of several traces overlap. Changes nothing else.
+   */
+  void Prefetch(std::int64_t f) const
+  {
+    const double* g = this->Mesh.HatGradient(f, 0);
+    __builtin_prefetch(g);
+    __builtin_prefetch(g + 8);
+    __builtin_prefetch(this->Velocity + 3 * f);
+    __builtin_prefetch(this->Mesh.Corners(f));
+  }
+
+  /// Prefetch the triangles across the edges of f (see Prefetch).
+  void PrefetchAcross(std::int64_t f) const
+  {
+    for (int e = 0; e < 3; ++e)
+    {
+      const std::int64_t g = this->Mesh.RawNeighbour(f, e);
+      if (g >= 0)
+      {
+        this->Prefetch(g);
+      }
+    }
+  }
+
 private:
   Vec3 VelocityOf(std::int64_t f) const { return Load(this->Velocity + 3 * f); }
 
-  /// Time until q, moving with v, leaves its triangle, and the corner whose coordinate reaches 0.
-  double ExitTime(const SurfacePoint& q, const Vec3& v, int& corner) const
+  /**
+   * Time until q, moving with v, leaves its triangle, and the corner whose coordinate reaches 0.
+   * `rates` receives the rates of change of the barycentric coordinates (for Advance).
+   */
+  double ExitTime(const SurfacePoint& q, const Vec3& v, int& corner, double rates[3]) const
   {
     double exit = std::numeric_limits<double>::infinity();
     corner = -1;
     for (int c = 0; c < 3; ++c)
     {
       const double rate = Dot(Load(this->Mesh.HatGradient(q.triangle, c)), v);
+      rates[c] = rate;
       if (rate < 0.0)
       {
         const double time = std::max(0.0, q.barycentric[c]) / -rate;
@@ -133,14 +164,17 @@ private:
     return exit;
   }
 
-  /// Move q with v for dt inside its triangle; `exitCorner` >= 0 lands it exactly on that edge.
-  void Advance(SurfacePoint& q, const Vec3& v, double dt, int exitCorner) const
+  /**
+   * Move q for dt inside its triangle with the barycentric rates of change `rates`
+   * (ExitTime's); `exitCorner` >= 0 lands it exactly on that edge.
+   */
+  void Advance(SurfacePoint& q, const double rates[3], double dt, int exitCorner) const
   {
     double sum = 0.0;
     for (int c = 0; c < 3; ++c)
     {
       double& l = q.barycentric[c];
-      l = (c == exitCorner) ? 0.0 : std::max(0.0, l + Dot(Load(this->Mesh.HatGradient(q.triangle, c)), v) * dt);
+      l = (c == exitCorner) ? 0.0 : std::max(0.0, l + rates[c] * dt);
       sum += l;
     }
     for (double& l : q.barycentric)
@@ -206,13 +240,14 @@ private:
     while (true)
     {
       int corner = -1;
-      const double exit = this->ExitTime(q, direction, corner);
+      double rates[3];
+      const double exit = this->ExitTime(q, direction, corner, rates);
       if (exit >= dt)
       {
-        this->Advance(q, direction, dt, -1);
+        this->Advance(q, rates, dt, -1);
         return true;
       }
-      this->Advance(q, direction, exit, corner);
+      this->Advance(q, rates, exit, corner);
       dt -= exit;
       stalled = exit > 0.0 ? 0 : stalled + 1;
       Hinge hinge;
@@ -270,13 +305,14 @@ private:
         break;
       }
       int corner = -1;
-      const double exit = this->ExitTime(q, v, corner);
+      double rates[3];
+      const double exit = this->ExitTime(q, v, corner, rates);
       if (exit >= t)
       {
-        this->Advance(q, v, t, -1);
+        this->Advance(q, rates, t, -1);
         break;
       }
-      this->Advance(q, v, exit, corner);
+      this->Advance(q, rates, exit, corner);
       t -= exit;
       ++steps;
       stalled = exit > 0.0 ? 0 : stalled + 1;

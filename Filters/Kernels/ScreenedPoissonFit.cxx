@@ -103,16 +103,20 @@ Coordinates RightHandSides(const TriangleMesh& mesh, const double* targets, FitT
 
 } // namespace
 
+void fit::TargetGradients(const TriangleMesh& mesh, const double* normals, FitTarget target,
+  std::int64_t f, double w[9])
+{
+  double n[3];
+  TargetNormal(mesh, normals, f, n);
+  FitTargetGradients(mesh, f, n, target, w);
+}
+
 void fit::AddTargetDivergence(const TriangleMesh& mesh, const double* normals, FitTarget target,
   std::int64_t f, const double gp[3], double out[3])
 {
-  double n[3], w[9];
-  TargetNormal(mesh, normals, f, n);
-  FitTargetGradients(mesh, f, n, target, w);
-  for (int k = 0; k < 3; ++k)
-  {
-    out[k] += mesh.Area(f) * Dot(Load(gp), Load(w + 3 * k));
-  }
+  double w[9];
+  TargetGradients(mesh, normals, target, f, w);
+  AddDivergence(mesh, f, gp, w, out);
 }
 
 namespace

@@ -127,8 +127,21 @@ std::vector<std::int64_t> FindRepeatedTriangles(const TriangleMesh& mesh, int th
 #pragma omp parallel for num_threads(ResolveThreadCount(threads)) schedule(static)
   for (std::int64_t f = 0; f < nt; ++f)
   {
-    // Every copy of f uses f's smallest point: look among that point's triangles.
     const std::array<std::int64_t, 3> corners = SortedCorners(mesh, f);
+    // Every copy of f has each of f's edges. An edge joined to one other triangle
+    // g (two triangles have both its ends) leaves g as the only candidate.
+    const MeshConnectivity& connectivity = mesh.Connectivity();
+    std::int64_t only = -1;
+    for (int e = 0; e < 3 && only < 0; ++e)
+    {
+      only = connectivity.Neighbour(f, e);
+    }
+    if (only >= 0)
+    {
+      first[static_cast<size_t>(f)] = only < f && SortedCorners(mesh, only) == corners ? only : -1;
+      continue;
+    }
+    // Else: every copy of f uses f's smallest point: look among that point's triangles.
     std::int64_t earliest = f;
     for (std::int64_t k = around.Begin(corners[0]); k < around.End(corners[0]); ++k)
     {
@@ -173,22 +186,36 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
     return {};
   }
 
-  // Copies per point, their first new id, and the group of each (point, triangle) entry.
+  // The points on feature edges: only they can split.
+  std::vector<unsigned char> touched(static_cast<size_t>(np), 0);
+  for (std::int64_t f = 0; f < nt; ++f)
+  {
+    for (int e = 0; e < 3; ++e)
+    {
+      if (feature[static_cast<size_t>(3 * f + e)])
+      {
+        touched[static_cast<size_t>(mesh.Corners(f)[e])] = 1;
+        touched[static_cast<size_t>(mesh.Corners(f)[(e + 1) % 3])] = 1;
+      }
+    }
+  }
+  // Copies per point, their first new id, and the group of each (point, triangle)
+  // entry of a touched point (the only ones read).
   const CompressedLists& around = mesh.PointTriangles();
-  std::vector<std::int64_t> label(around.items.size());
+  IdVector label(around.items.size());
   std::vector<std::int64_t> firstCopy(static_cast<size_t>(np) + 1, 0);
 #pragma omp parallel for num_threads(nthreads) schedule(dynamic, 1024)
   for (std::int64_t p = 0; p < np; ++p)
   {
-    firstCopy[static_cast<size_t>(p) + 1] =
-      GroupAroundPoint(mesh, feature, p, label.data() + around.Begin(p));
+    firstCopy[static_cast<size_t>(p) + 1] = touched[static_cast<size_t>(p)]
+      ? GroupAroundPoint(mesh, feature, p, label.data() + around.Begin(p))
+      : 1;
   }
   for (std::int64_t p = 0; p < np; ++p)
   {
     firstCopy[static_cast<size_t>(p) + 1] += firstCopy[static_cast<size_t>(p)];
   }
   const std::int64_t copies = firstCopy.back();
-  std::vector<double> points(static_cast<size_t>(3 * copies));
   split.original.resize(static_cast<size_t>(copies));
 #pragma omp parallel for num_threads(nthreads) schedule(static)
   for (std::int64_t p = 0; p < np; ++p)
@@ -196,7 +223,6 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
     for (std::int64_t q = firstCopy[static_cast<size_t>(p)]; q < firstCopy[static_cast<size_t>(p) + 1]; ++q)
     {
       split.original[static_cast<size_t>(q)] = p;
-      std::copy(mesh.Point(p), mesh.Point(p) + 3, &points[static_cast<size_t>(3 * q)]);
     }
   }
   std::vector<std::int64_t> triangles(static_cast<size_t>(3 * nt));
@@ -207,6 +233,11 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
     for (int c = 0; c < 3; ++c)
     {
       const std::int64_t p = t[c];
+      if (!touched[static_cast<size_t>(p)])
+      {
+        triangles[static_cast<size_t>(3 * f + c)] = firstCopy[static_cast<size_t>(p)]; // its only copy
+        continue;
+      }
       std::int64_t k = around.Begin(p);
       while (around.items[static_cast<size_t>(k)] != f)
       {
@@ -216,13 +247,9 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
         firstCopy[static_cast<size_t>(p)] + label[static_cast<size_t>(k)];
     }
   }
-  TriangleMeshView view;
-  view.numberOfPoints = copies;
-  view.points = points.data();
-  view.numberOfTriangles = nt;
-  view.triangles = triangles.data();
   split.featureEdges = edges;
-  return split.mesh.Build(view, nthreads);
+  // The same mesh as built from the copied points and these triangles, derived from `mesh`.
+  return split.mesh.BuildSplit(mesh, split.original, std::move(triangles), nthreads);
 }
 
 } // namespace shock

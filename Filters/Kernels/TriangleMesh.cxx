@@ -34,6 +34,54 @@ Status TriangleMesh::Build(const TriangleMeshView& view, int threads)
 }
 
 Status TriangleMesh::Build(
+  std::int64_t numberOfPoints, const double* points, std::vector<std::int64_t> triangles, int threads)
+{
+  if (numberOfPoints < 0 || (numberOfPoints > 0 && !points) || triangles.size() % 3 != 0)
+  {
+    return { "invalid mesh arrays" };
+  }
+  auto built = std::make_shared<MeshConnectivity>();
+  const Status status = built->Build(numberOfPoints, std::move(triangles), threads);
+  if (!status.Ok())
+  {
+    return status;
+  }
+  return this->Build(std::move(built), points, threads);
+}
+
+Status TriangleMesh::BuildSplit(const TriangleMesh& source,
+  const std::vector<std::int64_t>& original, std::vector<std::int64_t> triangles, int threads)
+{
+  auto built = std::make_shared<MeshConnectivity>();
+  const Status status = built->BuildSplit(source.Connectivity(), original, std::move(triangles), threads);
+  if (!status.Ok())
+  {
+    return status;
+  }
+  if (!built->DerivedFromSource())
+  {
+    // Not a split of the source: the general way, from the copied positions.
+    std::vector<double> points(3 * original.size());
+    for (size_t q = 0; q < original.size(); ++q)
+    {
+      const std::int64_t p = original[q];
+      if (p < 0 || p >= source.NumberOfPoints())
+      {
+        return { "a point copies a point id outside [0, number of points)" };
+      }
+      std::copy(source.Point(p), source.Point(p) + 3, &points[3 * q]);
+    }
+    return this->Build(std::move(built), points.data(), threads);
+  }
+  this->geometry.ComputeFromCopies(source.Geometry(), original, threads);
+  this->connectivity = std::move(built);
+  const bool any = this->connectivity->NumberOfTriangles() > 0;
+  this->corners = any ? this->connectivity->Corners(0) : nullptr;
+  this->neighbours = any ? this->connectivity->Neighbours() : nullptr;
+  return {};
+}
+
+Status TriangleMesh::Build(
   std::shared_ptr<const MeshConnectivity> shared, const double* points, int threads)
 {
   if (!shared)

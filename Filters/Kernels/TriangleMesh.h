@@ -24,6 +24,7 @@
 #include "MeshConnectivity.h"
 #include "MeshGeometry.h"
 #include "ShockTypes.h"
+#include "Vec3.h"
 
 #include <cstdint>
 #include <memory>
@@ -56,12 +57,29 @@ public:
   Status Build(const TriangleMeshView& view, int threads);
 
   /**
+   * Build as from a view, taking the triangles' ids over instead of copying
+   * them (3 per triangle; read them back with Corners).
+   */
+  Status Build(std::int64_t numberOfPoints, const double* points, std::vector<std::int64_t> triangles,
+    int threads);
+
+  /**
    * Build over an existing connectivity (shared, not copied) with new point
    * positions (3 per point of the connectivity, copied): only the geometry is
    * computed. Fails when a coordinate is not finite.
    */
   Status Build(std::shared_ptr<const MeshConnectivity> connectivity, const double* points,
     int threads);
+
+  /**
+   * Build the mesh of `source` with its points split into copies (see
+   * MeshConnectivity::BuildSplit: point q copies original[q], `triangles` are
+   * the source's with each corner replaced by a copy of it): the same mesh as
+   * Build with those points and triangles, derived from the source's lists and
+   * sharing its per-triangle geometry.
+   */
+  Status BuildSplit(const TriangleMesh& source, const std::vector<std::int64_t>& original,
+    std::vector<std::int64_t> triangles, int threads);
 
   const MeshConnectivity& Connectivity() const { return *this->connectivity; }
   /// The connectivity, to build another mesh over it.
@@ -76,7 +94,14 @@ public:
   bool Degenerate(std::int64_t f) const { return this->geometry.Degenerate(f); }
   /// Unit normal (zero for degenerate triangles), counter-clockwise orientation.
   const double* Normal(std::int64_t f) const { return this->geometry.Normal(f); }
-  const double* Centroid(std::int64_t f) const { return this->geometry.Centroid(f); }
+  /// Centroid (x0 + x1 + x2) / 3 of the corners (computed when asked: nothing stored).
+  Vec3 Centroid(std::int64_t f) const
+  {
+    const std::int64_t* t = this->Corners(f);
+    const double* x[3] = { this->Point(t[0]), this->Point(t[1]), this->Point(t[2]) };
+    return { (x[0][0] + x[1][0] + x[2][0]) / 3.0, (x[0][1] + x[1][1] + x[2][1]) / 3.0,
+      (x[0][2] + x[1][2] + x[2][2]) / 3.0 };
+  }
   /// Gradient of the hat function of corner c (0..2) on triangle f (zero when degenerate).
   const double* HatGradient(std::int64_t f, int c) const
   {
@@ -91,6 +116,8 @@ public:
     const std::int64_t g = this->neighbours[3 * f + e];
     return g >= 0 && !this->Degenerate(f) && !this->Degenerate(g) ? g : -1;
   }
+  /// Neighbour(f, e) before the degeneracy test: -1 only on boundary and non-manifold edges.
+  std::int64_t RawNeighbour(std::int64_t f, int e) const { return this->neighbours[3 * f + e]; }
   /// Triangles that use point p.
   const CompressedLists& PointTriangles() const { return this->connectivity->PointTriangles(); }
   /// Points joined to p by an edge (each once).

@@ -167,4 +167,119 @@ TEST(MeshConnectivity, MovedPointsOverASharedConnectivityEqualAFreshBuild)
   EXPECT_FALSE(refused.Build(first.SharedConnectivity(), bad.data(), 1).Ok());
 }
 
+/// Every list, neighbour and geometry value of `a` equals those of `b`.
+void ExpectSameMesh(const shock::TriangleMesh& a, const shock::TriangleMesh& b)
+{
+  ASSERT_EQ(a.NumberOfPoints(), b.NumberOfPoints());
+  ASSERT_EQ(a.NumberOfTriangles(), b.NumberOfTriangles());
+  EXPECT_EQ(a.NumberOfEdges(), b.NumberOfEdges());
+  EXPECT_EQ(a.MeanEdgeLength(), b.MeanEdgeLength());
+  EXPECT_EQ(a.PointTriangles().offsets, b.PointTriangles().offsets);
+  EXPECT_EQ(a.PointTriangles().items, b.PointTriangles().items);
+  EXPECT_EQ(a.OneRing().offsets, b.OneRing().offsets);
+  EXPECT_EQ(a.OneRing().items, b.OneRing().items);
+  for (std::int64_t p = 0; p < a.NumberOfPoints(); ++p)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      ASSERT_EQ(a.Point(p)[k], b.Point(p)[k]);
+    }
+  }
+  for (std::int64_t f = 0; f < a.NumberOfTriangles(); ++f)
+  {
+    ASSERT_EQ(a.Area(f), b.Area(f));
+    ASSERT_EQ(a.Degenerate(f), b.Degenerate(f));
+    for (int c = 0; c < 3; ++c)
+    {
+      ASSERT_EQ(a.Corners(f)[c], b.Corners(f)[c]);
+      ASSERT_EQ(a.Connectivity().Neighbour(f, c), b.Connectivity().Neighbour(f, c)) << "triangle " << f;
+      ASSERT_EQ(a.Neighbour(f, c), b.Neighbour(f, c));
+      ASSERT_EQ(a.Normal(f)[c], b.Normal(f)[c]);
+      ASSERT_EQ(a.Centroid(f)[c], b.Centroid(f)[c]);
+      for (int k = 0; k < 3; ++k)
+      {
+        ASSERT_EQ(a.HatGradient(f, c)[k], b.HatGradient(f, c)[k]);
+      }
+    }
+  }
+}
+
+TEST(MeshConnectivity, SplitPointsDerivedFromTheSourceEqualAFreshBuild)
+{
+  const MeshData meshes[] = { shocktest::Icosphere(2), shocktest::NonManifoldFan(),
+    shocktest::WithDegenerateTriangles(shocktest::PlaneGrid(6, 5)),
+    shocktest::WithIsolatedPoints(shocktest::Cylinder(7, 3, 1.0, 2.0), 3),
+    shocktest::WithDuplicatePoints(shocktest::Icosphere(1)), shocktest::TwoComponents(1) };
+  for (const MeshData& m : meshes)
+  {
+    shock::TriangleMesh source;
+    ASSERT_TRUE(source.Build({ m.NumberOfPoints(), m.points.data(), m.NumberOfTriangles(), m.triangles.data() }, 2).Ok());
+    for (int pattern = 0; pattern < 3; ++pattern)
+    {
+      // Points split into 1 to 3 copies (none, some or most of them), each
+      // triangle using one copy of each of its points (chosen by a hash).
+      const std::int64_t np = m.NumberOfPoints();
+      std::vector<std::int64_t> firstCopy(static_cast<size_t>(np) + 1, 0);
+      for (std::int64_t p = 0; p < np; ++p)
+      {
+        const std::int64_t count = pattern == 0 ? 1 : 1 + (p * 7 + pattern) % (pattern == 1 ? 5 : 2) % 3;
+        firstCopy[static_cast<size_t>(p) + 1] = firstCopy[static_cast<size_t>(p)] + count;
+      }
+      std::vector<std::int64_t> original;
+      std::vector<double> points;
+      for (std::int64_t p = 0; p < np; ++p)
+      {
+        for (std::int64_t q = firstCopy[static_cast<size_t>(p)]; q < firstCopy[static_cast<size_t>(p) + 1]; ++q)
+        {
+          original.push_back(p);
+          points.insert(points.end(), m.points.begin() + 3 * p, m.points.begin() + 3 * p + 3);
+        }
+      }
+      std::vector<std::int64_t> triangles(m.triangles.size());
+      for (size_t i = 0; i < triangles.size(); ++i)
+      {
+        const std::int64_t p = m.triangles[i];
+        const std::int64_t f = static_cast<std::int64_t>(i / 3);
+        const std::int64_t count = firstCopy[static_cast<size_t>(p) + 1] - firstCopy[static_cast<size_t>(p)];
+        triangles[i] = firstCopy[static_cast<size_t>(p)] + (f * 31 + p * 17) % count;
+      }
+      for (int threads : { 1, 2 })
+      {
+        shock::TriangleMesh split;
+        ASSERT_TRUE(split.BuildSplit(source, original, triangles, threads).Ok());
+        EXPECT_TRUE(split.Connectivity().DerivedFromSource());
+        shock::TriangleMesh fresh;
+        ASSERT_TRUE(fresh.Build({ static_cast<std::int64_t>(original.size()), points.data(),
+                                  m.NumberOfTriangles(), triangles.data() },
+          threads)
+                      .Ok());
+        ExpectSameMesh(split, fresh);
+      }
+    }
+  }
+  // Not a split of the source (a corner that is no copy of the source's): built the general way.
+  const MeshData sphere = shocktest::Icosphere(1);
+  shock::TriangleMesh source;
+  ASSERT_TRUE(source.Build({ sphere.NumberOfPoints(), sphere.points.data(), sphere.NumberOfTriangles(),
+                             sphere.triangles.data() },
+    1)
+                .Ok());
+  std::vector<std::int64_t> original(static_cast<size_t>(sphere.NumberOfPoints()));
+  for (size_t p = 0; p < original.size(); ++p)
+  {
+    original[p] = static_cast<std::int64_t>(p);
+  }
+  std::vector<std::int64_t> triangles = sphere.triangles;
+  std::swap(triangles[0], triangles[3]);
+  shock::TriangleMesh other;
+  ASSERT_TRUE(other.BuildSplit(source, original, triangles, 2).Ok());
+  EXPECT_FALSE(other.Connectivity().DerivedFromSource());
+  shock::TriangleMesh fresh;
+  ASSERT_TRUE(fresh.Build({ sphere.NumberOfPoints(), sphere.points.data(), sphere.NumberOfTriangles(),
+                            triangles.data() },
+    1)
+                .Ok());
+  ExpectSameMesh(other, fresh);
+}
+
 } // namespace

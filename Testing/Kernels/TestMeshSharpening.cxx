@@ -270,7 +270,7 @@ TEST(MeshSharpening, NormalSmoothingCalmsNoise)
     double sum = 0.0;
     for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
     {
-      const double* c = mesh.Centroid(f);
+      const shock::Vec3 c = mesh.Centroid(f);
       const double l = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
       sum += Angle({ n[3 * f], n[3 * f + 1], n[3 * f + 2] }, { c[0] / l, c[1] / l, c[2] / l });
     }

@@ -565,7 +565,7 @@ TEST(MeshShockAdvection, CellSignalsSharpenInRange)
   std::vector<double> cells(static_cast<size_t>(mesh.NumberOfTriangles()));
   for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
   {
-    const double* c = mesh.Centroid(f);
+    const shock::Vec3 c = mesh.Centroid(f);
     cells[static_cast<size_t>(f)] = shocktest::SmoothStep(0.8 * c[2] + 0.6 * c[0], 0.1, 0.15);
   }
   const auto [lo, hi] = std::minmax_element(cells.begin(), cells.end());

@@ -189,7 +189,7 @@ std::vector<double> PerturbedNormals(const TriangleMesh& mesh, double amount)
   for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
   {
     const double* n = mesh.Normal(f);
-    const double* c = mesh.Centroid(f);
+    const shock::Vec3 c = mesh.Centroid(f);
     double t[3] = { n[0] + amount * std::sin(3.0 * c[1]), n[1] + amount * std::cos(2.0 * c[2]),
       n[2] + amount * std::sin(5.0 * c[0]) };
     const double length = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <set>
@@ -92,6 +93,53 @@ TEST(SharpFeatures, RepeatedTrianglesPointToTheirFirstOccurrence)
   m.triangles = { 0, 1, 2, 2, 1, 3, 1, 0, 2, 3, 2, 1, 0, 1, 2, 0, 1, 3 };
   const auto first = shock::FindRepeatedTriangles(Build(m), 2);
   EXPECT_EQ(first, (std::vector<std::int64_t>{ -1, -1, 0, 1, 0, -1 }));
+}
+
+TEST(SharpFeatures, RepeatedTrianglesMatchTheirDefinition)
+{
+  // A closed sphere with copies of some triangles (in other orientations), a
+  // triangle alone with its copy (the two share all three edges and nothing
+  // else), and a triangle with a repeated id with its copy.
+  MeshData m = shocktest::Icosphere(2);
+  const std::int64_t n = m.NumberOfTriangles();
+  for (std::int64_t f : { std::int64_t{ 5 }, std::int64_t{ 17 }, n - 1 })
+  {
+    const std::int64_t* t = &m.triangles[static_cast<size_t>(3 * f)];
+    const std::int64_t copy[3] = { t[2], t[1], t[0] };
+    m.triangles.insert(m.triangles.end(), copy, copy + 3);
+  }
+  const std::int64_t base = m.NumberOfPoints();
+  for (const V& p : std::vector<V>{ { 3, 0, 0 }, { 4, 0, 0 }, { 3, 1, 0 }, { 5, 5, 5 }, { 6, 5, 5 } })
+  {
+    shocktest::AddPoint(m, p);
+  }
+  m.triangles.insert(m.triangles.end(), { base, base + 1, base + 2, base + 1, base + 2, base,
+                                          base + 3, base + 3, base + 4, base + 4, base + 3, base + 3 });
+  std::vector<std::int64_t> expected(static_cast<size_t>(m.NumberOfTriangles()), -1);
+  auto sorted = [&m](std::int64_t f) {
+    std::array<std::int64_t, 3> s{ m.triangles[static_cast<size_t>(3 * f)],
+      m.triangles[static_cast<size_t>(3 * f + 1)], m.triangles[static_cast<size_t>(3 * f + 2)] };
+    std::sort(s.begin(), s.end());
+    return s;
+  };
+  int repeats = 0;
+  for (std::int64_t f = 0; f < m.NumberOfTriangles(); ++f)
+  {
+    for (std::int64_t g = 0; g < f; ++g)
+    {
+      if (sorted(g) == sorted(f))
+      {
+        expected[static_cast<size_t>(f)] = g;
+        ++repeats;
+        break;
+      }
+    }
+  }
+  EXPECT_EQ(repeats, 5);
+  for (int threads : { 1, 2 })
+  {
+    EXPECT_EQ(shock::FindRepeatedTriangles(Build(m), threads), expected);
+  }
 }
 
 TEST(SharpFeatures, CubeCornersSplitIntoOneCopyPerFace)
