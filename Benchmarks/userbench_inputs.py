@@ -92,6 +92,10 @@ class Inputs:
         return self._path("photo-64x48.png", lambda p: self._window(p, 64, 48))
 
     def _meshbench(self, path, mode, mesh, levels):
+        # The real scans (meshbench would otherwise make a synthetic stand-in of a
+        # missing one, which is not the row's input).
+        fetch = ["sh", os.path.join(HERE, "get_meshes.sh")] + ([self.mesh_dir] if self.mesh_dir else [])
+        subprocess.run(fetch, check=True, stdout=sys.stderr)
         command = [self._tool("meshbench"), mode, "--mesh", mesh, "--levels", str(levels),
                    "--write-input", path]
         if self.mesh_dir:
