@@ -156,9 +156,11 @@ template <int D>
 struct Neighbourhood
 {
   static constexpr int Size = D == 1 ? 3 : (D == 2 ? 9 : 27);
-  static constexpr int Corners = Lattice<D>::Corners;
-  std::array<std::int64_t, Size> offset{}; // sample offset of neighbourhood entry k
-  std::array<double, 2> start{};           // start coordinate in its face, per corner bit
+  std::array<std::int64_t, Size> valueOffset{}; // offset of entry k's values (C per sample)
+
+  /// The start of a trace, offset from the sample towards its face's centre, as a
+  /// coordinate in the face: the sample is the face's lower corner (bit 0) or its upper one.
+  static constexpr double Start(int bit) { return bit ? 1.0 - 0.5 * VertexOffset : 0.5 * VertexOffset; }
 
   /// Entry step from a face's lower corner to its corner c (a constant once unrolled).
   static constexpr int Step(int c)
@@ -171,7 +173,8 @@ struct Neighbourhood
     return (Size - 1) / 2 - Step(b);
   }
 
-  explicit Neighbourhood(const Lattice<D>& L)
+  /// The neighbourhood of a signal with C components per sample.
+  Neighbourhood(const Lattice<D>& L, int C)
   {
     // Entry k = sum over axes of (o_d + 1) 3^d for the offset o in {-1, 0, 1}^D.
     for (int k = 0; k < Size; ++k)
@@ -181,12 +184,8 @@ struct Neighbourhood
       {
         o += (rest % 3 - 1) * L.sampleStride[d];
       }
-      this->offset[k] = o;
+      this->valueOffset[k] = o * C;
     }
-    // The start, offset from the sample towards the face centre, measured from
-    // the face's lower corner: the sample is that corner (bit 0) or the upper one.
-    this->start[0] = 0.5 * VertexOffset;
-    this->start[1] = 1.0 - 0.5 * VertexOffset;
   }
 };
 
@@ -215,14 +214,13 @@ void StartInFace(const std::array<std::int64_t, D>& i, int b, std::array<double,
  * face (the general tracer takes it).
  */
 template <int D>
-SHOCK_ALWAYS_INLINE bool TraceWithinFace(
-  const Neighbourhood<D>& hood, const float* v, int b, double time, double* weights)
+SHOCK_ALWAYS_INLINE bool TraceWithinFace(const float* v, int b, double time, double* weights)
 {
   std::array<double, D> frac;
   int outside = 0; // counted, not tested per axis: one branch per trace
   for (int d = 0; d < D; ++d)
   {
-    frac[d] = hood.start[(b >> d) & 1] + static_cast<double>(v[d]) * time;
+    frac[d] = Neighbourhood<D>::Start((b >> d) & 1) + static_cast<double>(v[d]) * time;
     outside += static_cast<int>(!(frac[d] >= 0.0)) + static_cast<int>(!(frac[d] <= 1.0));
   }
   if (outside != 0)
@@ -346,14 +344,9 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
   const unsigned char* valid = ctx.valid;
   constexpr int Corners = Lattice<D>::Corners;
   using Hood = Neighbourhood<D>;
-  const Hood hood(L);
+  const Hood hood(L, C);
   const bool shortRoad =
     !positions && !valid && ctx.sampling == Sampling::Linear && tracer.CrossesFaces();
-  std::array<std::int64_t, Hood::Size> valueOffset; // of the neighbourhood's values
-  for (int e = 0; e < Hood::Size; ++e)
-  {
-    valueOffset[e] = hood.offset[e] * C;
-  }
   const RowBlocks<D> blocks(L.n);
   // Progress is reported, and an abort honoured, between chunks of blocks.
   const std::int64_t chunkCount =
@@ -407,7 +400,7 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
             for (int b = 0; b < Corners; ++b)
             {
               const std::int64_t f = faces.Face(i[0], b);
-              if (!TraceWithinFace<D>(hood, tracer.Velocity(f), b, time, weights))
+              if (!TraceWithinFace<D>(tracer.Velocity(f), b, time, weights))
               {
                 TraceLeavingFaceOutOfLine<D>(L, tracer, time, i, b, f, stencil, steps, truncated);
               }
@@ -420,7 +413,7 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
             for (int b = 0; b < Corners; ++b)
             {
               const std::int64_t f = faces.Face(i[0], b);
-              if (!TraceWithinFace<D>(hood, tracer.Velocity(f), b, time, weights))
+              if (!TraceWithinFace<D>(tracer.Velocity(f), b, time, weights))
               {
                 TraceLeavingFace<D>(L, tracer, time, i, b, f, stencil, steps, truncated);
               }
@@ -436,12 +429,12 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
             {
               for (int r = 0; r < 4; ++r)
               {
-                partial[r] += weights[e + r] * static_cast<double>(value[valueOffset[e + r]]);
+                partial[r] += weights[e + r] * static_cast<double>(value[hood.valueOffset[e + r]]);
               }
             }
             for (; e < Hood::Size; ++e)
             {
-              partial[0] += weights[e] * static_cast<double>(value[valueOffset[e]]);
+              partial[0] += weights[e] * static_cast<double>(value[hood.valueOffset[e]]);
             }
             result[c] = ((partial[0] + partial[1]) + (partial[2] + partial[3])) / Corners;
           }

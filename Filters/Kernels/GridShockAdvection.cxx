@@ -186,17 +186,12 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
   const AdvectionContext<D> ctx{ L, C, threads, p.sampling, validSample, progress, report };
 
   const double* previous = nullptr; // the last update's result; null: the input
+  // Calls `step` with the signal of this update: the input (T) or the last result (double).
+  const auto withSignal = [&](auto&& step) { return previous ? step(previous) : step(input); };
   for (int k = 0; k < updates; ++k)
   {
     const bool last = k == updates - 1;
-    if (previous)
-    {
-      ComputeFlow<D>(L, flow, previous, range, last, fields, report);
-    }
-    else
-    {
-      ComputeFlow<D>(L, flow, input, range, last, fields, report);
-    }
+    withSignal([&](auto signal) { ComputeFlow<D>(L, flow, signal, range, last, fields, report); });
     const double progressStart = (k + 0.1) / updates;
     if (progress && !progress(progressStart))
     {
@@ -215,11 +210,10 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
       {
         positions = InitialTracePositions<D>(L, threads);
       }
-      const bool completed = previous
-        ? TraceThroughCoarseLevels<D>(levels, C, previous, range, validSample, p, stepTime,
-            positions.get(), report, progress, progressStart)
-        : TraceThroughCoarseLevels<D>(levels, C, input, range, validSample, p, stepTime,
-            positions.get(), report, progress, progressStart);
+      const bool completed = withSignal([&](auto signal) {
+        return TraceThroughCoarseLevels<D>(levels, C, signal, range, validSample, p, stepTime,
+          positions.get(), report, progress, progressStart);
+      });
       if (!completed)
       {
         report.aborted = true;
