@@ -90,6 +90,24 @@ vtk::GetAPIType<ArrayT> RoundAndClampFor(ArrayT* array, double v)
   }
 }
 
+/// A new array of the prototype's type, name, components, component names and
+/// number of tuples (values not set).
+vtkSmartPointer<vtkDataArray> NewArrayLike(vtkDataArray* prototype)
+{
+  vtkSmartPointer<vtkDataArray> out = vtk::TakeSmartPointer(prototype->NewInstance());
+  out->SetName(prototype->GetName());
+  out->SetNumberOfComponents(prototype->GetNumberOfComponents());
+  for (int c = 0; c < prototype->GetNumberOfComponents(); ++c)
+  {
+    if (const char* name = prototype->GetComponentName(c))
+    {
+      out->SetComponentName(c, name);
+    }
+  }
+  out->SetNumberOfTuples(prototype->GetNumberOfTuples());
+  return out;
+}
+
 /// Copies any array into float or double storage (the value types a kernel reads).
 struct CopyTo
 {
@@ -184,17 +202,7 @@ vtkSmartPointer<vtkDataArray> FromDoubles(vtkDataArray* prototype, const std::ve
 vtkSmartPointer<vtkDataArray> FromDoubles(
   vtkDataArray* prototype, const double* values, int threads)
 {
-  vtkSmartPointer<vtkDataArray> out = vtk::TakeSmartPointer(prototype->NewInstance());
-  out->SetName(prototype->GetName());
-  out->SetNumberOfComponents(prototype->GetNumberOfComponents());
-  for (int c = 0; c < prototype->GetNumberOfComponents(); ++c)
-  {
-    if (const char* name = prototype->GetComponentName(c))
-    {
-      out->SetComponentName(c, name);
-    }
-  }
-  out->SetNumberOfTuples(prototype->GetNumberOfTuples());
+  vtkSmartPointer<vtkDataArray> out = NewArrayLike(prototype);
   CopyFromDoubles worker;
   if (!vtkArrayDispatch::Dispatch::Execute(out.Get(), worker, values, threads))
   {
@@ -244,17 +252,7 @@ KernelSignal SignalForKernel(vtkDataArray* array, int threads)
 KernelOutput OutputForKernel(vtkDataArray* prototype)
 {
   KernelOutput output;
-  output.array = vtk::TakeSmartPointer(prototype->NewInstance());
-  output.array->SetName(prototype->GetName());
-  output.array->SetNumberOfComponents(prototype->GetNumberOfComponents());
-  for (int c = 0; c < prototype->GetNumberOfComponents(); ++c)
-  {
-    if (const char* name = prototype->GetComponentName(c))
-    {
-      output.array->SetComponentName(c, name);
-    }
-  }
-  output.array->SetNumberOfTuples(prototype->GetNumberOfTuples());
+  output.array = NewArrayLike(prototype);
   MakeWriter maker;
   if (!vtkArrayDispatch::Dispatch::Execute(output.array.Get(), maker, output.writer))
   {
