@@ -66,6 +66,37 @@ struct Stencil
 };
 
 /**
+ * The cell (face) of a multilinear read at index position q, q inside the
+ * grid: its lower corner's sample index, and q's coordinates in it (frac).
+ */
+template <int D>
+SHOCK_ALWAYS_INLINE std::int64_t LocateCell(
+  const Lattice<D>& L, const std::array<double, D>& q, std::array<double, D>& frac)
+{
+  std::int64_t base = 0;
+  for (int d = 0; d < D; ++d)
+  {
+    const std::int64_t cell = std::min<std::int64_t>(static_cast<std::int64_t>(q[d]), L.m[d] - 1);
+    frac[d] = q[d] - static_cast<double>(cell);
+    base += cell * L.sampleStride[d];
+  }
+  return base;
+}
+
+/// Multilinear weight of the cell corner with bit pattern b (bit d: the upper
+/// side along axis d) at coordinates frac in the cell.
+template <int D>
+SHOCK_ALWAYS_INLINE double CornerWeight(const std::array<double, D>& frac, int b)
+{
+  double w = 1.0;
+  for (int d = 0; d < D; ++d)
+  {
+    w *= ((b >> d) & 1) ? frac[d] : 1.0 - frac[d];
+  }
+  return w;
+}
+
+/**
  * Adds to `stencil` the samples and weights that read a grid signal at index
  * position q.
  * Linear: multilinear interpolation over the valid corners of the cell holding q.
@@ -90,23 +121,13 @@ bool SampleGrid(const Lattice<D>& L, const unsigned char* valid, Sampling sampli
       return true;
     }
   }
-  std::int64_t base = 0;
   std::array<double, D> frac;
-  for (int d = 0; d < D; ++d)
-  {
-    const std::int64_t cell = std::min<std::int64_t>(static_cast<std::int64_t>(q[d]), L.m[d] - 1);
-    frac[d] = q[d] - static_cast<double>(cell);
-    base += cell * L.sampleStride[d];
-  }
+  const std::int64_t base = LocateCell<D>(L, q, frac);
   double weights[Lattice<D>::Corners];
   double total = 0.0;
   for (int b = 0; b < Lattice<D>::Corners; ++b)
   {
-    double w = 1.0;
-    for (int d = 0; d < D; ++d)
-    {
-      w *= ((b >> d) & 1) ? frac[d] : 1.0 - frac[d];
-    }
+    const double w = CornerWeight<D>(frac, b);
     weights[b] = (!valid || valid[base + L.corner[b]]) ? w : 0.0;
     total += weights[b];
   }
@@ -248,30 +269,107 @@ SHOCK_ALWAYS_INLINE bool TraceWithinFace(const float* v, int b, double time, dou
 
 /**
  * The trace of interior sample i into face f (corner pattern b) that leaves
- * its face: through the tracer, its read added to `far`.
+ * its face: through the tracer; its end is stored in `end`.
  */
 template <int D>
-SHOCK_ALWAYS_INLINE void TraceLeavingFace(const Lattice<D>& L, const GridTracer<D>& tracer,
-  double time, const std::array<std::int64_t, D>& i, int b, std::int64_t f, Stencil<D>& far,
+SHOCK_ALWAYS_INLINE void TraceLeavingFace(const GridTracer<D>& tracer, double time,
+  const std::array<std::int64_t, D>& i, int b, std::int64_t f, std::array<double, D>& end,
   std::uint64_t& steps, std::uint64_t& truncated)
 {
-  std::array<double, D> q;
   std::array<std::int64_t, D> c;
-  StartInFace<D>(i, b, q, c);
+  StartInFace<D>(i, b, end, c);
   bool cut = false;
-  steps += static_cast<std::uint64_t>(tracer.Trace(q, c, f, time, cut));
+  steps += static_cast<std::uint64_t>(tracer.Trace(end, c, f, time, cut));
   truncated += cut ? 1 : 0;
-  SampleGrid<D>(L, nullptr, Sampling::Linear, q, far);
 }
 
 /// TraceLeavingFace kept out of line, so that a loop of traces that mostly stay
 /// in their faces (3D) stays small.
 template <int D>
-SHOCK_NOINLINE void TraceLeavingFaceOutOfLine(const Lattice<D>& L, const GridTracer<D>& tracer,
-  double time, const std::array<std::int64_t, D>& i, int b, std::int64_t f, Stencil<D>& far,
+SHOCK_NOINLINE void TraceLeavingFaceOutOfLine(const GridTracer<D>& tracer, double time,
+  const std::array<std::int64_t, D>& i, int b, std::int64_t f, std::array<double, D>& end,
   std::uint64_t& steps, std::uint64_t& truncated)
 {
-  TraceLeavingFace<D>(L, tracer, time, i, b, f, far, steps, truncated);
+  TraceLeavingFace<D>(tracer, time, i, b, f, end, steps, truncated);
+}
+
+/**
+ * The result of the short road for components [c0, c0 + K) of sample s (C per
+ * sample): the average over its traces of their multilinear reads, those of
+ * the traces that stayed in their faces gathered as neighbourhood `weights`,
+ * those of the `far` traces (ending at `ends`) read here. The sums are formed
+ * in the order of Stencil::Apply over the far reads' corners, then of the
+ * neighbourhood, so that any K gives the same values; K is a constant so that
+ * each corner's position and weight serve all K components at once.
+ */
+template <int D, int K, typename T>
+SHOCK_ALWAYS_INLINE void CombineReads(const Lattice<D>& L, const Neighbourhood<D>& hood,
+  const T* source, std::int64_t s, int C, int c0, const double* weights,
+  const std::array<double, D>* ends, int far, double* result)
+{
+  constexpr int Corners = Lattice<D>::Corners;
+  double partial[K][4] = {};
+  for (int e = 0; e < far; ++e)
+  {
+    // SampleGrid's multilinear read, every corner valid.
+    std::array<double, D> frac;
+    const std::int64_t base = LocateCell<D>(L, ends[e], frac);
+    for (int b = 0; b < Corners; ++b)
+    {
+      const double w = CornerWeight<D>(frac, b);
+      const T* value = source + (base + L.corner[b]) * C + c0;
+      for (int k = 0; k < K; ++k)
+      {
+        partial[k][(e * Corners + b) % 4] += w * static_cast<double>(value[k]);
+      }
+    }
+  }
+  const T* own = source + s * C + c0;
+  for (int k = 0; k < K; ++k)
+  {
+    // Four partial sums: short chains of dependent additions.
+    double sum[4] = { (partial[k][0] + partial[k][1]) + (partial[k][2] + partial[k][3]), 0.0, 0.0, 0.0 };
+    int e = 0;
+    for (; e + 4 <= Neighbourhood<D>::Size; e += 4)
+    {
+      for (int r = 0; r < 4; ++r)
+      {
+        sum[r] += weights[e + r] * static_cast<double>(own[k + hood.valueOffset[e + r]]);
+      }
+    }
+    for (; e < Neighbourhood<D>::Size; ++e)
+    {
+      sum[0] += weights[e] * static_cast<double>(own[k + hood.valueOffset[e]]);
+    }
+    result[c0 + k] = ((sum[0] + sum[1]) + (sum[2] + sum[3])) / Corners;
+  }
+}
+
+/// CombineReads for all C components, four at a time.
+template <int D, typename T>
+SHOCK_ALWAYS_INLINE void CombineAllReads(const Lattice<D>& L, const Neighbourhood<D>& hood,
+  const T* source, std::int64_t s, int C, const double* weights,
+  const std::array<double, D>* ends, int far, double* result)
+{
+  int c0 = 0;
+  for (; c0 + 4 <= C; c0 += 4)
+  {
+    CombineReads<D, 4>(L, hood, source, s, C, c0, weights, ends, far, result);
+  }
+  switch (C - c0)
+  {
+    case 1:
+      CombineReads<D, 1>(L, hood, source, s, C, c0, weights, ends, far, result);
+      break;
+    case 2:
+      CombineReads<D, 2>(L, hood, source, s, C, c0, weights, ends, far, result);
+      break;
+    case 3:
+      CombineReads<D, 3>(L, hood, source, s, C, c0, weights, ends, far, result);
+      break;
+    default:
+      break;
+  }
 }
 
 /**
@@ -388,10 +486,11 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
           std::copy(source + s * C, source + (s + 1) * C, result);
           continue;
         }
-        Stencil<D> stencil;
         if (interiorRow && i[0] >= 1 && i[0] + 1 < L.n[0])
         {
           double weights[Hood::Size] = {};
+          std::array<double, D> ends[Corners]; // of the traces that leave their faces
+          int far = 0;
           if constexpr (D == 3)
           {
             // Most traces stay in their faces: the loop unrolled (every
@@ -402,7 +501,7 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
               const std::int64_t f = faces.Face(i[0], b);
               if (!TraceWithinFace<D>(tracer.Velocity(f), b, time, weights))
               {
-                TraceLeavingFaceOutOfLine<D>(L, tracer, time, i, b, f, stencil, steps, truncated);
+                TraceLeavingFaceOutOfLine<D>(tracer, time, i, b, f, ends[far++], steps, truncated);
               }
             }
           }
@@ -415,33 +514,16 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
               const std::int64_t f = faces.Face(i[0], b);
               if (!TraceWithinFace<D>(tracer.Velocity(f), b, time, weights))
               {
-                TraceLeavingFace<D>(L, tracer, time, i, b, f, stencil, steps, truncated);
+                TraceLeavingFace<D>(tracer, time, i, b, f, ends[far++], steps, truncated);
               }
             }
           }
-          for (int c = 0; c < C; ++c)
-          {
-            // Four partial sums: short chains of dependent additions.
-            const T* value = source + s * C + c;
-            double partial[4] = { stencil.Apply(source, C, c), 0.0, 0.0, 0.0 };
-            int e = 0;
-            for (; e + 4 <= Hood::Size; e += 4)
-            {
-              for (int r = 0; r < 4; ++r)
-              {
-                partial[r] += weights[e + r] * static_cast<double>(value[hood.valueOffset[e + r]]);
-              }
-            }
-            for (; e < Hood::Size; ++e)
-            {
-              partial[0] += weights[e] * static_cast<double>(value[hood.valueOffset[e]]);
-            }
-            result[c] = ((partial[0] + partial[1]) + (partial[2] + partial[3])) / Corners;
-          }
+          CombineAllReads<D>(L, hood, source, s, C, weights, ends, far, result);
           continue;
         }
         // The traces' reads are gathered first, then combined per component in
         // registers (no read-modify-write of the output per corner).
+        Stencil<D> stencil;
         const int traces =
           TraceSample<D>(ctx, tracer, time, faces, i, s, positions, stencil, steps, truncated);
         for (int c = 0; c < C; ++c)
