@@ -5,6 +5,10 @@
 #include <cmath>
 #include <limits>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace shock
 {
 namespace fit
@@ -45,14 +49,174 @@ struct Vectors
   Coordinates r, p, q; ///< residual, direction, A p
 };
 
-/// q = A p and the sums p.q (on a piece, after the owners' p reached its halo).
-std::array<double, 3> DirectionTimesA(
-  const RowMatrix& A, int threads, const MeshPartition* partition, Vectors& v)
+/// p_i = z_i + ratio p_i (z = D^-1 r): the next direction of row i.
+inline void UpdateDirection(const std::vector<double>& diag, const double ratio[3], std::int64_t i, Vectors& v)
 {
-  if (partition)
+  for (int k = 0; k < 3; ++k)
   {
-    partition->exchangePoints(v.p.data());
+    v.p(i, k) = diag[static_cast<size_t>(i)] * v.r(i, k) + ratio[k] * v.p(i, k);
   }
+}
+
+/**
+ * How the product passes share the rows among threads: each thread takes a
+ * contiguous range of whole SumBlock blocks (so that the sums stay those of
+ * fixed blocks), and `shared` are the rows of its range that other threads'
+ * rows read, conservatively: up to the last column read by an earlier range,
+ * from the first column read by a later one. A thread updates the direction
+ * of its shared rows before the others multiply (one barrier), and of its
+ * other rows just ahead of its own product: the update then costs no pass of
+ * its own over memory.
+ */
+struct RowRanges
+{
+  int teams = 1;
+  std::int64_t blocks = 0;
+  std::vector<std::int64_t> firstBlock; ///< per thread + 1: the blocks of thread t are [firstBlock[t], firstBlock[t + 1])
+  std::vector<std::int64_t> headEnd;    ///< per thread: rows [range begin, headEnd) are shared
+  std::vector<std::int64_t> tailBegin;  ///< per thread: rows [max(headEnd, tailBegin), range end) are shared
+
+  RowRanges(const RowMatrix& A, int threads)
+  {
+    const std::int64_t n = A.rows();
+    this->blocks = (n + SumBlock - 1) / SumBlock;
+    this->teams = static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>(threads, this->blocks)));
+    this->firstBlock.resize(static_cast<size_t>(this->teams) + 1);
+    for (int t = 0; t <= this->teams; ++t)
+    {
+      this->firstBlock[static_cast<size_t>(t)] = this->blocks * t / this->teams;
+    }
+    // The lowest and highest column each range reads (the columns of a row are sorted).
+    std::vector<std::int64_t> low(static_cast<size_t>(this->teams), n);
+    std::vector<std::int64_t> high(static_cast<size_t>(this->teams), -1);
+    const int* outer = A.outerIndexPtr();
+    const int* inner = A.innerIndexPtr();
+#pragma omp parallel for num_threads(this->teams) schedule(static, 1)
+    for (int t = 0; t < this->teams; ++t)
+    {
+      for (std::int64_t i = this->Begin(t, n); i < this->End(t, n); ++i)
+      {
+        if (outer[i] < outer[i + 1])
+        {
+          low[static_cast<size_t>(t)] = std::min<std::int64_t>(low[static_cast<size_t>(t)], inner[outer[i]]);
+          high[static_cast<size_t>(t)] = std::max<std::int64_t>(high[static_cast<size_t>(t)], inner[outer[i + 1] - 1]);
+        }
+      }
+    }
+    this->headEnd.resize(static_cast<size_t>(this->teams));
+    this->tailBegin.resize(static_cast<size_t>(this->teams));
+    for (int t = 0; t < this->teams; ++t)
+    {
+      std::int64_t before = -1; // highest column read by an earlier range
+      std::int64_t after = n;   // lowest column read by a later range
+      for (int u = 0; u < this->teams; ++u)
+      {
+        before = u < t ? std::max(before, high[static_cast<size_t>(u)]) : before;
+        after = u > t ? std::min(after, low[static_cast<size_t>(u)]) : after;
+      }
+      const std::int64_t begin = this->Begin(t, n);
+      const std::int64_t end = this->End(t, n);
+      this->headEnd[static_cast<size_t>(t)] = std::min(end, std::max(begin, before + 1));
+      this->tailBegin[static_cast<size_t>(t)] = std::max(begin, std::min(end, after));
+    }
+  }
+  std::int64_t Begin(int t, std::int64_t n) const
+  {
+    return std::min(n, this->firstBlock[static_cast<size_t>(t)] * SumBlock);
+  }
+  std::int64_t End(int t, std::int64_t n) const
+  {
+    return std::min(n, this->firstBlock[static_cast<size_t>(t) + 1] * SumBlock);
+  }
+};
+
+/**
+ * q = A p and the sums p.q, block by block as BlockSums does; with `ratio`,
+ * the direction is first updated, p = z + ratio p, each row once and before
+ * any row reads it (RowRanges), in the same pass. Not for a piece: its halo
+ * needs the owners' updated directions before any product.
+ */
+std::array<double, 3> UpdateAndMultiply(const RowMatrix& A, const std::vector<double>& diag,
+  const RowRanges& ranges, const double* ratio, Vectors& v)
+{
+  const std::int64_t n = A.rows();
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  std::vector<std::array<double, 3>> partial(static_cast<size_t>(ranges.blocks));
+#pragma omp parallel num_threads(ranges.teams)
+  {
+#ifdef _OPENMP
+    const int t = omp_get_thread_num();
+#else
+    const int t = 0;
+#endif
+    const std::int64_t end = ranges.End(t, n);
+    const std::int64_t headEnd = ranges.headEnd[static_cast<size_t>(t)];
+    const std::int64_t middleEnd = std::max(headEnd, ranges.tailBegin[static_cast<size_t>(t)]);
+    if (ratio)
+    {
+      for (std::int64_t i = ranges.Begin(t, n); i < headEnd; ++i)
+      {
+        UpdateDirection(diag, ratio, i, v);
+      }
+      for (std::int64_t i = middleEnd; i < end; ++i)
+      {
+        UpdateDirection(diag, ratio, i, v);
+      }
+    }
+#pragma omp barrier
+    std::int64_t updated = ratio ? headEnd : middleEnd; // the middle rows before this one are updated
+    for (std::int64_t b = ranges.firstBlock[static_cast<size_t>(t)];
+         b < ranges.firstBlock[static_cast<size_t>(t) + 1]; ++b)
+    {
+      std::array<double, 3> sums{};
+      for (std::int64_t i = b * SumBlock; i < std::min(n, (b + 1) * SumBlock); ++i)
+      {
+        // Row i reads p up to its last column, and p_i for the sums.
+        const std::int64_t last = outer[i] < outer[i + 1] ? std::max<std::int64_t>(i, inner[outer[i + 1] - 1]) : i;
+        const std::int64_t reach = std::min(middleEnd, last + 1);
+        for (; updated < reach; ++updated)
+        {
+          UpdateDirection(diag, ratio, updated, v);
+        }
+        double ap[3];
+        MultiplyRow(A, i, [&](std::int64_t j, int k) { return v.p(j, k); }, ap);
+        for (int k = 0; k < 3; ++k)
+        {
+          v.q(i, k) = ap[k];
+          sums[k] += v.p(i, k) * ap[k];
+        }
+      }
+      partial[static_cast<size_t>(b)] = sums;
+    }
+  }
+  std::array<double, 3> total{};
+  for (const auto& sums : partial)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      total[k] += sums[k];
+    }
+  }
+  return total;
+}
+
+/**
+ * On a piece: p = z + ratio p (when given) on every row, the owners' p to the
+ * halo, then q = A p and the sums p.q over all pieces.
+ */
+std::array<double, 3> UpdateAndMultiplyPiece(const RowMatrix& A, const std::vector<double>& diag,
+  int threads, const MeshPartition* partition, const double* ratio, Vectors& v)
+{
+  if (ratio)
+  {
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int64_t i = 0; i < A.rows(); ++i)
+    {
+      UpdateDirection(diag, ratio, i, v);
+    }
+  }
+  partition->exchangePoints(v.p.data());
   return BlockSums<3>(A.rows(), threads, Owned(partition), partition,
     [&](std::int64_t i, std::array<double, 3>& s) {
       double ap[3];
@@ -66,9 +230,11 @@ std::array<double, 3> DirectionTimesA(
 }
 
 /**
- * Jacobi-preconditioned conjugate gradients from x (the original positions),
- * the three coordinates side by side: each pass over the matrix serves the
- * three columns and every vector operation is parallel. A column stops when its
+ * Jacobi-preconditioned conjugate gradients from x = system.original, the
+ * three coordinates side by side: each pass over the matrix serves the three
+ * columns and every vector operation is parallel. Two passes over the rows
+ * per iteration: the direction's update fused with the product (and its
+ * sums), then the steps of x and r (and theirs). A column stops when its
  * residual is below tolerance x ||b|| (tolerance 0 runs all the iterations);
  * returns the number of iterations done.
  */
@@ -78,13 +244,31 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
   const RowMatrix& A = system.matrix;
   const std::vector<double>& diag = system.inverseDiagonal;
   const std::int64_t n = A.rows();
-  // Zero start: on a piece, rows it does not own are never computed.
   Vectors v;
-  v.r = v.p = v.q = Coordinates::Zero(n, 3);
-  // r = b - A x, p = z = D^-1 r; sums of r.r, r.z and b.b.
-  const auto start = BlockSums<9>(n, threads, Owned(partition), partition, [&](std::int64_t i, std::array<double, 9>& s) {
+  if (partition)
+  {
+    v.r = v.p = v.q = Coordinates::Zero(n, 3); // rows a piece does not own are never computed
+  }
+  else
+  {
+    v.r.resize(n, 3); // every row is written before it is read: first touched in parallel
+    v.p.resize(n, 3);
+    v.q.resize(n, 3);
+  }
+  x.resize(n, 3);
+  // x = x0, r = b - A x0, p = z = D^-1 r; sums of r.r, r.z and b.b.
+  const Coordinates& x0 = system.original;
+  const auto start = BlockSums<9>(n, threads, nullptr, partition, [&](std::int64_t i, std::array<double, 9>& s) {
+    for (int k = 0; k < 3; ++k)
+    {
+      x(i, k) = x0(i, k);
+    }
+    if (partition && !partition->ownedPoints[static_cast<size_t>(i)])
+    {
+      return;
+    }
     double ax[3];
-    MultiplyRow(A, i, [&](std::int64_t j, int k) { return x(j, k); }, ax);
+    MultiplyRow(A, i, [&](std::int64_t j, int k) { return x0(j, k); }, ax);
     for (int k = 0; k < 3; ++k)
     {
       v.r(i, k) = b(i, k) - ax[k];
@@ -95,17 +279,21 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
     }
   });
   bool active[3];
-  double threshold[3], rz[3];
+  double threshold[3], rz[3], ratio[3];
   for (int k = 0; k < 3; ++k)
   {
     threshold[k] = std::max(tolerance * tolerance * start[k + 6], std::numeric_limits<double>::min());
     active[k] = start[k] >= threshold[k];
     rz[k] = start[k + 3];
   }
+  const RowRanges ranges(A, partition ? 1 : threads);
   int iteration = 0;
   while (iteration < maxIterations && (active[0] || active[1] || active[2]))
   {
-    const auto pq = DirectionTimesA(A, threads, partition, v);
+    // The first direction is z itself; later ones are z + ratio p.
+    const double* update = iteration > 0 ? ratio : nullptr;
+    const auto pq = partition ? UpdateAndMultiplyPiece(A, diag, threads, partition, update, v)
+                              : UpdateAndMultiply(A, diag, ranges, update, v);
     double step[3];
     for (int k = 0; k < 3; ++k)
     {
@@ -124,21 +312,11 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
       }
     });
     ++iteration;
-    double ratio[3];
     for (int k = 0; k < 3; ++k)
     {
       active[k] = active[k] && sums[k] >= threshold[k];
       ratio[k] = active[k] ? sums[k + 3] / rz[k] : 0.0;
       rz[k] = sums[k + 3];
-    }
-    // p = z + ratio p.
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::int64_t i = 0; i < n; ++i)
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        v.p(i, k) = diag[static_cast<size_t>(i)] * v.r(i, k) + ratio[k] * v.p(i, k);
-      }
     }
   }
   return iteration;
@@ -160,7 +338,6 @@ Status Solve(const FitSystemData& system, const Coordinates& b, const FitParamet
     return {};
   }
   const bool fixed = parameters.solver == FitSolver::ConjugateGradient;
-  x = system.original;
   report.iterations = ConjugateGradients(system, b,
     fixed ? parameters.iterations : parameters.maxIterations,
     fixed ? 0.0 : parameters.tolerance, threads, parameters.partition, x);
