@@ -83,23 +83,31 @@ void Measure(const TriangleMesh& mesh, const double* positions, const MeshPartit
     const double* before = mesh.Normal(f);
     flipped += (n[0] * before[0] + n[1] * before[1] + n[2] * before[2] <= 0.0) ? 1 : 0;
   }
-  double low[3], high[3];
-  std::fill(low, low + 3, std::numeric_limits<double>::infinity());
-  std::fill(high, high + 3, -std::numeric_limits<double>::infinity());
+  // Minima and maxima do not depend on the order: a parallel reduction gives the serial result.
+  const double inf = std::numeric_limits<double>::infinity();
+  double low0 = inf, low1 = inf, low2 = inf, high0 = -inf, high1 = -inf, high2 = -inf;
   double largest = 0.0;
+#pragma omp parallel for num_threads(threads) schedule(static) \
+  reduction(min : low0, low1, low2) reduction(max : high0, high1, high2, largest)
   for (std::int64_t p = 0; p < mesh.NumberOfPoints(); ++p)
   {
     const double* x = mesh.Point(p);
     const double* y = positions + 3 * p;
+    low0 = std::min(low0, x[0]);
+    low1 = std::min(low1, x[1]);
+    low2 = std::min(low2, x[2]);
+    high0 = std::max(high0, x[0]);
+    high1 = std::max(high1, x[1]);
+    high2 = std::max(high2, x[2]);
     double d2 = 0.0;
     for (int k = 0; k < 3; ++k)
     {
-      low[k] = std::min(low[k], x[k]);
-      high[k] = std::max(high[k], x[k]);
       d2 += (y[k] - x[k]) * (y[k] - x[k]);
     }
     largest = std::max(largest, d2);
   }
+  const double low[3] = { low0, low1, low2 };
+  const double high[3] = { high0, high1, high2 };
   double diagonal2 = 0.0;
   for (int k = 0; k < 3; ++k)
   {
@@ -287,7 +295,6 @@ Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& pa
   status = FitPositionsToNormals(mesh, target.data(), positions, fit, &r.fit, &cache.fit);
   if (!status.Ok())
   {
-    std::copy(mesh.Point(0), mesh.Point(0) + 3 * mesh.NumberOfPoints(), positions);
     return status;
   }
   Measure(mesh, positions, fit.partition, threads, r);
@@ -356,7 +363,10 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
   {
     return {};
   }
-  std::copy(mesh.Point(0), mesh.Point(0) + 3 * mesh.NumberOfPoints(), positions);
+  // The fit writes every position; a run that stops before it ends or fails gives the input's.
+  auto keepInput = [&]() {
+    std::copy(mesh.Point(0), mesh.Point(0) + 3 * mesh.NumberOfPoints(), positions);
+  };
 
   // Repeated and degenerate triangles are removed: the result is that of the mesh without
   // them. (Not for a piece of a distributed fit: its partition numbers the piece's triangles.)
@@ -371,6 +381,7 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
     if (!status.Ok())
     {
       kept.Clear();
+      keepInput();
       return status;
     }
   }
@@ -383,6 +394,7 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
     fields ? (kept.removed ? &cleanFields : fields) : nullptr, progress, kept);
   if (!status.Ok() || r.advection.aborted)
   {
+    keepInput();
     return status;
   }
   if (kept.removed)
