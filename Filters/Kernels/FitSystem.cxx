@@ -359,7 +359,28 @@ Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
     return { "the screening weight must be finite and > 0" };
   }
   auto data = std::make_shared<FitSystemData>();
-  data->frame = UnitAreaFrame(mesh, partition, threads);
+  const std::int64_t np = mesh.NumberOfPoints();
+  if (partition)
+  {
+    data->frame = UnitAreaFrame(mesh, partition, threads);
+    IdentityOrder(np, *data);
+  }
+  else
+  {
+    // The breadth-first order is serial: meanwhile another thread finds the
+    // normalisation and the assembly's visiting order, which do not depend on
+    // it (nor their results on the number of threads).
+#pragma omp parallel sections num_threads(std::min(threads, 2))
+    {
+#pragma omp section
+      BreadthFirstOrder(mesh, *data);
+#pragma omp section
+      {
+        data->frame = UnitAreaFrame(mesh, nullptr, std::max(1, threads - 1));
+        data->visit = FirstUseOrder(mesh, std::max(1, threads - 1));
+      }
+    }
+  }
   if (data->frame.scale > 0.0)
   {
     // A = alpha M + beta S and b = alpha M c0 + beta D w have the solution of
@@ -367,16 +388,6 @@ Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
     // bounded, so any finite eps > 0 is safe from overflow.
     data->alpha = std::min(screeningWeight, 1.0);
     data->beta = 1.0 / std::max(screeningWeight, 1.0);
-    const std::int64_t np = mesh.NumberOfPoints();
-    if (partition)
-    {
-      IdentityOrder(np, *data);
-    }
-    else
-    {
-      BreadthFirstOrder(mesh, *data);
-      data->visit = FirstUseOrder(mesh, threads);
-    }
     data->original.resize(np, 3);
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::int64_t r = 0; r < np; ++r)
