@@ -49,12 +49,29 @@ struct Vectors
   Coordinates r, p, q; ///< residual, direction, A p
 };
 
-/// p_i = z_i + ratio p_i (z = D^-1 r): the next direction of row i.
-inline void UpdateDirection(const std::vector<double>& diag, const double ratio[3], std::int64_t i, Vectors& v)
+/**
+ * What an iteration leaves to the next product's pass, row by row: the step
+ * of x along the direction just used, x += step p (so that the pass of the
+ * steps reads neither x nor p), then the next direction p = z + ratio p
+ * (z = D^-1 r).
+ */
+struct DirectionUpdate
+{
+  double step[3];
+  double ratio[3];
+};
+
+/// x_i += step p_i and p_i = z_i + ratio p_i; x_i only where `stepX`.
+inline void UpdateRow(const std::vector<double>& diag, const DirectionUpdate& u, std::int64_t i,
+  bool stepX, Vectors& v, Coordinates& x)
 {
   for (int k = 0; k < 3; ++k)
   {
-    v.p(i, k) = diag[static_cast<size_t>(i)] * v.r(i, k) + ratio[k] * v.p(i, k);
+    if (stepX)
+    {
+      x(i, k) += u.step[k] * v.p(i, k);
+    }
+    v.p(i, k) = diag[static_cast<size_t>(i)] * v.r(i, k) + u.ratio[k] * v.p(i, k);
   }
 }
 
@@ -131,13 +148,13 @@ struct RowRanges
 };
 
 /**
- * q = A p and the sums p.q, block by block as BlockSums does; with `ratio`,
- * the direction is first updated, p = z + ratio p, each row once and before
- * any row reads it (RowRanges), in the same pass. Not for a piece: its halo
- * needs the owners' updated directions before any product.
+ * q = A p and the sums p.q, block by block as BlockSums does; with `update`,
+ * the rows are first updated (DirectionUpdate), each once and before any row
+ * reads its direction (RowRanges), in the same pass. Not for a piece: its
+ * halo needs the owners' updated directions before any product.
  */
 std::array<double, 3> UpdateAndMultiply(const RowMatrix& A, const std::vector<double>& diag,
-  const RowRanges& ranges, const double* ratio, Vectors& v)
+  const RowRanges& ranges, const DirectionUpdate* update, Vectors& v, Coordinates& x)
 {
   const std::int64_t n = A.rows();
   const int* outer = A.outerIndexPtr();
@@ -153,19 +170,19 @@ std::array<double, 3> UpdateAndMultiply(const RowMatrix& A, const std::vector<do
     const std::int64_t end = ranges.End(t, n);
     const std::int64_t headEnd = ranges.headEnd[static_cast<size_t>(t)];
     const std::int64_t middleEnd = std::max(headEnd, ranges.tailBegin[static_cast<size_t>(t)]);
-    if (ratio)
+    if (update)
     {
       for (std::int64_t i = ranges.Begin(t, n); i < headEnd; ++i)
       {
-        UpdateDirection(diag, ratio, i, v);
+        UpdateRow(diag, *update, i, true, v, x);
       }
       for (std::int64_t i = middleEnd; i < end; ++i)
       {
-        UpdateDirection(diag, ratio, i, v);
+        UpdateRow(diag, *update, i, true, v, x);
       }
     }
 #pragma omp barrier
-    std::int64_t updated = ratio ? headEnd : middleEnd; // the middle rows before this one are updated
+    std::int64_t updated = update ? headEnd : middleEnd; // the middle rows before this one are updated
     for (std::int64_t b = ranges.firstBlock[static_cast<size_t>(t)];
          b < ranges.firstBlock[static_cast<size_t>(t) + 1]; ++b)
     {
@@ -177,7 +194,7 @@ std::array<double, 3> UpdateAndMultiply(const RowMatrix& A, const std::vector<do
         const std::int64_t reach = std::min(middleEnd, last + 1);
         for (; updated < reach; ++updated)
         {
-          UpdateDirection(diag, ratio, updated, v);
+          UpdateRow(diag, *update, updated, true, v, x);
         }
         double ap[3];
         MultiplyRow(A, i, [&](std::int64_t j, int k) { return v.p(j, k); }, ap);
@@ -202,18 +219,19 @@ std::array<double, 3> UpdateAndMultiply(const RowMatrix& A, const std::vector<do
 }
 
 /**
- * On a piece: p = z + ratio p (when given) on every row, the owners' p to the
- * halo, then q = A p and the sums p.q over all pieces.
+ * On a piece: the update (when given) of every row (x of the owned ones only),
+ * the owners' p to the halo, then q = A p and the sums p.q over all pieces.
  */
 std::array<double, 3> UpdateAndMultiplyPiece(const RowMatrix& A, const std::vector<double>& diag,
-  int threads, const MeshPartition* partition, const double* ratio, Vectors& v)
+  int threads, const MeshPartition* partition, const DirectionUpdate* update, Vectors& v,
+  Coordinates& x)
 {
-  if (ratio)
+  if (update)
   {
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::int64_t i = 0; i < A.rows(); ++i)
     {
-      UpdateDirection(diag, ratio, i, v);
+      UpdateRow(diag, *update, i, partition->ownedPoints[static_cast<size_t>(i)] != 0, v, x);
     }
   }
   partition->exchangePoints(v.p.data());
@@ -233,8 +251,8 @@ std::array<double, 3> UpdateAndMultiplyPiece(const RowMatrix& A, const std::vect
  * Jacobi-preconditioned conjugate gradients from x = system.original, the
  * three coordinates side by side: each pass over the matrix serves the three
  * columns and every vector operation is parallel. Two passes over the rows
- * per iteration: the direction's update fused with the product (and its
- * sums), then the steps of x and r (and theirs). A column stops when its
+ * per iteration: the step of x and the direction's update fused with the
+ * product (and its sums), then the step of r (and its sums). A column stops when its
  * residual is below tolerance x ||b|| (tolerance 0 runs all the iterations);
  * returns the number of iterations done.
  */
@@ -279,7 +297,7 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
     }
   });
   bool active[3];
-  double threshold[3], rz[3], ratio[3];
+  double threshold[3], rz[3];
   for (int k = 0; k < 3; ++k)
   {
     threshold[k] = std::max(tolerance * tolerance * start[k + 6], std::numeric_limits<double>::min());
@@ -287,25 +305,25 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
     rz[k] = start[k + 3];
   }
   const RowRanges ranges(A, partition ? 1 : threads);
+  DirectionUpdate u;
   int iteration = 0;
   while (iteration < maxIterations && (active[0] || active[1] || active[2]))
   {
-    // The first direction is z itself; later ones are z + ratio p.
-    const double* update = iteration > 0 ? ratio : nullptr;
-    const auto pq = partition ? UpdateAndMultiplyPiece(A, diag, threads, partition, update, v)
-                              : UpdateAndMultiply(A, diag, ranges, update, v);
-    double step[3];
+    // The first direction is z itself; later ones are z + ratio p, after x's step along p.
+    const DirectionUpdate* update = iteration > 0 ? &u : nullptr;
+    const auto pq = partition ? UpdateAndMultiplyPiece(A, diag, threads, partition, update, v, x)
+                              : UpdateAndMultiply(A, diag, ranges, update, v, x);
+    double* step = u.step;
     for (int k = 0; k < 3; ++k)
     {
       // p.Ap > 0 unless p = 0, i.e. the column is solved exactly.
       active[k] = active[k] && pq[k] > 0.0;
       step[k] = active[k] ? rz[k] / pq[k] : 0.0;
     }
-    // x += step p, r -= step q; sums of r.r and r.z (z = D^-1 r).
+    // r -= step q; sums of r.r and r.z (z = D^-1 r). (x += step p: in the next product's pass.)
     const auto sums = BlockSums<6>(n, threads, Owned(partition), partition, [&](std::int64_t i, std::array<double, 6>& s) {
       for (int k = 0; k < 3; ++k)
       {
-        x(i, k) += step[k] * v.p(i, k);
         v.r(i, k) -= step[k] * v.q(i, k);
         s[k] += v.r(i, k) * v.r(i, k);
         s[k + 3] += v.r(i, k) * diag[static_cast<size_t>(i)] * v.r(i, k);
@@ -315,8 +333,20 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
     for (int k = 0; k < 3; ++k)
     {
       active[k] = active[k] && sums[k] >= threshold[k];
-      ratio[k] = active[k] ? sums[k + 3] / rz[k] : 0.0;
+      u.ratio[k] = active[k] ? sums[k + 3] / rz[k] : 0.0;
       rz[k] = sums[k + 3];
+    }
+  }
+  if (iteration > 0)
+  {
+    // The last iteration's step of x.
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int64_t i = 0; i < n; ++i)
+    {
+      for (int k = 0; k < 3 && (!partition || partition->ownedPoints[static_cast<size_t>(i)]); ++k)
+      {
+        x(i, k) += u.step[k] * v.p(i, k);
+      }
     }
   }
   return iteration;
