@@ -372,6 +372,7 @@ TEST(MeshSharpening, ACacheKeepsWhatTheParametersDoNotChange)
     { 512.0, 5.0, 1.0, 0, false, true }, // feature angle
     { 512.0, 5.0, 10.0, 0, true, false }, // screening weight
     { 512.0, 5.0, 10.0, 2, false, true }, // smoothing passes
+    { 512.0, 5.0, 10.0, 0, false, true }, // none again: the mesh's own normals, not the smoothed
   };
   for (const MeshData& data : { shocktest::RoundedBox(12, 2.0, 0.35),
          shocktest::WithDegenerateTriangles(shocktest::RoundedBox(12, 2.0, 0.35)) })
