@@ -190,11 +190,17 @@ void BuildPattern(const TriangleMesh& mesh, int threads, FitSystemData& system)
   A.resize(static_cast<Eigen::Index>(np), static_cast<Eigen::Index>(np));
   A.resizeNonZeros(static_cast<Eigen::Index>(np + static_cast<std::int64_t>(ring.items.size())));
   int* outer = A.outerIndexPtr();
+  // The rows' sizes in parallel (their points are scattered), then their sum in sequence.
   outer[0] = 0;
+#pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t r = 0; r < np; ++r)
   {
     const std::int64_t p = system.order[static_cast<size_t>(r)];
-    outer[r + 1] = outer[r] + static_cast<int>(ring.End(p) - ring.Begin(p) + 1);
+    outer[r + 1] = static_cast<int>(ring.End(p) - ring.Begin(p) + 1);
+  }
+  for (std::int64_t r = 0; r < np; ++r)
+  {
+    outer[r + 1] += outer[r];
   }
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < np; ++i)
