@@ -76,13 +76,13 @@ inline void UpdateRow(const std::vector<double>& diag, const DirectionUpdate& u,
 }
 
 /**
- * How the product passes share the rows among threads: each thread takes a
- * contiguous range of whole SumBlock blocks (so that the sums stay those of
- * fixed blocks), and `shared` are the rows of its range that other threads'
- * rows read, conservatively: up to the last column read by an earlier range,
- * from the first column read by a later one. A thread updates the direction
- * of its shared rows before the others multiply (one barrier), and of its
- * other rows just ahead of its own product: the update then costs no pass of
+ * How the product passes share the rows: one contiguous range of whole
+ * SumBlock blocks per thread (so that the sums stay those of fixed blocks).
+ * The shared rows of a range are those that other ranges' rows read,
+ * conservatively: its head, up to the last column read by an earlier range,
+ * and its tail, from the first column read by a later one. A range's shared
+ * rows are updated before any range is multiplied (one barrier), its middle
+ * rows just ahead of its own rows' products: the update then costs no pass of
  * its own over memory.
  */
 struct RowRanges
@@ -162,49 +162,56 @@ std::array<double, 3> UpdateAndMultiply(const RowMatrix& A, const std::vector<do
   std::vector<std::array<double, 3>> partial(static_cast<size_t>(ranges.blocks));
 #pragma omp parallel num_threads(ranges.teams)
   {
+    // Each thread takes its range; a team smaller than asked for (nested in
+    // another parallel region) takes every team-th range.
 #ifdef _OPENMP
-    const int t = omp_get_thread_num();
+    const int thread = omp_get_thread_num();
+    const int team = omp_get_num_threads();
 #else
-    const int t = 0;
+    const int thread = 0;
+    const int team = 1;
 #endif
-    const std::int64_t end = ranges.End(t, n);
-    const std::int64_t headEnd = ranges.headEnd[static_cast<size_t>(t)];
-    const std::int64_t middleEnd = std::max(headEnd, ranges.tailBegin[static_cast<size_t>(t)]);
-    if (update)
+    for (int t = thread; t < ranges.teams && update; t += team)
     {
+      const std::int64_t headEnd = ranges.headEnd[static_cast<size_t>(t)];
       for (std::int64_t i = ranges.Begin(t, n); i < headEnd; ++i)
       {
         UpdateRow(diag, *update, i, true, v, x);
       }
-      for (std::int64_t i = middleEnd; i < end; ++i)
+      for (std::int64_t i = std::max(headEnd, ranges.tailBegin[static_cast<size_t>(t)]); i < ranges.End(t, n); ++i)
       {
         UpdateRow(diag, *update, i, true, v, x);
       }
     }
 #pragma omp barrier
-    std::int64_t updated = update ? headEnd : middleEnd; // the middle rows before this one are updated
-    for (std::int64_t b = ranges.firstBlock[static_cast<size_t>(t)];
-         b < ranges.firstBlock[static_cast<size_t>(t) + 1]; ++b)
+    for (int t = thread; t < ranges.teams; t += team)
     {
-      std::array<double, 3> sums{};
-      for (std::int64_t i = b * SumBlock; i < std::min(n, (b + 1) * SumBlock); ++i)
+      const std::int64_t headEnd = ranges.headEnd[static_cast<size_t>(t)];
+      const std::int64_t middleEnd = std::max(headEnd, ranges.tailBegin[static_cast<size_t>(t)]);
+      std::int64_t updated = update ? headEnd : middleEnd; // the middle rows before this one are updated
+      for (std::int64_t b = ranges.firstBlock[static_cast<size_t>(t)];
+           b < ranges.firstBlock[static_cast<size_t>(t) + 1]; ++b)
       {
-        // Row i reads p up to its last column, and p_i for the sums.
-        const std::int64_t last = outer[i] < outer[i + 1] ? std::max<std::int64_t>(i, inner[outer[i + 1] - 1]) : i;
-        const std::int64_t reach = std::min(middleEnd, last + 1);
-        for (; updated < reach; ++updated)
+        std::array<double, 3> sums{};
+        for (std::int64_t i = b * SumBlock; i < std::min(n, (b + 1) * SumBlock); ++i)
         {
-          UpdateRow(diag, *update, updated, true, v, x);
+          // Row i reads p up to its last column, and p_i for the sums.
+          const std::int64_t last = outer[i] < outer[i + 1] ? std::max<std::int64_t>(i, inner[outer[i + 1] - 1]) : i;
+          const std::int64_t reach = std::min(middleEnd, last + 1);
+          for (; updated < reach; ++updated)
+          {
+            UpdateRow(diag, *update, updated, true, v, x);
+          }
+          double ap[3];
+          MultiplyRow(A, i, [&](std::int64_t j, int k) { return v.p(j, k); }, ap);
+          for (int k = 0; k < 3; ++k)
+          {
+            v.q(i, k) = ap[k];
+            sums[k] += v.p(i, k) * ap[k];
+          }
         }
-        double ap[3];
-        MultiplyRow(A, i, [&](std::int64_t j, int k) { return v.p(j, k); }, ap);
-        for (int k = 0; k < 3; ++k)
-        {
-          v.q(i, k) = ap[k];
-          sums[k] += v.p(i, k) * ap[k];
-        }
+        partial[static_cast<size_t>(b)] = sums;
       }
-      partial[static_cast<size_t>(b)] = sums;
     }
   }
   std::array<double, 3> total{};

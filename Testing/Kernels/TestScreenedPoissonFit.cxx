@@ -536,6 +536,17 @@ TEST(ScreenedPoissonFit, ThreadCountsAgreeWhenRowsReadFarRows)
       EXPECT_EQ(reference, Fit(mesh, targets, more))
         << "solver " << static_cast<int>(solver) << ", " << threads << " threads";
     }
+    // Inside another parallel region the fit may get fewer threads than it
+    // asked for (nested regions are off by default): still the same result.
+    FitParameters three = one;
+    three.numberOfThreads = 3;
+    std::vector<double> nested;
+#pragma omp parallel num_threads(2)
+    {
+#pragma omp single
+      nested = Fit(mesh, targets, three);
+    }
+    EXPECT_EQ(reference, nested) << "solver " << static_cast<int>(solver) << ", nested";
   }
 }
 
