@@ -75,6 +75,24 @@ inline void UpdateRow(const std::vector<double>& diag, const DirectionUpdate& u,
   }
 }
 
+/// UpdateRow on rows [begin, end), x included: one tight loop over contiguous rows.
+void UpdateRows(const std::vector<double>& diag, const DirectionUpdate& u, std::int64_t begin,
+  std::int64_t end, Vectors& v, Coordinates& x)
+{
+  double* xs = x.data();
+  double* ps = v.p.data();
+  const double* rs = v.r.data();
+  for (std::int64_t i = begin; i < end; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const size_t e = static_cast<size_t>(3 * i + k);
+      xs[e] += u.step[k] * ps[e];
+      ps[e] = diag[static_cast<size_t>(i)] * rs[e] + u.ratio[k] * ps[e];
+    }
+  }
+}
+
 /**
  * How the product passes share the rows: one contiguous range of whole
  * SumBlock blocks per thread (so that the sums stay those of fixed blocks).
@@ -82,8 +100,9 @@ inline void UpdateRow(const std::vector<double>& diag, const DirectionUpdate& u,
  * conservatively: its head, up to the last column read by an earlier range,
  * and its tail, from the first column read by a later one. A range's shared
  * rows are updated before any range is multiplied (one barrier), its middle
- * rows just ahead of its own rows' products: the update then costs no pass of
- * its own over memory.
+ * rows a block at a time, just ahead of the block's products (up to the
+ * block's reach, the last column its rows read): the update then costs no
+ * pass of its own over memory.
  */
 struct RowRanges
 {
@@ -92,6 +111,7 @@ struct RowRanges
   std::vector<std::int64_t> firstBlock; ///< per thread + 1: the blocks of thread t are [firstBlock[t], firstBlock[t + 1])
   std::vector<std::int64_t> headEnd;    ///< per thread: rows [range begin, headEnd) are shared
   std::vector<std::int64_t> tailBegin;  ///< per thread: rows [max(headEnd, tailBegin), range end) are shared
+  std::vector<std::int64_t> blockReach; ///< per block: 1 + the last row its rows read (their own included)
 
   RowRanges(const RowMatrix& A, int threads)
   {
@@ -106,18 +126,27 @@ struct RowRanges
     // The lowest and highest column each range reads (the columns of a row are sorted).
     std::vector<std::int64_t> low(static_cast<size_t>(this->teams), n);
     std::vector<std::int64_t> high(static_cast<size_t>(this->teams), -1);
+    this->blockReach.resize(static_cast<size_t>(this->blocks));
     const int* outer = A.outerIndexPtr();
     const int* inner = A.innerIndexPtr();
 #pragma omp parallel for num_threads(this->teams) schedule(static, 1)
     for (int t = 0; t < this->teams; ++t)
     {
-      for (std::int64_t i = this->Begin(t, n); i < this->End(t, n); ++i)
+      for (std::int64_t b = this->firstBlock[static_cast<size_t>(t)];
+           b < this->firstBlock[static_cast<size_t>(t) + 1]; ++b)
       {
-        if (outer[i] < outer[i + 1])
+        std::int64_t reach = 0;
+        for (std::int64_t i = b * SumBlock; i < std::min(n, (b + 1) * SumBlock); ++i)
         {
-          low[static_cast<size_t>(t)] = std::min<std::int64_t>(low[static_cast<size_t>(t)], inner[outer[i]]);
-          high[static_cast<size_t>(t)] = std::max<std::int64_t>(high[static_cast<size_t>(t)], inner[outer[i + 1] - 1]);
+          reach = std::max(reach, i + 1);
+          if (outer[i] < outer[i + 1])
+          {
+            low[static_cast<size_t>(t)] = std::min<std::int64_t>(low[static_cast<size_t>(t)], inner[outer[i]]);
+            high[static_cast<size_t>(t)] = std::max<std::int64_t>(high[static_cast<size_t>(t)], inner[outer[i + 1] - 1]);
+            reach = std::max<std::int64_t>(reach, inner[outer[i + 1] - 1] + 1);
+          }
         }
+        this->blockReach[static_cast<size_t>(b)] = reach;
       }
     }
     this->headEnd.resize(static_cast<size_t>(this->teams));
@@ -157,8 +186,6 @@ std::array<double, 3> UpdateAndMultiply(const RowMatrix& A, const std::vector<do
   const RowRanges& ranges, const DirectionUpdate* update, Vectors& v, Coordinates& x)
 {
   const std::int64_t n = A.rows();
-  const int* outer = A.outerIndexPtr();
-  const int* inner = A.innerIndexPtr();
   std::vector<std::array<double, 3>> partial(static_cast<size_t>(ranges.blocks));
 #pragma omp parallel num_threads(ranges.teams)
   {
@@ -174,14 +201,8 @@ std::array<double, 3> UpdateAndMultiply(const RowMatrix& A, const std::vector<do
     for (int t = thread; t < ranges.teams && update; t += team)
     {
       const std::int64_t headEnd = ranges.headEnd[static_cast<size_t>(t)];
-      for (std::int64_t i = ranges.Begin(t, n); i < headEnd; ++i)
-      {
-        UpdateRow(diag, *update, i, true, v, x);
-      }
-      for (std::int64_t i = std::max(headEnd, ranges.tailBegin[static_cast<size_t>(t)]); i < ranges.End(t, n); ++i)
-      {
-        UpdateRow(diag, *update, i, true, v, x);
-      }
+      UpdateRows(diag, *update, ranges.Begin(t, n), headEnd, v, x);
+      UpdateRows(diag, *update, std::max(headEnd, ranges.tailBegin[static_cast<size_t>(t)]), ranges.End(t, n), v, x);
     }
 #pragma omp barrier
     for (int t = thread; t < ranges.teams; t += team)
@@ -192,16 +213,15 @@ std::array<double, 3> UpdateAndMultiply(const RowMatrix& A, const std::vector<do
       for (std::int64_t b = ranges.firstBlock[static_cast<size_t>(t)];
            b < ranges.firstBlock[static_cast<size_t>(t) + 1]; ++b)
       {
+        const std::int64_t reach = std::min(middleEnd, ranges.blockReach[static_cast<size_t>(b)]);
+        if (updated < reach)
+        {
+          UpdateRows(diag, *update, updated, reach, v, x);
+          updated = reach;
+        }
         std::array<double, 3> sums{};
         for (std::int64_t i = b * SumBlock; i < std::min(n, (b + 1) * SumBlock); ++i)
         {
-          // Row i reads p up to its last column, and p_i for the sums.
-          const std::int64_t last = outer[i] < outer[i + 1] ? std::max<std::int64_t>(i, inner[outer[i + 1] - 1]) : i;
-          const std::int64_t reach = std::min(middleEnd, last + 1);
-          for (; updated < reach; ++updated)
-          {
-            UpdateRow(diag, *update, updated, true, v, x);
-          }
           double ap[3];
           MultiplyRow(A, i, [&](std::int64_t j, int k) { return v.p(j, k); }, ap);
           for (int k = 0; k < 3; ++k)
