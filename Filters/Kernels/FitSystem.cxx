@@ -270,19 +270,32 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
   // Each triangle's target gradients serve its three corners' rows, which the
   // visit order reaches at nearby times: kept in a small direct-mapped cache.
   TargetGradientCache cache;
+  std::vector<std::int64_t> points; // the points of a row's columns
 #pragma omp for schedule(static)
   for (std::int64_t i = 0; i < np; ++i)
   {
     const std::int64_t p = system.visit[static_cast<size_t>(i)];
     const std::int64_t r = system.rank[static_cast<size_t>(p)];
     const int* cols = A.innerIndexPtr() + A.outerIndexPtr()[r];
-    const int* colsEnd = A.innerIndexPtr() + A.outerIndexPtr()[r + 1];
+    const size_t count = static_cast<size_t>(A.outerIndexPtr()[r + 1] - A.outerIndexPtr()[r]);
     double* row = A.valuePtr() + A.outerIndexPtr()[r];
-    std::fill(row, row + (colsEnd - cols), 0.0);
-    auto entry = [&](std::int64_t point) -> double& {
-      const int column = static_cast<int>(system.rank[static_cast<size_t>(point)]);
-      return row[std::lower_bound(cols, colsEnd, column) - cols];
+    std::fill(row, row + count, 0.0);
+    // A corner's entry: its point among the row's (a one-ring: a few, whose
+    // rows are near this one), found without a branch to mispredict.
+    points.resize(count);
+    for (size_t k = 0; k < count; ++k)
+    {
+      points[k] = system.order[static_cast<size_t>(cols[k])];
+    }
+    auto slotOf = [&](std::int64_t point) {
+      size_t slot = 0;
+      for (size_t k = 0; k < count; ++k)
+      {
+        slot = points[k] == point ? k : slot;
+      }
+      return slot;
     };
+    const size_t self = slotOf(p);
     double b[3] = { 0.0, 0.0, 0.0 };
     double divergence[3] = { 0.0, 0.0, 0.0 };
     bool fitted = false;
@@ -295,34 +308,34 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
       }
       fitted = true;
       const std::int64_t* t = mesh.Corners(f);
-      const int self = CornerOf(mesh, f, p);
+      const int corner = CornerOf(mesh, f, p);
       const double area = mesh.Area(f);
-      const Vec3 gp = Load(mesh.HatGradient(f, self));
+      const Vec3 gp = Load(mesh.HatGradient(f, corner));
       if (targets)
       {
         fit::AddDivergence(mesh, f, gp.data(), cache.Get(mesh, *targets, f), divergence);
       }
       for (int c = 0; c < 3; ++c)
       {
-        const double mass = system.alpha * s * s * TriangleMass(area, self, c);
-        entry(t[c]) += mass + system.beta * area * Dot(gp, Load(mesh.HatGradient(f, c)));
-        const std::int64_t column = system.rank[static_cast<size_t>(t[c])];
+        const double mass = system.alpha * s * s * TriangleMass(area, corner, c);
+        const size_t slot = c == corner ? self : slotOf(t[c]);
+        row[slot] += mass + system.beta * area * Dot(gp, Load(mesh.HatGradient(f, c)));
         for (int k = 0; k < 3; ++k)
         {
-          b[k] += mass * system.original(column, k);
+          b[k] += mass * system.original(cols[slot], k);
         }
       }
     }
     if (!fitted)
     {
-      entry(p) = 1.0; // nothing constrains the point: an identity row keeps it where it is
+      row[self] = 1.0; // nothing constrains the point: an identity row keeps it where it is
       for (int k = 0; k < 3; ++k)
       {
         b[k] = system.original(r, k);
       }
     }
     system.fitted[static_cast<size_t>(r)] = fitted ? 1 : 0;
-    system.inverseDiagonal[static_cast<size_t>(r)] = 1.0 / entry(p); // > 0: M's diagonal is
+    system.inverseDiagonal[static_cast<size_t>(r)] = 1.0 / row[self]; // > 0: M's diagonal is
     for (int k = 0; k < 3; ++k)
     {
       system.massTerm(r, k) = b[k];
