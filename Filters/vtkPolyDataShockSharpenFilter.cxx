@@ -417,7 +417,8 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   }
   // Normals, potential, flow and advection on the piece; the fit across pieces.
   std::vector<double> positions(prepared.triangles.points.size());
-  std::vector<double> normals(static_cast<size_t>(3 * prepared.mesh.NumberOfTriangles()));
+  std::vector<double> normals( // only asked for when they become an array
+    this->GenerateSharpenedNormals ? static_cast<size_t>(3 * prepared.mesh.NumberOfTriangles()) : 0);
   shock::SharpeningReport report;
   shock::MeshFlowFields fields;
   if (!this->Sharpen(prepared.mesh, piece.controller ? &distribution.partition : nullptr,
@@ -469,7 +470,8 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   }
   else
   {
-    status = shock::SharpenMeshGeometry(mesh, parameters, positions.data(), normals.data(),
+    status = shock::SharpenMeshGeometry(mesh, parameters, positions.data(),
+      normals.empty() ? nullptr : normals.data(),
       &report, this->GenerateFlowArrays ? &fields : nullptr,
       [this](double fraction) { return this->ReportProgress(0.8 * fraction); },
       partition ? nullptr : this->KernelCache.get());

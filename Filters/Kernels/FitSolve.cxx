@@ -5,6 +5,10 @@
 #include <cmath>
 #include <limits>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace shock
 {
 namespace fit
@@ -45,14 +49,219 @@ struct Vectors
   Coordinates r, p, q; ///< residual, direction, A p
 };
 
-/// q = A p and the sums p.q (on a piece, after the owners' p reached its halo).
-std::array<double, 3> DirectionTimesA(
-  const RowMatrix& A, int threads, const MeshPartition* partition, Vectors& v)
+/**
+ * What an iteration leaves to the next product's pass, row by row: the step
+ * of x along the direction just used, x += step p (so that the pass of the
+ * steps reads neither x nor p), then the next direction p = z + ratio p
+ * (z = D^-1 r).
+ */
+struct DirectionUpdate
 {
-  if (partition)
+  double step[3];
+  double ratio[3];
+};
+
+/// x_i += step p_i and p_i = z_i + ratio p_i; x_i only where `stepX`.
+inline void UpdateRow(const std::vector<double>& diag, const DirectionUpdate& u, std::int64_t i,
+  bool stepX, Vectors& v, Coordinates& x)
+{
+  for (int k = 0; k < 3; ++k)
   {
-    partition->exchangePoints(v.p.data());
+    if (stepX)
+    {
+      x(i, k) += u.step[k] * v.p(i, k);
+    }
+    v.p(i, k) = diag[static_cast<size_t>(i)] * v.r(i, k) + u.ratio[k] * v.p(i, k);
   }
+}
+
+/// UpdateRow on rows [begin, end), x included: one tight loop over contiguous rows.
+void UpdateRows(const std::vector<double>& diag, const DirectionUpdate& u, std::int64_t begin,
+  std::int64_t end, Vectors& v, Coordinates& x)
+{
+  double* xs = x.data();
+  double* ps = v.p.data();
+  const double* rs = v.r.data();
+  for (std::int64_t i = begin; i < end; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const size_t e = static_cast<size_t>(3 * i + k);
+      xs[e] += u.step[k] * ps[e];
+      ps[e] = diag[static_cast<size_t>(i)] * rs[e] + u.ratio[k] * ps[e];
+    }
+  }
+}
+
+/**
+ * How the product passes share the rows: one contiguous range of whole
+ * SumBlock blocks per thread (so that the sums stay those of fixed blocks).
+ * The shared rows of a range are those that other ranges' rows read,
+ * conservatively: its head, up to the last column read by an earlier range,
+ * and its tail, from the first column read by a later one. A range's shared
+ * rows are updated before any range is multiplied (one barrier), its middle
+ * rows a block at a time, just ahead of the block's products (up to the
+ * block's reach, the last column its rows read): the update then costs no
+ * pass of its own over memory.
+ */
+struct RowRanges
+{
+  int teams = 1;
+  std::int64_t blocks = 0;
+  std::vector<std::int64_t> firstBlock; ///< per thread + 1: the blocks of thread t are [firstBlock[t], firstBlock[t + 1])
+  std::vector<std::int64_t> headEnd;    ///< per thread: rows [range begin, headEnd) are shared
+  std::vector<std::int64_t> tailBegin;  ///< per thread: rows [max(headEnd, tailBegin), range end) are shared
+  std::vector<std::int64_t> blockReach; ///< per block: 1 + the last row its rows read (their own included)
+
+  RowRanges(const RowMatrix& A, int threads)
+  {
+    const std::int64_t n = A.rows();
+    this->blocks = (n + SumBlock - 1) / SumBlock;
+    this->teams = static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>(threads, this->blocks)));
+    this->firstBlock.resize(static_cast<size_t>(this->teams) + 1);
+    for (int t = 0; t <= this->teams; ++t)
+    {
+      this->firstBlock[static_cast<size_t>(t)] = this->blocks * t / this->teams;
+    }
+    // The lowest and highest column each range reads (the columns of a row are sorted).
+    std::vector<std::int64_t> low(static_cast<size_t>(this->teams), n);
+    std::vector<std::int64_t> high(static_cast<size_t>(this->teams), -1);
+    this->blockReach.resize(static_cast<size_t>(this->blocks));
+    const int* outer = A.outerIndexPtr();
+    const int* inner = A.innerIndexPtr();
+#pragma omp parallel for num_threads(this->teams) schedule(static, 1)
+    for (int t = 0; t < this->teams; ++t)
+    {
+      for (std::int64_t b = this->firstBlock[static_cast<size_t>(t)];
+           b < this->firstBlock[static_cast<size_t>(t) + 1]; ++b)
+      {
+        std::int64_t reach = 0;
+        for (std::int64_t i = b * SumBlock; i < std::min(n, (b + 1) * SumBlock); ++i)
+        {
+          reach = std::max(reach, i + 1);
+          if (outer[i] < outer[i + 1])
+          {
+            low[static_cast<size_t>(t)] = std::min<std::int64_t>(low[static_cast<size_t>(t)], inner[outer[i]]);
+            high[static_cast<size_t>(t)] = std::max<std::int64_t>(high[static_cast<size_t>(t)], inner[outer[i + 1] - 1]);
+            reach = std::max<std::int64_t>(reach, inner[outer[i + 1] - 1] + 1);
+          }
+        }
+        this->blockReach[static_cast<size_t>(b)] = reach;
+      }
+    }
+    this->headEnd.resize(static_cast<size_t>(this->teams));
+    this->tailBegin.resize(static_cast<size_t>(this->teams));
+    for (int t = 0; t < this->teams; ++t)
+    {
+      std::int64_t before = -1; // highest column read by an earlier range
+      std::int64_t after = n;   // lowest column read by a later range
+      for (int u = 0; u < this->teams; ++u)
+      {
+        before = u < t ? std::max(before, high[static_cast<size_t>(u)]) : before;
+        after = u > t ? std::min(after, low[static_cast<size_t>(u)]) : after;
+      }
+      const std::int64_t begin = this->Begin(t, n);
+      const std::int64_t end = this->End(t, n);
+      this->headEnd[static_cast<size_t>(t)] = std::min(end, std::max(begin, before + 1));
+      this->tailBegin[static_cast<size_t>(t)] = std::max(begin, std::min(end, after));
+    }
+  }
+  std::int64_t Begin(int t, std::int64_t n) const
+  {
+    return std::min(n, this->firstBlock[static_cast<size_t>(t)] * SumBlock);
+  }
+  std::int64_t End(int t, std::int64_t n) const
+  {
+    return std::min(n, this->firstBlock[static_cast<size_t>(t) + 1] * SumBlock);
+  }
+};
+
+/**
+ * q = A p and the sums p.q, block by block as BlockSums does; with `update`,
+ * the rows are first updated (DirectionUpdate), each once and before any row
+ * reads its direction (RowRanges), in the same pass. Not for a piece: its
+ * halo needs the owners' updated directions before any product.
+ */
+std::array<double, 3> UpdateAndMultiply(const RowMatrix& A, const std::vector<double>& diag,
+  const RowRanges& ranges, const DirectionUpdate* update, Vectors& v, Coordinates& x)
+{
+  const std::int64_t n = A.rows();
+  std::vector<std::array<double, 3>> partial(static_cast<size_t>(ranges.blocks));
+#pragma omp parallel num_threads(ranges.teams)
+  {
+    // Each thread takes its range; a team smaller than asked for (nested in
+    // another parallel region) takes every team-th range.
+#ifdef _OPENMP
+    const int thread = omp_get_thread_num();
+    const int team = omp_get_num_threads();
+#else
+    const int thread = 0;
+    const int team = 1;
+#endif
+    for (int t = thread; t < ranges.teams && update; t += team)
+    {
+      const std::int64_t headEnd = ranges.headEnd[static_cast<size_t>(t)];
+      UpdateRows(diag, *update, ranges.Begin(t, n), headEnd, v, x);
+      UpdateRows(diag, *update, std::max(headEnd, ranges.tailBegin[static_cast<size_t>(t)]), ranges.End(t, n), v, x);
+    }
+#pragma omp barrier
+    for (int t = thread; t < ranges.teams; t += team)
+    {
+      const std::int64_t headEnd = ranges.headEnd[static_cast<size_t>(t)];
+      const std::int64_t middleEnd = std::max(headEnd, ranges.tailBegin[static_cast<size_t>(t)]);
+      std::int64_t updated = update ? headEnd : middleEnd; // the middle rows before this one are updated
+      for (std::int64_t b = ranges.firstBlock[static_cast<size_t>(t)];
+           b < ranges.firstBlock[static_cast<size_t>(t) + 1]; ++b)
+      {
+        const std::int64_t reach = std::min(middleEnd, ranges.blockReach[static_cast<size_t>(b)]);
+        if (updated < reach)
+        {
+          UpdateRows(diag, *update, updated, reach, v, x);
+          updated = reach;
+        }
+        std::array<double, 3> sums{};
+        for (std::int64_t i = b * SumBlock; i < std::min(n, (b + 1) * SumBlock); ++i)
+        {
+          double ap[3];
+          MultiplyRow(A, i, [&](std::int64_t j, int k) { return v.p(j, k); }, ap);
+          for (int k = 0; k < 3; ++k)
+          {
+            v.q(i, k) = ap[k];
+            sums[k] += v.p(i, k) * ap[k];
+          }
+        }
+        partial[static_cast<size_t>(b)] = sums;
+      }
+    }
+  }
+  std::array<double, 3> total{};
+  for (const auto& sums : partial)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      total[k] += sums[k];
+    }
+  }
+  return total;
+}
+
+/**
+ * On a piece: the update (when given) of every row (x of the owned ones only),
+ * the owners' p to the halo, then q = A p and the sums p.q over all pieces.
+ */
+std::array<double, 3> UpdateAndMultiplyPiece(const RowMatrix& A, const std::vector<double>& diag,
+  int threads, const MeshPartition* partition, const DirectionUpdate* update, Vectors& v,
+  Coordinates& x)
+{
+  if (update)
+  {
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int64_t i = 0; i < A.rows(); ++i)
+    {
+      UpdateRow(diag, *update, i, partition->ownedPoints[static_cast<size_t>(i)] != 0, v, x);
+    }
+  }
+  partition->exchangePoints(v.p.data());
   return BlockSums<3>(A.rows(), threads, Owned(partition), partition,
     [&](std::int64_t i, std::array<double, 3>& s) {
       double ap[3];
@@ -66,9 +275,11 @@ std::array<double, 3> DirectionTimesA(
 }
 
 /**
- * Jacobi-preconditioned conjugate gradients from x (the original positions),
- * the three coordinates side by side: each pass over the matrix serves the
- * three columns and every vector operation is parallel. A column stops when its
+ * Jacobi-preconditioned conjugate gradients from x = system.original, the
+ * three coordinates side by side: each pass over the matrix serves the three
+ * columns and every vector operation is parallel. Two passes over the rows
+ * per iteration: the step of x and the direction's update fused with the
+ * product (and its sums), then the step of r (and its sums). A column stops when its
  * residual is below tolerance x ||b|| (tolerance 0 runs all the iterations);
  * returns the number of iterations done.
  */
@@ -78,13 +289,31 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
   const RowMatrix& A = system.matrix;
   const std::vector<double>& diag = system.inverseDiagonal;
   const std::int64_t n = A.rows();
-  // Zero start: on a piece, rows it does not own are never computed.
   Vectors v;
-  v.r = v.p = v.q = Coordinates::Zero(n, 3);
-  // r = b - A x, p = z = D^-1 r; sums of r.r, r.z and b.b.
-  const auto start = BlockSums<9>(n, threads, Owned(partition), partition, [&](std::int64_t i, std::array<double, 9>& s) {
+  if (partition)
+  {
+    v.r = v.p = v.q = Coordinates::Zero(n, 3); // rows a piece does not own are never computed
+  }
+  else
+  {
+    v.r.resize(n, 3); // every row is written before it is read: first touched in parallel
+    v.p.resize(n, 3);
+    v.q.resize(n, 3);
+  }
+  x.resize(n, 3);
+  // x = x0, r = b - A x0, p = z = D^-1 r; sums of r.r, r.z and b.b.
+  const Coordinates& x0 = system.original;
+  const auto start = BlockSums<9>(n, threads, nullptr, partition, [&](std::int64_t i, std::array<double, 9>& s) {
+    for (int k = 0; k < 3; ++k)
+    {
+      x(i, k) = x0(i, k);
+    }
+    if (partition && !partition->ownedPoints[static_cast<size_t>(i)])
+    {
+      return;
+    }
     double ax[3];
-    MultiplyRow(A, i, [&](std::int64_t j, int k) { return x(j, k); }, ax);
+    MultiplyRow(A, i, [&](std::int64_t j, int k) { return x0(j, k); }, ax);
     for (int k = 0; k < 3; ++k)
     {
       v.r(i, k) = b(i, k) - ax[k];
@@ -102,42 +331,48 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
     active[k] = start[k] >= threshold[k];
     rz[k] = start[k + 3];
   }
+  const RowRanges ranges(A, partition ? 1 : threads);
+  DirectionUpdate u;
   int iteration = 0;
   while (iteration < maxIterations && (active[0] || active[1] || active[2]))
   {
-    const auto pq = DirectionTimesA(A, threads, partition, v);
-    double step[3];
+    // The first direction is z itself; later ones are z + ratio p, after x's step along p.
+    const DirectionUpdate* update = iteration > 0 ? &u : nullptr;
+    const auto pq = partition ? UpdateAndMultiplyPiece(A, diag, threads, partition, update, v, x)
+                              : UpdateAndMultiply(A, diag, ranges, update, v, x);
+    double* step = u.step;
     for (int k = 0; k < 3; ++k)
     {
       // p.Ap > 0 unless p = 0, i.e. the column is solved exactly.
       active[k] = active[k] && pq[k] > 0.0;
       step[k] = active[k] ? rz[k] / pq[k] : 0.0;
     }
-    // x += step p, r -= step q; sums of r.r and r.z (z = D^-1 r).
+    // r -= step q; sums of r.r and r.z (z = D^-1 r). (x += step p: in the next product's pass.)
     const auto sums = BlockSums<6>(n, threads, Owned(partition), partition, [&](std::int64_t i, std::array<double, 6>& s) {
       for (int k = 0; k < 3; ++k)
       {
-        x(i, k) += step[k] * v.p(i, k);
         v.r(i, k) -= step[k] * v.q(i, k);
         s[k] += v.r(i, k) * v.r(i, k);
         s[k + 3] += v.r(i, k) * diag[static_cast<size_t>(i)] * v.r(i, k);
       }
     });
     ++iteration;
-    double ratio[3];
     for (int k = 0; k < 3; ++k)
     {
       active[k] = active[k] && sums[k] >= threshold[k];
-      ratio[k] = active[k] ? sums[k + 3] / rz[k] : 0.0;
+      u.ratio[k] = active[k] ? sums[k + 3] / rz[k] : 0.0;
       rz[k] = sums[k + 3];
     }
-    // p = z + ratio p.
+  }
+  if (iteration > 0)
+  {
+    // The last iteration's step of x.
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::int64_t i = 0; i < n; ++i)
     {
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < 3 && (!partition || partition->ownedPoints[static_cast<size_t>(i)]); ++k)
       {
-        v.p(i, k) = diag[static_cast<size_t>(i)] * v.r(i, k) + ratio[k] * v.p(i, k);
+        x(i, k) += u.step[k] * v.p(i, k);
       }
     }
   }
@@ -160,7 +395,6 @@ Status Solve(const FitSystemData& system, const Coordinates& b, const FitParamet
     return {};
   }
   const bool fixed = parameters.solver == FitSolver::ConjugateGradient;
-  x = system.original;
   report.iterations = ConjugateGradients(system, b,
     fixed ? parameters.iterations : parameters.maxIterations,
     fixed ? 0.0 : parameters.tolerance, threads, parameters.partition, x);

@@ -190,11 +190,17 @@ void BuildPattern(const TriangleMesh& mesh, int threads, FitSystemData& system)
   A.resize(static_cast<Eigen::Index>(np), static_cast<Eigen::Index>(np));
   A.resizeNonZeros(static_cast<Eigen::Index>(np + static_cast<std::int64_t>(ring.items.size())));
   int* outer = A.outerIndexPtr();
+  // The rows' sizes in parallel (their points are scattered), then their sum in sequence.
   outer[0] = 0;
+#pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t r = 0; r < np; ++r)
   {
     const std::int64_t p = system.order[static_cast<size_t>(r)];
-    outer[r + 1] = outer[r] + static_cast<int>(ring.End(p) - ring.Begin(p) + 1);
+    outer[r + 1] = static_cast<int>(ring.End(p) - ring.Begin(p) + 1);
+  }
+  for (std::int64_t r = 0; r < np; ++r)
+  {
+    outer[r + 1] += outer[r];
   }
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < np; ++i)
@@ -264,19 +270,32 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
   // Each triangle's target gradients serve its three corners' rows, which the
   // visit order reaches at nearby times: kept in a small direct-mapped cache.
   TargetGradientCache cache;
+  std::vector<std::int64_t> points; // the points of a row's columns
 #pragma omp for schedule(static)
   for (std::int64_t i = 0; i < np; ++i)
   {
     const std::int64_t p = system.visit[static_cast<size_t>(i)];
     const std::int64_t r = system.rank[static_cast<size_t>(p)];
     const int* cols = A.innerIndexPtr() + A.outerIndexPtr()[r];
-    const int* colsEnd = A.innerIndexPtr() + A.outerIndexPtr()[r + 1];
+    const size_t count = static_cast<size_t>(A.outerIndexPtr()[r + 1] - A.outerIndexPtr()[r]);
     double* row = A.valuePtr() + A.outerIndexPtr()[r];
-    std::fill(row, row + (colsEnd - cols), 0.0);
-    auto entry = [&](std::int64_t point) -> double& {
-      const int column = static_cast<int>(system.rank[static_cast<size_t>(point)]);
-      return row[std::lower_bound(cols, colsEnd, column) - cols];
+    std::fill(row, row + count, 0.0);
+    // A corner's entry: its point among the row's (a one-ring: a few, whose
+    // rows are near this one), found without a branch to mispredict.
+    points.resize(count);
+    for (size_t k = 0; k < count; ++k)
+    {
+      points[k] = system.order[static_cast<size_t>(cols[k])];
+    }
+    auto slotOf = [&](std::int64_t point) {
+      size_t slot = 0;
+      for (size_t k = 0; k < count; ++k)
+      {
+        slot = points[k] == point ? k : slot;
+      }
+      return slot;
     };
+    const size_t self = slotOf(p);
     double b[3] = { 0.0, 0.0, 0.0 };
     double divergence[3] = { 0.0, 0.0, 0.0 };
     bool fitted = false;
@@ -289,34 +308,34 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
       }
       fitted = true;
       const std::int64_t* t = mesh.Corners(f);
-      const int self = CornerOf(mesh, f, p);
+      const int corner = CornerOf(mesh, f, p);
       const double area = mesh.Area(f);
-      const Vec3 gp = Load(mesh.HatGradient(f, self));
+      const Vec3 gp = Load(mesh.HatGradient(f, corner));
       if (targets)
       {
         fit::AddDivergence(mesh, f, gp.data(), cache.Get(mesh, *targets, f), divergence);
       }
       for (int c = 0; c < 3; ++c)
       {
-        const double mass = system.alpha * s * s * TriangleMass(area, self, c);
-        entry(t[c]) += mass + system.beta * area * Dot(gp, Load(mesh.HatGradient(f, c)));
-        const std::int64_t column = system.rank[static_cast<size_t>(t[c])];
+        const double mass = system.alpha * s * s * TriangleMass(area, corner, c);
+        const size_t slot = c == corner ? self : slotOf(t[c]);
+        row[slot] += mass + system.beta * area * Dot(gp, Load(mesh.HatGradient(f, c)));
         for (int k = 0; k < 3; ++k)
         {
-          b[k] += mass * system.original(column, k);
+          b[k] += mass * system.original(cols[slot], k);
         }
       }
     }
     if (!fitted)
     {
-      entry(p) = 1.0; // nothing constrains the point: an identity row keeps it where it is
+      row[self] = 1.0; // nothing constrains the point: an identity row keeps it where it is
       for (int k = 0; k < 3; ++k)
       {
         b[k] = system.original(r, k);
       }
     }
     system.fitted[static_cast<size_t>(r)] = fitted ? 1 : 0;
-    system.inverseDiagonal[static_cast<size_t>(r)] = 1.0 / entry(p); // > 0: M's diagonal is
+    system.inverseDiagonal[static_cast<size_t>(r)] = 1.0 / row[self]; // > 0: M's diagonal is
     for (int k = 0; k < 3; ++k)
     {
       system.massTerm(r, k) = b[k];
@@ -359,7 +378,28 @@ Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
     return { "the screening weight must be finite and > 0" };
   }
   auto data = std::make_shared<FitSystemData>();
-  data->frame = UnitAreaFrame(mesh, partition, threads);
+  const std::int64_t np = mesh.NumberOfPoints();
+  if (partition)
+  {
+    data->frame = UnitAreaFrame(mesh, partition, threads);
+    IdentityOrder(np, *data);
+  }
+  else
+  {
+    // The breadth-first order is serial: meanwhile another thread finds the
+    // normalisation and the assembly's visiting order, which do not depend on
+    // it (nor their results on the number of threads).
+#pragma omp parallel sections num_threads(std::min(threads, 2))
+    {
+#pragma omp section
+      BreadthFirstOrder(mesh, *data);
+#pragma omp section
+      {
+        data->frame = UnitAreaFrame(mesh, nullptr, std::max(1, threads - 1));
+        data->visit = FirstUseOrder(mesh, std::max(1, threads - 1));
+      }
+    }
+  }
   if (data->frame.scale > 0.0)
   {
     // A = alpha M + beta S and b = alpha M c0 + beta D w have the solution of
@@ -367,16 +407,6 @@ Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
     // bounded, so any finite eps > 0 is safe from overflow.
     data->alpha = std::min(screeningWeight, 1.0);
     data->beta = 1.0 / std::max(screeningWeight, 1.0);
-    const std::int64_t np = mesh.NumberOfPoints();
-    if (partition)
-    {
-      IdentityOrder(np, *data);
-    }
-    else
-    {
-      BreadthFirstOrder(mesh, *data);
-      data->visit = FirstUseOrder(mesh, threads);
-    }
     data->original.resize(np, 3);
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::int64_t r = 0; r < np; ++r)

@@ -83,23 +83,31 @@ void Measure(const TriangleMesh& mesh, const double* positions, const MeshPartit
     const double* before = mesh.Normal(f);
     flipped += (n[0] * before[0] + n[1] * before[1] + n[2] * before[2] <= 0.0) ? 1 : 0;
   }
-  double low[3], high[3];
-  std::fill(low, low + 3, std::numeric_limits<double>::infinity());
-  std::fill(high, high + 3, -std::numeric_limits<double>::infinity());
+  // Minima and maxima do not depend on the order: a parallel reduction gives the serial result.
+  const double inf = std::numeric_limits<double>::infinity();
+  double low0 = inf, low1 = inf, low2 = inf, high0 = -inf, high1 = -inf, high2 = -inf;
   double largest = 0.0;
+#pragma omp parallel for num_threads(threads) schedule(static) \
+  reduction(min : low0, low1, low2) reduction(max : high0, high1, high2, largest)
   for (std::int64_t p = 0; p < mesh.NumberOfPoints(); ++p)
   {
     const double* x = mesh.Point(p);
     const double* y = positions + 3 * p;
+    low0 = std::min(low0, x[0]);
+    low1 = std::min(low1, x[1]);
+    low2 = std::min(low2, x[2]);
+    high0 = std::max(high0, x[0]);
+    high1 = std::max(high1, x[1]);
+    high2 = std::max(high2, x[2]);
     double d2 = 0.0;
     for (int k = 0; k < 3; ++k)
     {
-      low[k] = std::min(low[k], x[k]);
-      high[k] = std::max(high[k], x[k]);
       d2 += (y[k] - x[k]) * (y[k] - x[k]);
     }
     largest = std::max(largest, d2);
   }
+  const double low[3] = { low0, low1, low2 };
+  const double high[3] = { high0, high1, high2 };
   double diagonal2 = 0.0;
   for (int k = 0; k < 3; ++k)
   {
@@ -171,6 +179,13 @@ Status WithoutRepeatedTriangles(const TriangleMesh& mesh, int threads, Sharpenin
   return cache.reduced.Build(view, threads);
 }
 
+/// The face normals to advect: the smoothed ones kept in the cache, or the mesh's own.
+const double* InputNormals(const TriangleMesh& mesh, const SharpeningCache& cache)
+{
+  return !cache.normals.empty() ? cache.normals.data()
+                                : (mesh.NumberOfTriangles() > 0 ? mesh.Normal(0) : nullptr);
+}
+
 /**
  * The face normals of the clean mesh after the smoothing passes, and the mesh
  * split along its feature edges (SharpFeatures), into the cache unless it
@@ -186,15 +201,19 @@ Status SharpenedNormalsInput(const TriangleMesh& mesh, const SharpeningParameter
     const auto start = Clock::now();
     cache.smoothingPasses = -1;
     const std::int64_t nt = mesh.NumberOfTriangles();
-    cache.normals.resize(static_cast<size_t>(3 * nt));
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::int64_t f = 0; f < nt; ++f)
+    cache.normals.clear(); // without smoothing, the mesh's own normals serve (no copy)
+    if (parameters.normalSmoothingPasses > 0)
     {
-      std::copy(mesh.Normal(f), mesh.Normal(f) + 3, &cache.normals[static_cast<size_t>(3 * f)]);
+      cache.normals.resize(static_cast<size_t>(3 * nt));
+#pragma omp parallel for num_threads(threads) schedule(static)
+      for (std::int64_t f = 0; f < nt; ++f)
+      {
+        std::copy(mesh.Normal(f), mesh.Normal(f) + 3, &cache.normals[static_cast<size_t>(3 * f)]);
+      }
+      SmoothNormals(mesh, cache.normals, parameters.normalSmoothingPasses, threads);
     }
-    SmoothNormals(mesh, cache.normals, parameters.normalSmoothingPasses, threads);
-    const Status split =
-      SplitAtFeatureEdges(mesh, cache.normals.data(), parameters.featureAngle, threads, cache.split);
+    const Status split = SplitAtFeatureEdges(
+      mesh, InputNormals(mesh, cache), parameters.featureAngle, threads, cache.split);
     r.normalsSeconds += SecondsSince(start);
     if (!split.Ok())
     {
@@ -232,18 +251,18 @@ void PotentialOnOriginalPoints(const TriangleMesh& mesh, const FeatureSplitMesh&
  * (renormalised), on the mesh split along its feature edges when it has any.
  */
 Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& parameters,
-  const std::vector<double>& input, const FeatureSplitMesh& split, std::vector<double>& target,
+  const double* input, const FeatureSplitMesh& split, ValueVector& target,
   SharpeningReport& r, MeshFlowFields* fields, const ProgressFunction& progress, int threads)
 {
   const TriangleMesh& advected = split.featureEdges > 0 ? split.mesh : mesh;
   MeshSignal signal;
   signal.location = MeshLocation::Triangles;
   signal.components = 3;
-  signal.values = input.data();
+  signal.values = input;
   signal.valueScale = 2.0; // unit normals: components span [-1, 1]
   signal.sampleAtTimeZero = true;
   signal.lengthScale = parameters.lengthScale > 0.0 ? parameters.lengthScale : mesh.MeanEdgeLength();
-  target.resize(input.size());
+  target.resize(static_cast<size_t>(3 * mesh.NumberOfTriangles())); // written in full by the advection
   const Status status =
     AdvectMeshSignal(advected, signal, target.data(), parameters.advection, &r.advection, fields, progress);
   if (!status.Ok() || r.advection.aborted)
@@ -268,7 +287,7 @@ Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& param
 
 /// SharpenMeshGeometry on a mesh without repeated or degenerate triangles.
 Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& parameters,
-  double* positions, std::vector<double>& target, SharpeningReport& r, MeshFlowFields* fields,
+  double* positions, ValueVector& target, SharpeningReport& r, MeshFlowFields* fields,
   const ProgressFunction& progress, SharpeningCache& cache)
 {
   const int threads = ThreadsForWork(parameters.advection.numberOfThreads, mesh.NumberOfTriangles());
@@ -277,7 +296,8 @@ Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& pa
   {
     return status;
   }
-  status = AdvectNormals(mesh, parameters, cache.normals, cache.split, target, r, fields, progress, threads);
+  status = AdvectNormals(
+    mesh, parameters, InputNormals(mesh, cache), cache.split, target, r, fields, progress, threads);
   if (!status.Ok() || r.advection.aborted)
   {
     return status;
@@ -287,7 +307,6 @@ Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& pa
   status = FitPositionsToNormals(mesh, target.data(), positions, fit, &r.fit, &cache.fit);
   if (!status.Ok())
   {
-    std::copy(mesh.Point(0), mesh.Point(0) + 3 * mesh.NumberOfPoints(), positions);
     return status;
   }
   Measure(mesh, positions, fit.partition, threads, r);
@@ -296,7 +315,7 @@ Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& pa
 
 /// The normals and fields of the clean mesh back on the input's triangles (a repeat takes its first's).
 void ToInputTriangles(const TriangleMesh& mesh, const SharpeningCache& cache,
-  const std::vector<double>& target, MeshFlowFields& cleanFields, double* normals,
+  const ValueVector& target, MeshFlowFields& cleanFields, double* normals,
   MeshFlowFields* fields)
 {
   const std::int64_t nt = mesh.NumberOfTriangles();
@@ -356,7 +375,10 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
   {
     return {};
   }
-  std::copy(mesh.Point(0), mesh.Point(0) + 3 * mesh.NumberOfPoints(), positions);
+  // The fit writes every position; a run that stops before it ends or fails gives the input's.
+  auto keepInput = [&]() {
+    std::copy(mesh.Point(0), mesh.Point(0) + 3 * mesh.NumberOfPoints(), positions);
+  };
 
   // Repeated and degenerate triangles are removed: the result is that of the mesh without
   // them. (Not for a piece of a distributed fit: its partition numbers the piece's triangles.)
@@ -371,18 +393,20 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
     if (!status.Ok())
     {
       kept.Clear();
+      keepInput();
       return status;
     }
   }
   r.repeatedTriangles = kept.repeatedTriangles;
   r.degenerateTriangles = kept.degenerateTriangles;
   const TriangleMesh& clean = kept.removed ? kept.reduced : mesh;
-  std::vector<double> target;
+  ValueVector target;
   MeshFlowFields cleanFields;
   status = SharpenCleanMesh(clean, parameters, positions, target, r,
     fields ? (kept.removed ? &cleanFields : fields) : nullptr, progress, kept);
   if (!status.Ok() || r.advection.aborted)
   {
+    keepInput();
     return status;
   }
   if (kept.removed)

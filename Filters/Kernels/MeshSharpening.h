@@ -96,7 +96,7 @@ struct SharpeningCache
 
   int smoothingPasses = -1; ///< of `normals` and `split` (-1: none kept)
   double featureAngle = -1.0;
-  std::vector<double> normals; ///< smoothed face normals of the clean mesh
+  std::vector<double> normals; ///< smoothed face normals of the clean mesh (empty without smoothing: its own)
   FeatureSplitMesh split;
 
   FitSystem fit;

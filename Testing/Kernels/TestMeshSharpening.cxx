@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace
 {
@@ -216,6 +217,30 @@ TEST(MeshSharpening, TimeZeroNearestExactReturnsTheInput)
   EXPECT_GT(moved, 1e-4);
 }
 
+TEST(MeshSharpening, AnAbortedOrFailedRunGivesTheInputPositions)
+{
+  // The positions are written by the fit: a run that ends before it, or an
+  // invalid fit parameter, must still leave the input positions, whatever the
+  // buffer held.
+  const MeshData box = shocktest::RoundedBox(10, 2.0, 0.4);
+  const shock::TriangleMesh mesh = Build(box);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> positions(box.points.size(), nan);
+  shock::SharpeningReport report;
+  shock::Status status = shock::SharpenMeshGeometry(mesh, Parameters(64.0), positions.data(),
+    nullptr, &report, nullptr, [](double) { return false; });
+  EXPECT_TRUE(status.Ok()) << status.error;
+  EXPECT_TRUE(report.advection.aborted);
+  EXPECT_EQ(positions, box.points);
+
+  shock::SharpeningParameters invalid = Parameters(64.0);
+  invalid.fit.screeningWeight = -1.0;
+  std::fill(positions.begin(), positions.end(), nan);
+  status = shock::SharpenMeshGeometry(mesh, invalid, positions.data());
+  EXPECT_FALSE(status.Ok());
+  EXPECT_EQ(positions, box.points);
+}
+
 TEST(MeshSharpening, StableForHugeTimes)
 {
   const MeshData box = shocktest::RoundedBox(12, 2.0, 0.4);
@@ -347,6 +372,7 @@ TEST(MeshSharpening, ACacheKeepsWhatTheParametersDoNotChange)
     { 512.0, 5.0, 1.0, 0, false, true }, // feature angle
     { 512.0, 5.0, 10.0, 0, true, false }, // screening weight
     { 512.0, 5.0, 10.0, 2, false, true }, // smoothing passes
+    { 512.0, 5.0, 10.0, 0, false, true }, // none again: the mesh's own normals, not the smoothed
   };
   for (const MeshData& data : { shocktest::RoundedBox(12, 2.0, 0.35),
          shocktest::WithDegenerateTriangles(shocktest::RoundedBox(12, 2.0, 0.35)) })
