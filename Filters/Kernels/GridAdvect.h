@@ -298,9 +298,11 @@ SHOCK_NOINLINE void TraceLeavingFaceOutOfLine(const GridTracer<D>& tracer, doubl
  * sample): the average over its traces of their multilinear reads, those of
  * the traces that stayed in their faces gathered as neighbourhood `weights`,
  * those of the `far` traces (ending at `ends`) read here. The sums are formed
- * in the order of Stencil::Apply over the far reads' corners, then of the
- * neighbourhood, so that any K gives the same values; K is a constant so that
- * each corner's position and weight serve all K components at once.
+ * in the order of Stencil::Apply over the far reads' corners (term r of the
+ * reads into partial sum r mod 4; in 1D, where Apply put a lone read's two
+ * terms both into the first, the sum is the same), then of the neighbourhood,
+ * so that any K gives the same values; K is a constant so that each corner's
+ * position and weight serve all K components at once.
  */
 template <int D, int K, typename T>
 SHOCK_ALWAYS_INLINE void CombineReads(const Lattice<D>& L, const Neighbourhood<D>& hood,
