@@ -280,14 +280,24 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
     const size_t count = static_cast<size_t>(A.outerIndexPtr()[r + 1] - A.outerIndexPtr()[r]);
     double* row = A.valuePtr() + A.outerIndexPtr()[r];
     std::fill(row, row + count, 0.0);
-    // A corner's entry: its point among the row's (a one-ring: a few, whose
-    // rows are near this one), found without a branch to mispredict.
-    points.resize(count);
-    for (size_t k = 0; k < count; ++k)
+    // A corner's entry: in a usual row (a one-ring: a few points, whose rows
+    // are near this one) its point among the row's, found without a branch to
+    // mispredict; in a long row (a point joined to thousands, as a fan's
+    // centre) by a binary search of its column, or the row would cost its
+    // length squared.
+    constexpr size_t ShortRow = 32;
+    const bool shortRow = count <= ShortRow;
+    points.resize(shortRow ? count : 0);
+    for (size_t k = 0; k < points.size(); ++k)
     {
       points[k] = system.order[static_cast<size_t>(cols[k])];
     }
     auto slotOf = [&](std::int64_t point) {
+      if (!shortRow)
+      {
+        const int column = static_cast<int>(system.rank[static_cast<size_t>(point)]);
+        return static_cast<size_t>(std::lower_bound(cols, cols + count, column) - cols);
+      }
       size_t slot = 0;
       for (size_t k = 0; k < count; ++k)
       {
