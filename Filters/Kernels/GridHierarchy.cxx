@@ -249,24 +249,18 @@ bool TraceThroughCoarseLevels(const std::vector<GridShape>& shapes, int C, const
   return true;
 }
 
-template bool TraceThroughCoarseLevels<1, float>(const std::vector<GridShape>&, int,
-  const float*, double, const unsigned char*, const AdvectionParameters&, double, float*,
-  AdvectionReport&, const ProgressFunction&, double);
-template bool TraceThroughCoarseLevels<1, double>(const std::vector<GridShape>&, int,
-  const double*, double, const unsigned char*, const AdvectionParameters&, double, float*,
-  AdvectionReport&, const ProgressFunction&, double);
-template bool TraceThroughCoarseLevels<2, float>(const std::vector<GridShape>&, int,
-  const float*, double, const unsigned char*, const AdvectionParameters&, double, float*,
-  AdvectionReport&, const ProgressFunction&, double);
-template bool TraceThroughCoarseLevels<2, double>(const std::vector<GridShape>&, int,
-  const double*, double, const unsigned char*, const AdvectionParameters&, double, float*,
-  AdvectionReport&, const ProgressFunction&, double);
-template bool TraceThroughCoarseLevels<3, float>(const std::vector<GridShape>&, int,
-  const float*, double, const unsigned char*, const AdvectionParameters&, double, float*,
-  AdvectionReport&, const ProgressFunction&, double);
-template bool TraceThroughCoarseLevels<3, double>(const std::vector<GridShape>&, int,
-  const double*, double, const unsigned char*, const AdvectionParameters&, double, float*,
-  AdvectionReport&, const ProgressFunction&, double);
+// The instantiations the grid kernel uses: 1 to 3 axes, float or double signals.
+#define SHOCK_TRACE_THROUGH_COARSE_LEVELS(D, T)                                                    \
+  template bool TraceThroughCoarseLevels<D, T>(const std::vector<GridShape>&, int, const T*, double, \
+    const unsigned char*, const AdvectionParameters&, double, float*, AdvectionReport&,             \
+    const ProgressFunction&, double);
+SHOCK_TRACE_THROUGH_COARSE_LEVELS(1, float)
+SHOCK_TRACE_THROUGH_COARSE_LEVELS(1, double)
+SHOCK_TRACE_THROUGH_COARSE_LEVELS(2, float)
+SHOCK_TRACE_THROUGH_COARSE_LEVELS(2, double)
+SHOCK_TRACE_THROUGH_COARSE_LEVELS(3, float)
+SHOCK_TRACE_THROUGH_COARSE_LEVELS(3, double)
+#undef SHOCK_TRACE_THROUGH_COARSE_LEVELS
 
 } // namespace grid
 } // namespace shock
