@@ -184,18 +184,13 @@ private:
   }
 
   /**
-   * Move q across the edge opposite `corner` into the neighbouring triangle.
-   * Returns false (q unchanged) at boundary and non-manifold edges.
+   * Move q, on the edge opposite `corner` of its triangle, into the neighbouring
+   * triangle g across that edge (same point, g's barycentric coordinates).
+   * Returns g's corner opposite the edge.
    */
-  bool Cross(SurfacePoint& q, int corner, Hinge& hinge) const
+  int Enter(SurfacePoint& q, int corner, std::int64_t g) const
   {
-    const std::int64_t f = q.triangle;
-    const std::int64_t g = this->Mesh.Neighbour(f, (corner + 1) % 3);
-    if (g < 0)
-    {
-      return false;
-    }
-    const std::int64_t* tf = this->Mesh.Corners(f);
+    const std::int64_t* tf = this->Mesh.Corners(q.triangle);
     const std::int64_t* tg = this->Mesh.Corners(g);
     const std::int64_t a = tf[(corner + 1) % 3];
     const std::int64_t b = tf[(corner + 2) % 3];
@@ -216,16 +211,37 @@ private:
         third = c;
       }
     }
+    q.triangle = g;
+    std::copy(lambda, lambda + 3, q.barycentric);
+    return third;
+  }
+
+  /**
+   * Move q across the edge opposite `corner` into the neighbouring triangle, with
+   * the edge's hinge. Returns false (q unchanged) at boundary and non-manifold edges.
+   */
+  bool Cross(SurfacePoint& q, int corner, Hinge& hinge) const
+  {
+    const std::int64_t f = q.triangle;
+    const std::int64_t g = this->Mesh.Neighbour(f, (corner + 1) % 3);
+    if (g < 0)
+    {
+      return false;
+    }
+    const std::int64_t* tf = this->Mesh.Corners(f);
+    const std::int64_t a = tf[(corner + 1) % 3];
+    const std::int64_t b = tf[(corner + 2) % 3];
+    const std::int64_t opposite = tf[corner];
+    const int third = this->Enter(q, corner, g);
     const Vec3 xa = Load(this->Mesh.Point(a));
     const Vec3 edge = Unit(Combine(1.0, Load(this->Mesh.Point(b)), -1.0, xa));
     auto perpendicular = [&](std::int64_t p) {
       const Vec3 w = Combine(1.0, Load(this->Mesh.Point(p)), -1.0, xa);
       return Unit(Combine(1.0, w, -Dot(w, edge), edge));
     };
-    const Vec3 intoFirst = perpendicular(tf[corner]);
-    hinge = { edge, { -intoFirst[0], -intoFirst[1], -intoFirst[2] }, perpendicular(tg[third]) };
-    q.triangle = g;
-    std::copy(lambda, lambda + 3, q.barycentric);
+    const Vec3 intoFirst = perpendicular(opposite);
+    hinge = { edge, { -intoFirst[0], -intoFirst[1], -intoFirst[2] },
+      perpendicular(this->Mesh.Corners(g)[third]) };
     return true;
   }
 
@@ -316,34 +332,46 @@ private:
       t -= exit;
       ++steps;
       stalled = exit > 0.0 ? 0 : stalled + 1;
-      SurfacePoint across = q;
-      Hinge hinge;
-      if (!this->Cross(across, corner, hinge))
+      // The hinge's frame without building it: along the edge E = b - a (length L),
+      // with heights h = 2 area / L, its unit vectors are E / L, outOfFirst =
+      // -h_f grad(lambda_corner) of f and intoSecond = h_g grad(lambda_third) of g,
+      // so every test below is the hinge's own times a positive factor.
+      const std::int64_t f = q.triangle;
+      const std::int64_t g = this->Mesh.Neighbour(f, (corner + 1) % 3);
+      if (g < 0)
       {
         break; // boundary or non-manifold edge
       }
-      const Vec3 next = this->VelocityOf(across.triangle);
-      const Vec3 nextHere = hinge.FoldBack(next);
-      if (Dot(nextHere, v) <= 0.0)
+      const std::int64_t* tf = this->Mesh.Corners(f);
+      const Vec3 xa = Load(this->Mesh.Point(tf[(corner + 1) % 3]));
+      const Vec3 edge = Combine(1.0, Load(this->Mesh.Point(tf[(corner + 2) % 3])), -1.0, xa);
+      SurfacePoint across = q;
+      const int third = this->Enter(across, corner, g);
+      const Vec3 next = this->VelocityOf(g);
+      // Out of f and into g, across the edge, per unit of height: both > 0 when
+      // the trace leaves f and the next flow leaves the edge.
+      const double outOfFirst = this->Mesh.Area(f) * -rates[corner];
+      const double intoSecond = this->Mesh.Area(g) * Dot(Load(this->Mesh.HatGradient(g, third)), next);
+      // L^2 <FoldBack(next), v>: the paper's direction test, in the unfolded frame.
+      if (Dot(next, edge) * Dot(v, edge) + 4.0 * outOfFirst * intoSecond <= 0.0)
       {
-        break; // the flow reverses (the paper's direction test, in the unfolded frame)
+        break; // the flow reverses
       }
-      const double awayFromEdge = Dot(next, hinge.intoSecond);
-      if (awayFromEdge > 0.0)
+      if (intoSecond > 0.0)
       {
         q = across;
         v = next;
         continue;
       }
-      // Both triangles push into the edge: slide along it.
-      const double outward = std::max(Dot(v, hinge.outOfFirst), 0.0);
-      const double w = outward / (outward - awayFromEdge);
-      const double speed = (1.0 - w) * Dot(v, hinge.edge) + w * Dot(next, hinge.edge);
-      if (!(outward - awayFromEdge > 0.0) || speed == 0.0)
+      // Both triangles push into the edge: slide along it, with the convex
+      // combination of the two velocities that has no component across it.
+      const double w = outOfFirst / (outOfFirst - intoSecond);
+      const double rate = ((1.0 - w) * Dot(v, edge) + w * Dot(next, edge)) / Dot(edge, edge);
+      if (!(outOfFirst - intoSecond > 0.0) || rate == 0.0)
       {
         break; // a sink on the edge
       }
-      steps += this->Slide(q, corner, speed, t);
+      steps += this->Slide(q, corner, rate, t);
       if (t > 0.0)
       {
         return steps + this->TraceStepped(q, t, truncated);
@@ -352,17 +380,14 @@ private:
     return steps;
   }
 
-  /// Slide q along the edge opposite `corner` (speed > 0 towards corner + 2) until t or a vertex.
-  std::int64_t Slide(SurfacePoint& q, int corner, double speed, double& t) const
+  /**
+   * Slide q along the edge opposite `corner` until t or a vertex; `rate` is the
+   * rate of change of the barycentric coordinate of corner + 2 (> 0: towards it).
+   */
+  std::int64_t Slide(SurfacePoint& q, int corner, double rate, double& t) const
   {
     const int ia = (corner + 1) % 3;
     const int ib = (corner + 2) % 3;
-    const std::int64_t* tf = this->Mesh.Corners(q.triangle);
-    const Vec3 xa = Load(this->Mesh.Point(tf[ia]));
-    const Vec3 xb = Load(this->Mesh.Point(tf[ib]));
-    const Vec3 ab = Combine(1.0, xb, -1.0, xa);
-    const double length = std::sqrt(Dot(ab, ab));
-    const double rate = speed / length; // d(lambda_b)/dt
     const double toVertex = rate > 0.0 ? q.barycentric[ia] / rate : q.barycentric[ib] / -rate;
     const double dt = std::min(t, toVertex);
     double lb = std::clamp(q.barycentric[ib] + rate * dt, 0.0, 1.0);
