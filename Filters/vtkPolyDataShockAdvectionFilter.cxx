@@ -166,7 +166,7 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   // The mesh as prepared for the last execution, unless the points or cells changed.
   std::string error;
   const vtkShockPolyDataInternals::PreparedMesh* prepared =
-    this->PreparedMeshes->Get(input, false, this->NumberOfThreads, error, &this->LastSetupSeconds, unit);
+    this->PreparedMeshes->Get(input, false, this->NumberOfThreads, error, &this->LastSetupSeconds, unit, true);
   if (!prepared)
   {
     vtkErrorMacro(<< error);
@@ -204,13 +204,17 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
       std::copy(row, row + components, &signal[static_cast<size_t>(f * components)]);
     }
   }
+  else
+  {
+    signal = prepared->ToMeshPoints(std::move(values), components, this->NumberOfThreads); // in the mesh's numbering
+  }
   shock::MeshSignal meshSignal;
   meshSignal.location = cellData ? shock::MeshLocation::Triangles : shock::MeshLocation::Points;
   meshSignal.components = components;
-  meshSignal.values = cellData ? signal.data() : values.data();
+  meshSignal.values = signal.data();
   meshSignal.valueScale = this->ParallelValueScale; // 0 (own range) unless a parallel piece
   meshSignal.lengthScale = this->ParallelLengthScale; // likewise for the mean edge length
-  std::vector<double> filtered(cellData ? signal.size() : values.size());
+  std::vector<double> filtered(signal.size());
   shock::AdvectionReport report;
   shock::MeshFlowFields fields;
   const shock::Status status = shock::AdvectMeshSignal(mesh, meshSignal, filtered.data(),
@@ -236,12 +240,17 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
     }
     filtered.swap(values);
   }
+  else
+  {
+    filtered = prepared->FromMeshPoints(std::move(filtered), components, this->NumberOfThreads);
+  }
   vtkDataSetAttributes* attributes =
     cellData ? static_cast<vtkDataSetAttributes*>(output->GetCellData()) : output->GetPointData();
   vtkShockFilterInternals::ReplaceArray(
     attributes, array, vtkShockFilterInternals::FromDoubles(array, filtered));
   if (this->GenerateFlowArrays)
   {
+    fields.potential = prepared->FromMeshPoints(std::move(fields.potential), 1, this->NumberOfThreads);
     vtkShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, fields);
   }
   return true;

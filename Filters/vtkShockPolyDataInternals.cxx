@@ -1,5 +1,7 @@
 #include "vtkShockPolyDataInternals.h"
 
+#include "MeshOrder.h"
+
 #include "vtkAOSDataArrayTemplate.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -413,11 +415,49 @@ double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece, int t
   return std::ldexp(1.0, exponent);
 }
 
+namespace
+{
+/// Renumber the extracted points and triangles (ids and source cells) as `numbering` says.
+void Renumber(shock::MeshNumbering numbering, int threads, PreparedMesh& out)
+{
+  Triangles& extracted = out.triangles;
+  const auto np = static_cast<std::int64_t>(numbering.points.size());
+  const auto nt = static_cast<std::int64_t>(numbering.triangles.size());
+  const shock::IdVector& rank = numbering.rank;
+  std::vector<double> points(extracted.points.size());
+  shock::ParallelFor(np, shock::ThreadsForWork(threads, np), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i)
+    {
+      const auto p = static_cast<size_t>(numbering.points[static_cast<size_t>(i)]);
+      std::copy(&extracted.points[3 * p], &extracted.points[3 * p] + 3, &points[static_cast<size_t>(3 * i)]);
+    }
+  });
+  std::vector<std::int64_t> ids(extracted.triangles.size());
+  std::vector<vtkIdType> cells(extracted.sourceCell.size());
+  shock::ParallelFor(nt, shock::ThreadsForWork(threads, nt), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t f = begin; f < end; ++f)
+    {
+      const auto old = static_cast<size_t>(numbering.triangles[static_cast<size_t>(f)]);
+      for (int c = 0; c < 3; ++c)
+      {
+        ids[static_cast<size_t>(3 * f + c)] = rank[static_cast<size_t>(extracted.triangles[3 * old + c])];
+      }
+      cells[static_cast<size_t>(f)] = extracted.sourceCell[old];
+    }
+  });
+  extracted.points.swap(points);
+  extracted.triangles.swap(ids);
+  extracted.sourceCell.swap(cells);
+  out.pointOrder = std::move(numbering.points);
+}
+}
+
 bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, PreparedMesh& out,
-  std::string& error, double unit)
+  std::string& error, double unit, bool localityOrder)
 {
   const auto start = std::chrono::steady_clock::now();
   out.representative.clear();
+  out.pointOrder.clear();
   if (!ExtractTriangles(input, out.triangles, error))
   {
     error = "Cannot read the mesh: " + error + ".";
@@ -453,8 +493,14 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
       }
     });
   }
-  // The ids are taken over by the mesh (not copied): read them back with mesh.Corners.
   const auto numberOfPoints = static_cast<std::int64_t>(out.triangles.points.size() / 3);
+  if (localityOrder)
+  {
+    Renumber(shock::LocalityNumbering(numberOfPoints, out.triangles.points.data(),
+               out.triangles.triangles, threads),
+      threads, out);
+  }
+  // The ids are taken over by the mesh (not copied): read them back with mesh.Corners.
   const shock::Status built = out.mesh.Build(
     numberOfPoints, out.triangles.points.data(), std::move(out.triangles.triangles), threads);
   out.triangles.triangles.clear();
@@ -465,6 +511,44 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return true;
+}
+
+std::vector<double> PreparedMesh::ToMeshPoints(std::vector<double> values, int components, int threads) const
+{
+  if (this->pointOrder.empty())
+  {
+    return values;
+  }
+  std::vector<double> mesh(values.size());
+  const auto n = static_cast<std::int64_t>(this->pointOrder.size());
+  const size_t C = static_cast<size_t>(components);
+  shock::ParallelFor(n, shock::ThreadsForWork(threads, n), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i)
+    {
+      const size_t from = static_cast<size_t>(this->pointOrder[static_cast<size_t>(i)]) * C;
+      std::copy(&values[from], &values[from] + C, &mesh[static_cast<size_t>(i) * C]);
+    }
+  });
+  return mesh;
+}
+
+std::vector<double> PreparedMesh::FromMeshPoints(std::vector<double> values, int components, int threads) const
+{
+  if (this->pointOrder.empty())
+  {
+    return values;
+  }
+  std::vector<double> input(values.size());
+  const auto n = static_cast<std::int64_t>(this->pointOrder.size());
+  const size_t C = static_cast<size_t>(components);
+  shock::ParallelFor(n, shock::ThreadsForWork(threads, n), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i)
+    {
+      const size_t to = static_cast<size_t>(this->pointOrder[static_cast<size_t>(i)]) * C;
+      std::copy(&values[static_cast<size_t>(i) * C], &values[static_cast<size_t>(i) * C] + C, &input[to]);
+    }
+  });
+  return input;
 }
 
 namespace
@@ -491,10 +575,11 @@ std::vector<unsigned long long> PreparationKey(vtkPolyData* input, bool mergeCoi
 }
 
 const PreparedMesh* MeshCache::Get(vtkPolyData* input, bool mergeCoincidentPoints, int threads,
-  std::string& error, double* seconds, double unit)
+  std::string& error, double* seconds, double unit, bool localityOrder)
 {
   const auto start = std::chrono::steady_clock::now();
   std::vector<unsigned long long> key = PreparationKey(input, mergeCoincidentPoints);
+  key.push_back(localityOrder ? 1ULL : 0ULL);
   unsigned long long unitBits = 0; // the unit is agreed over processes: it can change alone
   std::memcpy(&unitBits, &unit, sizeof(unit));
   key.push_back(unitBits);
@@ -502,7 +587,7 @@ const PreparedMesh* MeshCache::Get(vtkPolyData* input, bool mergeCoincidentPoint
   {
     this->Clear();
     ++this->Preparations;
-    if (!PrepareMesh(input, mergeCoincidentPoints, threads, this->Mesh, error, unit))
+    if (!PrepareMesh(input, mergeCoincidentPoints, threads, this->Mesh, error, unit, localityOrder))
     {
       this->Clear();
       return nullptr;

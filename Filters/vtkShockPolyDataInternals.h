@@ -55,17 +55,30 @@ struct PreparedMesh
   shock::TriangleMesh mesh;
   /// With merging: for each point, the first point with the same coordinates; else empty.
   std::vector<std::int64_t> representative;
+  /**
+   * With a locality order: mesh point i is input point pointOrder[i] (and
+   * triangles.sourceCell follows the triangles' new order); else empty, and the
+   * mesh's points are the input's. `representative` keeps the input's numbering.
+   */
+  shock::IdVector pointOrder;
   double seconds = 0.0; ///< time spent preparing
+
+  /// Per-point values (C per point) in the input's numbering, in the mesh's (0 threads: all).
+  std::vector<double> ToMeshPoints(std::vector<double> values, int components, int threads) const;
+  /// Per-point values (C per point) in the mesh's numbering, in the input's.
+  std::vector<double> FromMeshPoints(std::vector<double> values, int components, int threads) const;
 };
 
 /**
  * Extract the triangles, optionally merge exactly coincident points (the mesh
  * then uses one copy of each; the others have no triangles), and build the mesh
  * of the points divided by `unit` (see MeshUnit; 0: the mesh's size is not finite).
+ * With `localityOrder`, the mesh's points and triangles are renumbered so that
+ * neighbours are near in memory (shock::LocalityNumbering; see pointOrder).
  * Returns false with a complete one-sentence `error` when the input is unusable.
  */
 bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, PreparedMesh& out,
-  std::string& error, double unit = 1.0);
+  std::string& error, double unit = 1.0, bool localityOrder = false);
 
 /**
  * The length unit a surface filter works in: 1 for a mesh whose bounding box's
@@ -99,7 +112,7 @@ public:
    * `seconds` receives the time this call took; `unit` as for PrepareMesh.
    */
   const PreparedMesh* Get(vtkPolyData* input, bool mergeCoincidentPoints, int threads,
-    std::string& error, double* seconds = nullptr, double unit = 1.0);
+    std::string& error, double* seconds = nullptr, double unit = 1.0, bool localityOrder = false);
   /// Meshes prepared so far (a kept one does not count): how tests see the cache work.
   int GetNumberOfPreparations() const { return this->Preparations; }
   /// Forget the kept mesh and free its memory.
