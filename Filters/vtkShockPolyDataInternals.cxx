@@ -114,7 +114,7 @@ bool ConvexQuad(vtkPoints* points, const vtkIdType* ids)
  */
 template <typename IdArray>
 bool CopyTriangles(IdArray* offsetArray, IdArray* ids, vtkIdType firstPolygon,
-  vtkIdType numberOfPoints, std::vector<std::int64_t>& triangles, std::vector<vtkIdType>& sourceCell)
+  vtkIdType numberOfPoints, shock::IdVector& triangles, std::vector<vtkIdType>& sourceCell)
 {
   const auto* offsets = offsetArray->GetPointer(0);
   const auto* from = ids->GetPointer(0);
@@ -142,7 +142,7 @@ bool CopyTriangles(IdArray* offsetArray, IdArray* ids, vtkIdType firstPolygon,
   return valid;
 }
 
-bool OnlyTriangles(vtkPolyData* input, std::vector<std::int64_t>& triangles,
+bool OnlyTriangles(vtkPolyData* input, shock::IdVector& triangles,
   std::vector<vtkIdType>& sourceCell)
 {
   vtkCellArray* polys = input->GetPolys();
@@ -432,7 +432,7 @@ void Renumber(shock::MeshNumbering numbering, int threads, PreparedMesh& out)
       std::copy(&extracted.points[3 * p], &extracted.points[3 * p] + 3, &points[static_cast<size_t>(3 * i)]);
     }
   });
-  std::vector<std::int64_t> ids(extracted.triangles.size());
+  shock::IdVector ids(extracted.triangles.size());
   std::vector<vtkIdType> cells(extracted.sourceCell.size());
   shock::ParallelFor(nt, shock::ThreadsForWork(threads, nt), [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t f = begin; f < end; ++f)
@@ -484,7 +484,7 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
   if (mergeCoincidentPoints)
   {
     out.representative = CoincidentRepresentatives(points, threads);
-    std::vector<std::int64_t>& ids = out.triangles.triangles;
+    shock::IdVector& ids = out.triangles.triangles;
     const auto count = static_cast<std::int64_t>(ids.size());
     shock::ParallelFor(count, shock::ThreadsForWork(threads, count), [&](std::int64_t begin, std::int64_t end) {
       for (std::int64_t i = begin; i < end; ++i)
@@ -497,7 +497,7 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
   if (localityOrder)
   {
     Renumber(shock::LocalityNumbering(numberOfPoints, out.triangles.points.data(),
-               out.triangles.triangles, threads),
+               static_cast<std::int64_t>(out.triangles.triangles.size() / 3), out.triangles.triangles.data(), threads),
       threads, out);
   }
   // The ids are taken over by the mesh (not copied): read them back with mesh.Corners.

@@ -36,7 +36,7 @@ namespace vtkShockPolyDataInternals
 struct Triangles
 {
   std::vector<double> points;          ///< 3 coordinates per point (all points of the input)
-  std::vector<std::int64_t> triangles; ///< 3 point ids per triangle
+  shock::IdVector triangles;           ///< 3 point ids per triangle
   std::vector<vtkIdType> sourceCell;   ///< cell id (vtkPolyData numbering) of each triangle
   vtkIdType nonTriangleCells = 0;      ///< polygons with more than 3 points, and strips
   vtkIdType degenerateCells = 0;       ///< polygons with fewer than 3 points (no triangle)

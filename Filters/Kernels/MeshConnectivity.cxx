@@ -275,7 +275,7 @@ bool HasCorner(const std::int64_t* t, std::int64_t p)
 } // namespace
 
 Status MeshConnectivity::BuildSplit(const MeshConnectivity& source,
-  const std::vector<std::int64_t>& original, std::vector<std::int64_t> ids, int threads)
+  const std::vector<std::int64_t>& original, IdVector ids, int threads)
 {
   const std::int64_t np = source.numberOfPoints;
   const auto copies = static_cast<std::int64_t>(original.size());
@@ -500,7 +500,7 @@ Status MeshConnectivity::BuildSplit(const MeshConnectivity& source,
 }
 
 Status MeshConnectivity::Build(
-  std::int64_t numberOfPoints, std::vector<std::int64_t> ids, int threads)
+  std::int64_t numberOfPoints, IdVector ids, int threads)
 {
   this->derived = false;
   if (numberOfPoints < 0 || ids.size() % 3 != 0)

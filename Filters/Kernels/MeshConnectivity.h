@@ -87,7 +87,12 @@ public:
    * or the mesh is too large for the index types.
    * @param threads OpenMP threads (0 = all cores; fewer for small meshes).
    */
-  Status Build(std::int64_t numberOfPoints, std::vector<std::int64_t> triangles, int threads);
+  Status Build(std::int64_t numberOfPoints, IdVector triangles, int threads);
+  /// Build from a copy of `triangles`.
+  Status Build(std::int64_t numberOfPoints, const std::vector<std::int64_t>& triangles, int threads)
+  {
+    return this->Build(numberOfPoints, IdVector(triangles.begin(), triangles.end()), threads);
+  }
 
   /**
    * The connectivity of `source` with its points split into copies: point q of
@@ -100,7 +105,7 @@ public:
    * Build when the arguments are not such a split.
    */
   Status BuildSplit(const MeshConnectivity& source, const std::vector<std::int64_t>& original,
-    std::vector<std::int64_t> triangles, int threads);
+    IdVector triangles, int threads);
   /// Whether the last BuildSplit derived the lists from its source (not the fallback).
   bool DerivedFromSource() const { return this->derived; }
 
@@ -139,7 +144,7 @@ private:
   std::int64_t numberOfPoints = 0;
   std::int64_t numberOfEdges = 0;
   bool derived = false;
-  std::vector<std::int64_t> triangles;
+  IdVector triangles;
   CompressedLists pointTriangles;
   CompressedLists oneRing;
   IdVector neighbour;

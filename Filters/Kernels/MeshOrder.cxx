@@ -74,11 +74,11 @@ std::uint32_t MortonCode(const double* point, const double lower[3], const doubl
 }
 
 MeshNumbering LocalityNumbering(std::int64_t numberOfPoints, const double* points,
-  const std::vector<std::int64_t>& ids, int threads)
+  std::int64_t numberOfTriangles, const std::int64_t* ids, int threads)
 {
   MeshNumbering numbering;
   const std::int64_t np = numberOfPoints;
-  const auto nt = static_cast<std::int64_t>(ids.size() / 3);
+  const std::int64_t nt = numberOfTriangles;
   threads = ThreadsForWork(threads, std::max(np, nt));
   // The bounding box, and the scale that maps it onto the grid's cells.
   double lx = std::numeric_limits<double>::infinity();
@@ -118,7 +118,7 @@ MeshNumbering LocalityNumbering(std::int64_t numberOfPoints, const double* point
   }
   const std::int64_t* rank = numbering.rank.data();
   auto key = [&](std::int64_t f) {
-    const std::int64_t* t = ids.data() + 3 * f;
+    const std::int64_t* t = ids + 3 * f;
     return std::min({ rank[t[0]], rank[t[1]], rank[t[2]] });
   };
   // Slots within a chunk fit 32 bits: a chunk holds fewer than 2^31 triangles.

@@ -41,7 +41,7 @@ struct MeshNumbering
  * number of threads.
  */
 MeshNumbering LocalityNumbering(std::int64_t numberOfPoints, const double* points,
-  const std::vector<std::int64_t>& ids, int threads);
+  std::int64_t numberOfTriangles, const std::int64_t* ids, int threads);
 
 /**
  * The Morton code of a point's cell in the grid of 1024^3 cells over the box

@@ -225,7 +225,7 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
       split.original[static_cast<size_t>(q)] = p;
     }
   }
-  std::vector<std::int64_t> triangles(static_cast<size_t>(3 * nt));
+  IdVector triangles(static_cast<size_t>(3 * nt));
 #pragma omp parallel for num_threads(nthreads) schedule(static)
   for (std::int64_t f = 0; f < nt; ++f)
   {

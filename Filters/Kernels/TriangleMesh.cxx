@@ -25,7 +25,7 @@ Status TriangleMesh::Build(const TriangleMeshView& view, int threads)
   // Connectivity first (it depends on the ids only), then geometry.
   auto built = std::make_shared<MeshConnectivity>();
   const Status status = built->Build(view.numberOfPoints,
-    std::vector<std::int64_t>(view.triangles, view.triangles + 3 * view.numberOfTriangles), threads);
+    IdVector(view.triangles, view.triangles + 3 * view.numberOfTriangles), threads);
   if (!status.Ok())
   {
     return status;
@@ -34,7 +34,7 @@ Status TriangleMesh::Build(const TriangleMeshView& view, int threads)
 }
 
 Status TriangleMesh::Build(
-  std::int64_t numberOfPoints, const double* points, std::vector<std::int64_t> triangles, int threads)
+  std::int64_t numberOfPoints, const double* points, IdVector triangles, int threads)
 {
   if (numberOfPoints < 0 || (numberOfPoints > 0 && !points) || triangles.size() % 3 != 0)
   {
@@ -50,7 +50,7 @@ Status TriangleMesh::Build(
 }
 
 Status TriangleMesh::BuildSplit(const TriangleMesh& source,
-  const std::vector<std::int64_t>& original, std::vector<std::int64_t> triangles, int threads)
+  const std::vector<std::int64_t>& original, IdVector triangles, int threads)
 {
   auto built = std::make_shared<MeshConnectivity>();
   const Status status = built->BuildSplit(source.Connectivity(), original, std::move(triangles), threads);

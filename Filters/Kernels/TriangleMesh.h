@@ -60,8 +60,13 @@ public:
    * Build as from a view, taking the triangles' ids over instead of copying
    * them (3 per triangle; read them back with Corners).
    */
-  Status Build(std::int64_t numberOfPoints, const double* points, std::vector<std::int64_t> triangles,
-    int threads);
+  Status Build(std::int64_t numberOfPoints, const double* points, IdVector triangles, int threads);
+  /// Build as from a view, from a copy of `triangles`.
+  Status Build(std::int64_t numberOfPoints, const double* points,
+    const std::vector<std::int64_t>& triangles, int threads)
+  {
+    return this->Build(numberOfPoints, points, IdVector(triangles.begin(), triangles.end()), threads);
+  }
 
   /**
    * Build over an existing connectivity (shared, not copied) with new point
@@ -79,7 +84,7 @@ public:
    * sharing its per-triangle geometry.
    */
   Status BuildSplit(const TriangleMesh& source, const std::vector<std::int64_t>& original,
-    std::vector<std::int64_t> triangles, int threads);
+    IdVector triangles, int threads);
 
   const MeshConnectivity& Connectivity() const { return *this->connectivity; }
   /// The connectivity, to build another mesh over it.

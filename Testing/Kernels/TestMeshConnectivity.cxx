@@ -125,10 +125,10 @@ TEST(MeshConnectivity, MatchesItsDefinitionsOnMeshesWithDefects)
 TEST(MeshConnectivity, RejectsIdsOutOfRange)
 {
   shock::MeshConnectivity c;
-  EXPECT_FALSE(c.Build(3, { 0, 1, 3 }, 1).Ok());
-  EXPECT_FALSE(c.Build(3, { 0, -1, 2 }, 1).Ok());
-  EXPECT_FALSE(c.Build(3, { 0, 1 }, 1).Ok());
-  EXPECT_TRUE(c.Build(3, { 0, 1, 2 }, 1).Ok());
+  EXPECT_FALSE(c.Build(3, shock::IdVector{ 0, 1, 3 }, 1).Ok());
+  EXPECT_FALSE(c.Build(3, shock::IdVector{ 0, -1, 2 }, 1).Ok());
+  EXPECT_FALSE(c.Build(3, shock::IdVector{ 0, 1 }, 1).Ok());
+  EXPECT_TRUE(c.Build(3, shock::IdVector{ 0, 1, 2 }, 1).Ok());
 }
 
 TEST(MeshConnectivity, MovedPointsOverASharedConnectivityEqualAFreshBuild)
@@ -248,7 +248,7 @@ TEST(MeshConnectivity, SplitPointsDerivedFromTheSourceEqualAFreshBuild)
       for (int threads : { 1, 2 })
       {
         shock::TriangleMesh split;
-        ASSERT_TRUE(split.BuildSplit(source, original, triangles, threads).Ok());
+        ASSERT_TRUE(split.BuildSplit(source, original, shock::IdVector(triangles.begin(), triangles.end()), threads).Ok());
         EXPECT_TRUE(split.Connectivity().DerivedFromSource());
         shock::TriangleMesh fresh;
         ASSERT_TRUE(fresh.Build({ static_cast<std::int64_t>(original.size()), points.data(),
@@ -274,7 +274,7 @@ TEST(MeshConnectivity, SplitPointsDerivedFromTheSourceEqualAFreshBuild)
   std::vector<std::int64_t> triangles = sphere.triangles;
   std::swap(triangles[0], triangles[3]);
   shock::TriangleMesh other;
-  ASSERT_TRUE(other.BuildSplit(source, original, triangles, 2).Ok());
+  ASSERT_TRUE(other.BuildSplit(source, original, shock::IdVector(triangles.begin(), triangles.end()), 2).Ok());
   EXPECT_FALSE(other.Connectivity().DerivedFromSource());
   shock::TriangleMesh fresh;
   ASSERT_TRUE(fresh.Build({ sphere.NumberOfPoints(), sphere.points.data(), sphere.NumberOfTriangles(),
@@ -348,7 +348,7 @@ TEST(MeshOrder, PointsFollowTheMortonCurveAndTrianglesTheirFirstCorner)
       byCode.push_back({ MortonByDefinition(&m.points[static_cast<size_t>(3 * p)], low, side), p });
     }
     std::sort(byCode.begin(), byCode.end()); // equal codes: old order
-    const shock::MeshNumbering one = shock::LocalityNumbering(np, m.points.data(), m.triangles, 1);
+    const shock::MeshNumbering one = shock::LocalityNumbering(np, m.points.data(), m.NumberOfTriangles(), m.triangles.data(), 1);
     ASSERT_EQ(one.points.size(), static_cast<size_t>(np));
     for (std::int64_t i = 0; i < np; ++i)
     {
@@ -377,7 +377,7 @@ TEST(MeshOrder, PointsFollowTheMortonCurveAndTrianglesTheirFirstCorner)
       moved = moved || one.points[static_cast<size_t>(i)] != i;
     }
     EXPECT_TRUE(moved || np < 3);
-    const shock::MeshNumbering two = shock::LocalityNumbering(np, m.points.data(), m.triangles, 2);
+    const shock::MeshNumbering two = shock::LocalityNumbering(np, m.points.data(), m.NumberOfTriangles(), m.triangles.data(), 2);
     EXPECT_TRUE(std::equal(one.points.begin(), one.points.end(), two.points.begin(), two.points.end()));
     EXPECT_TRUE(std::equal(one.triangles.begin(), one.triangles.end(), two.triangles.begin(), two.triangles.end()));
   }
