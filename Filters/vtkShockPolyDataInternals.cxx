@@ -38,7 +38,7 @@ namespace
  * For each point, the first point with exactly the same coordinates (itself when
  * unique). Coincident copies then share one vertex of the mesh. Coordinates must be finite.
  */
-std::vector<std::int64_t> CoincidentRepresentatives(const std::vector<double>& points, int threads)
+std::vector<std::int64_t> CoincidentRepresentatives(const shock::ValueVector& points, int threads)
 {
   const std::int64_t n = static_cast<std::int64_t>(points.size() / 3);
   std::vector<std::int64_t> order(static_cast<size_t>(n));
@@ -424,7 +424,7 @@ void Renumber(shock::MeshNumbering numbering, int threads, PreparedMesh& out)
   const auto np = static_cast<std::int64_t>(numbering.points.size());
   const auto nt = static_cast<std::int64_t>(numbering.triangles.size());
   const shock::IdVector& rank = numbering.rank;
-  std::vector<double> points(extracted.points.size());
+  shock::ValueVector points(extracted.points.size());
   shock::ParallelFor(np, shock::ThreadsForWork(threads, np), [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i)
     {
@@ -463,7 +463,7 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
     error = "Cannot read the mesh: " + error + ".";
     return false;
   }
-  const std::vector<double>& points = out.triangles.points;
+  const shock::ValueVector& points = out.triangles.points;
   if (!std::all_of(points.begin(), points.end(), [](double v) { return std::isfinite(v); }))
   {
     error = "Cannot use the mesh: a point coordinate is not finite (NaN or infinity).";

@@ -35,7 +35,7 @@ namespace vtkShockPolyDataInternals
  */
 struct Triangles
 {
-  std::vector<double> points;          ///< 3 coordinates per point (all points of the input)
+  shock::ValueVector points;           ///< 3 coordinates per point (all points of the input)
   shock::IdVector triangles;           ///< 3 point ids per triangle
   std::vector<vtkIdType> sourceCell;   ///< cell id (vtkPolyData numbering) of each triangle
   vtkIdType nonTriangleCells = 0;      ///< polygons with more than 3 points, and strips
