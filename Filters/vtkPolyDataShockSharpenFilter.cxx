@@ -224,10 +224,10 @@ int vtkPolyDataShockSharpenFilter::GetNumberOfMeshPreparations() const
 }
 
 const vtkShockPolyDataInternals::PreparedMesh* vtkPolyDataShockSharpenFilter::Prepare(
-  vtkPolyData* input, double unit, std::string& error)
+  vtkPolyData* input, double unit, bool distributed, std::string& error)
 {
   const vtkShockPolyDataInternals::PreparedMesh* prepared = this->PreparedMeshes->Get(input,
-    this->MergeCoincidentPoints, this->NumberOfThreads, error, &this->LastSetupSeconds, unit);
+    this->MergeCoincidentPoints, this->NumberOfThreads, error, &this->LastSetupSeconds, unit, !distributed);
   const int preparation = this->PreparedMeshes->GetNumberOfPreparations();
   if (!prepared || preparation != this->KernelCachePreparation)
   {
@@ -393,7 +393,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work, this->NumberOfThreads);
   const bool empty = piece.work->GetNumberOfPoints() == 0;
   const vtkShockPolyDataInternals::PreparedMesh* kept =
-    empty ? nullptr : this->Prepare(piece.work, unit, error);
+    empty ? nullptr : this->Prepare(piece.work, unit, piece.controller != nullptr, error);
   const bool ok = empty || kept;
   if (piece.controller ? vtkShockParallel::AnyFailed(piece.controller, !ok, error) : !ok)
   {
@@ -505,7 +505,14 @@ void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
   const shock::TriangleMesh& mesh = prepared.mesh;
   const vtkShockPolyDataInternals::Triangles& triangles = prepared.triangles;
   output->ShallowCopy(input);
-  SetNewPoints(output, input, prepared.representative, positions, this->NumberOfThreads);
+  // `positions` are the mesh's points; a renumbered mesh's go back to the input's numbering.
+  std::vector<double> renumbered;
+  if (!prepared.pointOrder.empty())
+  {
+    renumbered = prepared.FromMeshPoints(positions, 3, this->NumberOfThreads);
+  }
+  std::vector<double>& inputPositions = prepared.pointOrder.empty() ? positions : renumbered;
+  SetNewPoints(output, input, prepared.representative, inputPositions, this->NumberOfThreads);
   RecomputeActiveNormals(output, triangles, mesh, positions);
   ReportRun(this, report, input, output);
   if (this->GenerateSharpenedNormals)
@@ -525,7 +532,9 @@ void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
   }
   if (this->GenerateFlowArrays)
   {
-    vtkShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, fields);
+    shock::MeshFlowFields inputFields = fields;
+    inputFields.potential = prepared.FromMeshPoints(fields.potential, 1, this->NumberOfThreads);
+    vtkShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, inputFields);
   }
 }
 

@@ -296,9 +296,10 @@ protected:
     shock::SharpeningReport& report, shock::MeshFlowFields& fields);
 
   /// The prepared mesh of `input` in the length unit `unit` (MeshUnit), kept between
-  /// executions (the kernels' cache goes with it).
+  /// executions (the kernels' cache goes with it); renumbered for locality unless
+  /// `distributed` (a piece keeps its points' numbering for the exchanges).
   const vtkShockPolyDataInternals::PreparedMesh* Prepare(
-    vtkPolyData* input, double unit, std::string& error);
+    vtkPolyData* input, double unit, bool distributed, std::string& error);
 
   /// `input` with the new positions, the field data of the run and the requested arrays.
   void BuildOutput(vtkPolyData* input, const vtkShockPolyDataInternals::PreparedMesh& prepared,
