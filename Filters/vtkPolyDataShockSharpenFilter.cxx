@@ -534,6 +534,11 @@ void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
   {
     shock::MeshFlowFields inputFields = fields;
     inputFields.potential = prepared.FromMeshPoints(fields.potential, 1, this->NumberOfThreads);
+    // Coincident copies take their representative's potential, as they take its position.
+    for (size_t p = 0; p < prepared.representative.size() && p < inputFields.potential.size(); ++p)
+    {
+      inputFields.potential[p] = inputFields.potential[static_cast<size_t>(prepared.representative[p])];
+    }
     vtkShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, inputFields);
   }
 }

@@ -3,6 +3,13 @@
 #define TestFilterHelpers_h
 
 #include "vtkAlgorithm.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkIdList.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -10,6 +17,8 @@
 #include "vtkNew.h"
 #include "vtkObject.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -57,6 +66,94 @@ inline std::vector<double> Values(vtkDataArray* array)
 inline bool UpdateSucceeds(vtkAlgorithm* algorithm)
 {
   return algorithm->GetExecutive()->Update() != 0;
+}
+
+/// `mesh` with its points and cells renumbered: new point j is old point points[j], new cell k old cell cells[k].
+inline vtkSmartPointer<vtkPolyData> Renumbered(vtkPolyData* mesh, const std::vector<vtkIdType>& points,
+  const std::vector<vtkIdType>& cells)
+{
+  std::vector<vtkIdType> newId(points.size());
+  for (size_t j = 0; j < points.size(); ++j)
+  {
+    newId[static_cast<size_t>(points[j])] = static_cast<vtkIdType>(j);
+  }
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> xyz;
+  xyz->SetDataTypeToDouble();
+  for (vtkIdType old : points)
+  {
+    double x[3];
+    mesh->GetPoint(old, x);
+    xyz->InsertNextPoint(x);
+  }
+  out->SetPoints(xyz);
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType old : cells)
+  {
+    mesh->GetCellPoints(old, ids);
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      ids->SetId(k, newId[static_cast<size_t>(ids->GetId(k))]);
+    }
+    polys->InsertNextCell(ids);
+  }
+  out->SetPolys(polys);
+  for (int a = 0; a < mesh->GetPointData()->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* from = mesh->GetPointData()->GetArray(a);
+    vtkSmartPointer<vtkDataArray> to = vtk::TakeSmartPointer(from->NewInstance());
+    to->SetName(from->GetName());
+    to->SetNumberOfComponents(from->GetNumberOfComponents());
+    to->SetNumberOfTuples(static_cast<vtkIdType>(points.size()));
+    for (size_t j = 0; j < points.size(); ++j)
+    {
+      to->SetTuple(static_cast<vtkIdType>(j), points[j], from);
+    }
+    out->GetPointData()->AddArray(to);
+    for (int kind = 0; kind < vtkDataSetAttributes::NUM_ATTRIBUTES; ++kind)
+    {
+      if (from == mesh->GetPointData()->GetAttribute(kind))
+      {
+        out->GetPointData()->SetActiveAttribute(from->GetName(), kind);
+      }
+    }
+  }
+  for (int a = 0; a < mesh->GetCellData()->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* from = mesh->GetCellData()->GetArray(a);
+    vtkSmartPointer<vtkDataArray> to = vtk::TakeSmartPointer(from->NewInstance());
+    to->SetName(from->GetName());
+    to->SetNumberOfComponents(from->GetNumberOfComponents());
+    to->SetNumberOfTuples(static_cast<vtkIdType>(cells.size()));
+    for (size_t k = 0; k < cells.size(); ++k)
+    {
+      to->SetTuple(static_cast<vtkIdType>(k), cells[k], from);
+    }
+    out->GetCellData()->AddArray(to);
+    for (int kind = 0; kind < vtkDataSetAttributes::NUM_ATTRIBUTES; ++kind)
+    {
+      if (from == mesh->GetCellData()->GetAttribute(kind))
+      {
+        out->GetCellData()->SetActiveAttribute(from->GetName(), kind);
+      }
+    }
+  }
+  return out;
+}
+
+/// The largest difference between tuple i of `a` and tuple order[i] of `b`.
+inline double MaxDifferenceThrough(vtkDataArray* a, vtkDataArray* b, const std::vector<vtkIdType>& order)
+{
+  double m = 0.0;
+  for (size_t i = 0; i < order.size(); ++i)
+  {
+    for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+    {
+      m = std::max(m, std::abs(a->GetComponent(static_cast<vtkIdType>(i), c) - b->GetComponent(order[i], c)));
+    }
+  }
+  return m;
 }
 
 } // namespace shock_test

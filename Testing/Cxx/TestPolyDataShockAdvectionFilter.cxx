@@ -48,7 +48,9 @@
 namespace
 {
 
+using shock_test::MaxDifferenceThrough;
 using shock_test::MessageLog;
+using shock_test::Renumbered;
 using shock_test::UpdateSucceeds;
 using shock_test::Values;
 
@@ -1056,84 +1058,6 @@ TEST(PolyDataShockAdvectionFilter, ThreadCountDoesNotChangeTheResult)
     ASSERT_NE(y, nullptr) << name;
     EXPECT_EQ(Values(x), Values(y)) << name << ": max difference " << MaxAbsDifference(Values(x), Values(y));
   }
-}
-
-/// `mesh` with its points and cells renumbered: new point j is old point points[j], new cell k old cell cells[k].
-vtkSmartPointer<vtkPolyData> Renumbered(vtkPolyData* mesh, const std::vector<vtkIdType>& points,
-  const std::vector<vtkIdType>& cells)
-{
-  std::vector<vtkIdType> newId(points.size());
-  for (size_t j = 0; j < points.size(); ++j)
-  {
-    newId[static_cast<size_t>(points[j])] = static_cast<vtkIdType>(j);
-  }
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> xyz;
-  xyz->SetDataTypeToDouble();
-  for (vtkIdType old : points)
-  {
-    double x[3];
-    mesh->GetPoint(old, x);
-    xyz->InsertNextPoint(x);
-  }
-  out->SetPoints(xyz);
-  vtkNew<vtkCellArray> polys;
-  vtkNew<vtkIdList> ids;
-  for (vtkIdType old : cells)
-  {
-    mesh->GetCellPoints(old, ids);
-    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
-    {
-      ids->SetId(k, newId[static_cast<size_t>(ids->GetId(k))]);
-    }
-    polys->InsertNextCell(ids);
-  }
-  out->SetPolys(polys);
-  for (int a = 0; a < mesh->GetPointData()->GetNumberOfArrays(); ++a)
-  {
-    vtkDataArray* from = mesh->GetPointData()->GetArray(a);
-    vtkSmartPointer<vtkDataArray> to = vtk::TakeSmartPointer(from->NewInstance());
-    to->SetName(from->GetName());
-    to->SetNumberOfComponents(from->GetNumberOfComponents());
-    to->SetNumberOfTuples(static_cast<vtkIdType>(points.size()));
-    for (size_t j = 0; j < points.size(); ++j)
-    {
-      to->SetTuple(static_cast<vtkIdType>(j), points[j], from);
-    }
-    out->GetPointData()->AddArray(to);
-    if (from == mesh->GetPointData()->GetScalars())
-    {
-      out->GetPointData()->SetScalars(to);
-    }
-  }
-  for (int a = 0; a < mesh->GetCellData()->GetNumberOfArrays(); ++a)
-  {
-    vtkDataArray* from = mesh->GetCellData()->GetArray(a);
-    vtkSmartPointer<vtkDataArray> to = vtk::TakeSmartPointer(from->NewInstance());
-    to->SetName(from->GetName());
-    to->SetNumberOfComponents(from->GetNumberOfComponents());
-    to->SetNumberOfTuples(static_cast<vtkIdType>(cells.size()));
-    for (size_t k = 0; k < cells.size(); ++k)
-    {
-      to->SetTuple(static_cast<vtkIdType>(k), cells[k], from);
-    }
-    out->GetCellData()->AddArray(to);
-  }
-  return out;
-}
-
-/// The largest difference between tuple i of `a` and tuple order[i] of `b`.
-double MaxDifferenceThrough(vtkDataArray* a, vtkDataArray* b, const std::vector<vtkIdType>& order)
-{
-  double m = 0.0;
-  for (size_t i = 0; i < order.size(); ++i)
-  {
-    for (int c = 0; c < a->GetNumberOfComponents(); ++c)
-    {
-      m = std::max(m, std::abs(a->GetComponent(static_cast<vtkIdType>(i), c) - b->GetComponent(order[i], c)));
-    }
-  }
-  return m;
 }
 
 TEST(PolyDataShockAdvectionFilter, TheInputsNumberingChangesNothing)

@@ -26,6 +26,7 @@
 #include "vtkPointSource.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkPolygon.h"
 #include "vtkSmartPointer.h"
@@ -46,6 +47,8 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <numeric>
+#include <random>
 #include <vector>
 
 namespace
@@ -503,6 +506,52 @@ TEST(PolyDataShockSharpenFilter, ThreadCountDoesNotChangeTheResult)
     ::testing::Test::RecordProperty(solver == Filter::EXACT ? "ExactThreadDifference" : "CgThreadDifference",
       std::to_string(difference));
     std::cout << "solver " << solver << ": 1 vs 2 threads max difference " << difference << "\n";
+  }
+}
+
+TEST(PolyDataShockSharpenFilter, TheInputsNumberingChangesNothing)
+{
+  // The filter renumbers the mesh internally for speed and maps its results
+  // back: a renumbered input (points and cells shuffled, seams of coincident
+  // points merged) gives the same points, normals and flow arrays.
+  auto mesh = shocktest::ToPolyData(shocktest::WithDuplicatePoints(shocktest::RoundedBox(12, 2.0, 0.35)));
+  vtkNew<vtkPolyDataNormals> normals; // active point normals: the filter recomputes them
+  normals->SetInputData(mesh);
+  normals->SplittingOff();
+  normals->ConsistencyOff();
+  normals->Update();
+  mesh = DeepCopy(normals->GetOutput());
+  ASSERT_NE(mesh->GetPointData()->GetNormals(), nullptr);
+  std::vector<vtkIdType> points(static_cast<size_t>(mesh->GetNumberOfPoints()));
+  std::vector<vtkIdType> cells(static_cast<size_t>(mesh->GetNumberOfCells()));
+  std::iota(points.begin(), points.end(), 0);
+  std::iota(cells.begin(), cells.end(), 0);
+  std::mt19937 random(11);
+  std::shuffle(points.begin(), points.end(), random);
+  std::shuffle(cells.begin(), cells.end(), random);
+  auto arrays = [](Filter* f) {
+    f->GenerateFlowArraysOn();
+    f->GenerateSharpenedNormalsOn();
+  };
+  const auto reference = Sharpen(mesh, 2048.0, arrays);
+  const auto other = Sharpen(shock_test::Renumbered(mesh, points, cells), 2048.0, arrays);
+  ASSERT_GT(MaxDifference(Coordinates(reference), Coordinates(mesh)), 1e-3); // it moved
+  EXPECT_LE(shock_test::MaxDifferenceThrough(
+              other->GetPoints()->GetData(), reference->GetPoints()->GetData(), points),
+    1e-12);
+  EXPECT_LE(shock_test::MaxDifferenceThrough(
+              other->GetPointData()->GetNormals(), reference->GetPointData()->GetNormals(), points),
+    1e-12);
+  EXPECT_LE(shock_test::MaxDifferenceThrough(other->GetPointData()->GetArray("ShockPotential"),
+              reference->GetPointData()->GetArray("ShockPotential"), points),
+    1e-12);
+  for (const char* name : { "ShockFlow", Filter::NormalsArrayName() })
+  {
+    ASSERT_NE(other->GetCellData()->GetArray(name), nullptr) << name;
+    EXPECT_LE(shock_test::MaxDifferenceThrough(
+                other->GetCellData()->GetArray(name), reference->GetCellData()->GetArray(name), cells),
+      1e-12)
+      << name;
   }
 }
 
