@@ -481,9 +481,17 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
       x /= unit; // a power of two: exact
     }
   }
+  const auto numberOfPoints = static_cast<std::int64_t>(out.triangles.points.size() / 3);
+  shock::MeshNumbering numbering;
+  if (localityOrder)
+  {
+    numbering = shock::MortonOrder(numberOfPoints, points.data(), threads);
+  }
   if (mergeCoincidentPoints)
   {
-    out.representative = CoincidentRepresentatives(points, threads);
+    // Along the Morton order coincident points are neighbours: no sort of their own.
+    out.representative = localityOrder ? shock::CoincidentPoints(numbering, points.data(), threads)
+                                       : CoincidentRepresentatives(points, threads);
     shock::IdVector& ids = out.triangles.triangles;
     const auto count = static_cast<std::int64_t>(ids.size());
     shock::ParallelFor(count, shock::ThreadsForWork(threads, count), [&](std::int64_t begin, std::int64_t end) {
@@ -493,12 +501,11 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
       }
     });
   }
-  const auto numberOfPoints = static_cast<std::int64_t>(out.triangles.points.size() / 3);
   if (localityOrder)
   {
-    Renumber(shock::LocalityNumbering(numberOfPoints, out.triangles.points.data(),
-               static_cast<std::int64_t>(out.triangles.triangles.size() / 3), out.triangles.triangles.data(), threads),
-      threads, out);
+    shock::OrderTriangles(numbering, static_cast<std::int64_t>(out.triangles.triangles.size() / 3),
+      out.triangles.triangles.data(), threads);
+    Renumber(std::move(numbering), threads, out);
   }
   // The ids are taken over by the mesh (not copied): read them back with mesh.Corners.
   const shock::Status built = out.mesh.Build(

@@ -29,7 +29,7 @@ std::uint32_t Spread(std::uint32_t v)
  * Stable sort of the indices 0..n-1 by their 30-bit keys: two passes of 15
  * bits (least significant first), each stable, so equal keys keep their order.
  */
-IdVector SortByKeys(const std::vector<std::uint32_t, UninitialisedAllocator<std::uint32_t>>& keys)
+IdVector SortByKeys(const CodeVector& keys)
 {
   constexpr int Bits = 15;
   constexpr std::uint32_t Buckets = 1u << Bits;
@@ -73,13 +73,11 @@ std::uint32_t MortonCode(const double* point, const double lower[3], const doubl
   return code;
 }
 
-MeshNumbering LocalityNumbering(std::int64_t numberOfPoints, const double* points,
-  std::int64_t numberOfTriangles, const std::int64_t* ids, int threads)
+MeshNumbering MortonOrder(std::int64_t numberOfPoints, const double* points, int threads)
 {
   MeshNumbering numbering;
   const std::int64_t np = numberOfPoints;
-  const std::int64_t nt = numberOfTriangles;
-  threads = ThreadsForWork(threads, std::max(np, nt));
+  threads = ThreadsForWork(threads, np);
   // The bounding box, and the scale that maps it onto the grid's cells.
   double lx = std::numeric_limits<double>::infinity();
   double ly = lx;
@@ -99,23 +97,99 @@ MeshNumbering LocalityNumbering(std::int64_t numberOfPoints, const double* point
   }
   const double lower[3] = { lx, ly, lz };
   const double side[3] = { ux - lx, uy - ly, uz - lz };
-  std::vector<std::uint32_t, UninitialisedAllocator<std::uint32_t>> codes(static_cast<size_t>(np));
+  CodeVector& codes = numbering.codes;
+  codes.resize(static_cast<size_t>(np));
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t p = 0; p < np; ++p)
   {
     codes[static_cast<size_t>(p)] = MortonCode(points + 3 * p, lower, side);
   }
   numbering.points = SortByKeys(codes);
-
-  // Triangles by their smallest corner's new index: a stable counting sort,
-  // in parallel over chunks of triangles (each chunk's slots follow the earlier
-  // chunks' in every key, so the order is the serial one).
   numbering.rank.resize(static_cast<size_t>(np));
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < np; ++i)
   {
     numbering.rank[static_cast<size_t>(numbering.points[static_cast<size_t>(i)])] = i;
   }
+  return numbering;
+}
+
+std::vector<std::int64_t> CoincidentPoints(const MeshNumbering& numbering, const double* points, int threads)
+{
+  const auto np = static_cast<std::int64_t>(numbering.points.size());
+  const IdVector& order = numbering.points;
+  const CodeVector& codes = numbering.codes;
+  std::vector<std::int64_t> representative(static_cast<size_t>(np));
+  auto same = [points](std::int64_t a, std::int64_t b) {
+    return points[3 * a] == points[3 * b] && points[3 * a + 1] == points[3 * b + 1] &&
+      points[3 * a + 2] == points[3 * b + 2];
+  };
+  auto codeAt = [&](std::int64_t i) { return codes[static_cast<size_t>(order[static_cast<size_t>(i)])]; };
+  constexpr std::int64_t LongRun = 32;
+  threads = ThreadsForWork(threads, np);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 4096)
+  for (std::int64_t i = 0; i < np; ++i)
+  {
+    if (i > 0 && codeAt(i) == codeAt(i - 1))
+    {
+      continue; // not the start of a run of equal codes
+    }
+    std::int64_t end = i + 1;
+    while (end < np && codeAt(end) == codeAt(i))
+    {
+      ++end;
+    }
+    // Coincident points share a cell, so a run holds every copy of its points,
+    // in their old order: the first copy found is the one with the smallest index.
+    if (end - i <= LongRun)
+    {
+      for (std::int64_t j = i; j < end; ++j)
+      {
+        const std::int64_t p = order[static_cast<size_t>(j)];
+        std::int64_t first = p;
+        for (std::int64_t k = i; k < j; ++k)
+        {
+          const std::int64_t q = order[static_cast<size_t>(k)];
+          if (representative[static_cast<size_t>(q)] == q && same(p, q))
+          {
+            first = q;
+            break;
+          }
+        }
+        representative[static_cast<size_t>(p)] = first;
+      }
+      continue;
+    }
+    // A long run (many points in one cell): sorted by coordinates, then index.
+    std::vector<std::int64_t> run(order.begin() + i, order.begin() + end);
+    std::sort(run.begin(), run.end(), [points](std::int64_t a, std::int64_t b) {
+      for (int k = 0; k < 3; ++k)
+      {
+        if (points[3 * a + k] != points[3 * b + k])
+        {
+          return points[3 * a + k] < points[3 * b + k];
+        }
+      }
+      return a < b;
+    });
+    for (size_t k = 0; k < run.size(); ++k)
+    {
+      const bool copy = k > 0 && same(run[k], run[k - 1]);
+      representative[static_cast<size_t>(run[k])] = copy ? representative[static_cast<size_t>(run[k - 1])] : run[k];
+    }
+  }
+  return representative;
+}
+
+void OrderTriangles(MeshNumbering& numbering, std::int64_t numberOfTriangles, const std::int64_t* ids, int threads)
+{
+  const auto np = static_cast<std::int64_t>(numbering.points.size());
+  const std::int64_t nt = numberOfTriangles;
+  threads = ThreadsForWork(threads, std::max(np, nt));
+
+  // Triangles by their smallest corner's new index: a stable counting sort,
+  // in parallel over chunks of triangles (each chunk's slots follow the earlier
+  // chunks' in every key, so the order is the serial one).
   const std::int64_t* rank = numbering.rank.data();
   auto key = [&](std::int64_t f) {
     const std::int64_t* t = ids + 3 * f;
@@ -176,6 +250,13 @@ MeshNumbering LocalityNumbering(std::int64_t numberOfPoints, const double* point
       }
     }
   }
+}
+
+MeshNumbering LocalityNumbering(std::int64_t numberOfPoints, const double* points,
+  std::int64_t numberOfTriangles, const std::int64_t* ids, int threads)
+{
+  MeshNumbering numbering = MortonOrder(numberOfPoints, points, threads);
+  OrderTriangles(numbering, numberOfTriangles, ids, threads);
   return numbering;
 }
 

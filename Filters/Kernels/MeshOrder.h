@@ -24,21 +24,43 @@
 namespace shock
 {
 
+using CodeVector = std::vector<std::uint32_t, UninitialisedAllocator<std::uint32_t>>;
+
 /// A renumbering of points and triangles.
 struct MeshNumbering
 {
   IdVector points;    ///< new index -> old index
   IdVector rank;      ///< the inverse: old point index -> new index
   IdVector triangles; ///< new index -> old index
+  CodeVector codes;   ///< each point's Morton code (by old index)
 };
 
 /**
  * The points in the order of their cells on a Morton curve through a grid of
- * 1024^3 cells over their bounding box (equal cells in their old order), and
- * the triangles by their smallest corner in that order (equal ones in their
- * old order). `points`: 3 finite coordinates per point; `ids`: 3 point ids in
- * [0, numberOfPoints) per triangle. Deterministic: it does not depend on the
- * number of threads.
+ * 1024^3 cells over their bounding box (equal cells in their old order): fills
+ * points, rank and codes (triangles stays empty). `points`: 3 finite
+ * coordinates per point.
+ */
+MeshNumbering MortonOrder(std::int64_t numberOfPoints, const double* points, int threads);
+
+/**
+ * For each point, the first point (smallest index) with exactly the same
+ * coordinates, itself when unique, read from a MortonOrder of the same points:
+ * coincident points share a cell, so only points of a run of equal codes are
+ * compared.
+ */
+std::vector<std::int64_t> CoincidentPoints(const MeshNumbering& numbering, const double* points, int threads);
+
+/**
+ * Fill numbering.triangles: the triangles by their smallest corner in the
+ * order of numbering.rank (equal ones in their old order). `ids`: 3 point ids
+ * in [0, number of points) per triangle.
+ */
+void OrderTriangles(MeshNumbering& numbering, std::int64_t numberOfTriangles, const std::int64_t* ids, int threads);
+
+/**
+ * MortonOrder then OrderTriangles. Deterministic: no result of this file
+ * depends on the number of threads.
  */
 MeshNumbering LocalityNumbering(std::int64_t numberOfPoints, const double* points,
   std::int64_t numberOfTriangles, const std::int64_t* ids, int threads);

@@ -382,3 +382,45 @@ TEST(MeshOrder, PointsFollowTheMortonCurveAndTrianglesTheirFirstCorner)
     EXPECT_TRUE(std::equal(one.triangles.begin(), one.triangles.end(), two.triangles.begin(), two.triangles.end()));
   }
 }
+
+TEST(MeshOrder, CoincidentPointsAreTheFirstWithTheSameCoordinates)
+{
+  // Copies of seam points, copies far apart in the numbering, 0 and -0, and a
+  // far outlier that puts many points in one cell of the Morton grid (a long run).
+  MeshData m = shocktest::WithDuplicatePoints(shocktest::Icosphere(2));
+  const std::int64_t n = m.NumberOfPoints();
+  for (std::int64_t p = 0; p < n; p += 7)
+  {
+    m.points.insert(m.points.end(), &m.points[static_cast<size_t>(3 * p)], &m.points[static_cast<size_t>(3 * p)] + 3);
+  }
+  m.points.insert(m.points.end(), { 0.0, -0.0, 0.0, -0.0, 0.0, 0.0, 0.0, 0.0, -0.0 });
+  std::vector<double> withOutlier = m.points;
+  withOutlier.insert(withOutlier.end(), { 1e6, 1e6, 1e6 });
+  for (const std::vector<double>* points : { &m.points, &withOutlier })
+  {
+    const auto np = static_cast<std::int64_t>(points->size() / 3);
+    std::vector<std::int64_t> expected(static_cast<size_t>(np));
+    std::int64_t copies = 0;
+    for (std::int64_t p = 0; p < np; ++p)
+    {
+      expected[static_cast<size_t>(p)] = p;
+      for (std::int64_t q = 0; q < p; ++q)
+      {
+        const double* a = &(*points)[static_cast<size_t>(3 * p)];
+        const double* b = &(*points)[static_cast<size_t>(3 * q)];
+        if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
+        {
+          expected[static_cast<size_t>(p)] = q;
+          ++copies;
+          break;
+        }
+      }
+    }
+    ASSERT_GT(copies, 20);
+    for (int threads : { 1, 2 })
+    {
+      const shock::MeshNumbering numbering = shock::MortonOrder(np, points->data(), threads);
+      EXPECT_EQ(shock::CoincidentPoints(numbering, points->data(), threads), expected) << threads;
+    }
+  }
+}
