@@ -192,7 +192,9 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   }
 
   const int components = array->GetNumberOfComponents();
-  std::vector<double> values = vtkShockFilterInternals::ToDoubles(array);
+  std::vector<double> values(static_cast<size_t>(array->GetNumberOfValues()));
+  vtkShockFilterInternals::ToDoubles(
+    array, values.data(), shock::ThreadsForWork(this->NumberOfThreads, array->GetNumberOfTuples()));
   std::vector<double> signal;
   if (cellData)
   {
@@ -247,7 +249,8 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   vtkDataSetAttributes* attributes =
     cellData ? static_cast<vtkDataSetAttributes*>(output->GetCellData()) : output->GetPointData();
   vtkShockFilterInternals::ReplaceArray(
-    attributes, array, vtkShockFilterInternals::FromDoubles(array, filtered));
+    attributes, array, vtkShockFilterInternals::FromDoubles(array, filtered.data(),
+      shock::ThreadsForWork(this->NumberOfThreads, array->GetNumberOfTuples())));
   if (this->GenerateFlowArrays)
   {
     fields.potential = prepared->FromMeshPoints(std::move(fields.potential), 1, this->NumberOfThreads);
