@@ -31,6 +31,7 @@
 #include <cstring>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 
 namespace
 {
@@ -526,6 +527,10 @@ std::vector<double> PreparedMesh::ToMeshPoints(std::vector<double> values, int c
   {
     return values;
   }
+  if (values.size() != this->pointOrder.size() * static_cast<size_t>(components))
+  {
+    throw std::invalid_argument("PreparedMesh::ToMeshPoints: not one tuple per point of the mesh");
+  }
   std::vector<double> mesh(values.size());
   const auto n = static_cast<std::int64_t>(this->pointOrder.size());
   const size_t C = static_cast<size_t>(components);
@@ -544,6 +549,10 @@ std::vector<double> PreparedMesh::FromMeshPoints(std::vector<double> values, int
   if (this->pointOrder.empty())
   {
     return values;
+  }
+  if (values.size() != this->pointOrder.size() * static_cast<size_t>(components))
+  {
+    throw std::invalid_argument("PreparedMesh::FromMeshPoints: not one tuple per point of the mesh");
   }
   std::vector<double> input(values.size());
   const auto n = static_cast<std::int64_t>(this->pointOrder.size());

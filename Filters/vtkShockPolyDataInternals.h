@@ -35,7 +35,7 @@ namespace vtkShockPolyDataInternals
  */
 struct Triangles
 {
-  shock::ValueVector points;           ///< 3 coordinates per point (all points of the input)
+  shock::ValueVector points;           ///< 3 coordinates per point (all points; see PreparedMesh::pointOrder)
   shock::IdVector triangles;           ///< 3 point ids per triangle
   std::vector<vtkIdType> sourceCell;   ///< cell id (vtkPolyData numbering) of each triangle
   vtkIdType nonTriangleCells = 0;      ///< polygons with more than 3 points, and strips
@@ -64,6 +64,7 @@ struct PreparedMesh
   double seconds = 0.0; ///< time spent preparing
 
   /// Per-point values (C per point) in the input's numbering, in the mesh's (0 threads: all).
+  /// Both throw std::invalid_argument unless `values` holds C values per point (a caller's bug).
   std::vector<double> ToMeshPoints(std::vector<double> values, int components, int threads) const;
   /// Per-point values (C per point) in the mesh's numbering, in the input's.
   std::vector<double> FromMeshPoints(std::vector<double> values, int components, int threads) const;

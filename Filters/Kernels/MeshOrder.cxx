@@ -67,7 +67,9 @@ std::uint32_t MortonCode(const double* point, const double lower[3], const doubl
   for (int a = 0; a < 3; ++a)
   {
     const double cell = side[a] > 0.0 ? std::floor(Cells * (point[a] - lower[a]) / side[a]) : 0.0;
-    const auto index = static_cast<std::uint32_t>(std::clamp(cell, 0.0, static_cast<double>(Cells - 1)));
+    // Clamped; NaN (an infinite side) to cell 0.
+    const auto index =
+      static_cast<std::uint32_t>(cell >= 0.0 ? std::min(cell, static_cast<double>(Cells - 1)) : 0.0);
     code |= Spread(index) << a;
   }
   return code;
@@ -195,14 +197,12 @@ void OrderTriangles(MeshNumbering& numbering, std::int64_t numberOfTriangles, co
     const std::int64_t* t = ids + 3 * f;
     return std::min({ rank[t[0]], rank[t[1]], rank[t[2]] });
   };
-  // Slots within a chunk fit 32 bits: a chunk holds fewer than 2^31 triangles.
-  const std::int64_t maxChunk = std::numeric_limits<std::int32_t>::max();
-  const int chunks = static_cast<int>(std::max<std::int64_t>(threads, (nt + maxChunk - 1) / maxChunk));
+  // A few chunks: each holds a count per point.
+  const int chunks = std::min(threads, 4);
   auto chunkBegin = [&](std::int64_t chunk) {
     return nt / chunks * chunk + std::min<std::int64_t>(chunk, nt % chunks);
   };
-  std::vector<std::int32_t, UninitialisedAllocator<std::int32_t>> slots(
-    static_cast<size_t>(chunks) * static_cast<size_t>(np));
+  IdVector slots(static_cast<size_t>(chunks) * static_cast<size_t>(np));
   IdVector start(static_cast<size_t>(np) + 1);
   numbering.triangles.resize(static_cast<size_t>(nt));
 #pragma omp parallel num_threads(threads)
@@ -210,7 +210,7 @@ void OrderTriangles(MeshNumbering& numbering, std::int64_t numberOfTriangles, co
 #pragma omp for schedule(static)
     for (int chunk = 0; chunk < chunks; ++chunk)
     {
-      std::int32_t* count = slots.data() + static_cast<size_t>(chunk) * static_cast<size_t>(np);
+      std::int64_t* count = slots.data() + static_cast<size_t>(chunk) * static_cast<size_t>(np);
       std::fill(count, count + np, 0);
       for (std::int64_t f = chunkBegin(chunk); f < chunkBegin(chunk + 1); ++f)
       {
@@ -224,9 +224,9 @@ void OrderTriangles(MeshNumbering& numbering, std::int64_t numberOfTriangles, co
       std::int64_t total = 0;
       for (int chunk = 0; chunk < chunks; ++chunk)
       {
-        std::int32_t& slot = slots[static_cast<size_t>(chunk) * static_cast<size_t>(np) + static_cast<size_t>(p)];
-        const std::int32_t mine = slot;
-        slot = static_cast<std::int32_t>(total);
+        std::int64_t& slot = slots[static_cast<size_t>(chunk) * static_cast<size_t>(np) + static_cast<size_t>(p)];
+        const std::int64_t mine = slot;
+        slot = total;
         total += mine;
       }
       start[static_cast<size_t>(p) + 1] = total;
@@ -242,7 +242,7 @@ void OrderTriangles(MeshNumbering& numbering, std::int64_t numberOfTriangles, co
 #pragma omp for schedule(static)
     for (int chunk = 0; chunk < chunks; ++chunk)
     {
-      std::int32_t* slot = slots.data() + static_cast<size_t>(chunk) * static_cast<size_t>(np);
+      std::int64_t* slot = slots.data() + static_cast<size_t>(chunk) * static_cast<size_t>(np);
       for (std::int64_t f = chunkBegin(chunk); f < chunkBegin(chunk + 1); ++f)
       {
         const std::int64_t k = key(f);

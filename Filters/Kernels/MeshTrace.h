@@ -67,10 +67,6 @@ struct Hinge
   {
     return Combine(Dot(v, this->edge), this->edge, Dot(v, this->outOfFirst), this->intoSecond);
   }
-  Vec3 FoldBack(const Vec3& v) const
-  {
-    return Combine(Dot(v, this->edge), this->edge, Dot(v, this->intoSecond), this->outOfFirst);
-  }
 };
 
 /**
@@ -348,11 +344,11 @@ private:
       SurfacePoint across = q;
       const int third = this->Enter(across, corner, g);
       const Vec3 next = this->VelocityOf(g);
-      // Out of f and into g, across the edge, per unit of height: both > 0 when
-      // the trace leaves f and the next flow leaves the edge.
+      // The speeds out of f and into g across the edge, times |E| / 2: both > 0
+      // when the trace leaves f and the next flow leaves the edge.
       const double outOfFirst = this->Mesh.Area(f) * -rates[corner];
       const double intoSecond = this->Mesh.Area(g) * Dot(Load(this->Mesh.HatGradient(g, third)), next);
-      // L^2 <FoldBack(next), v>: the paper's direction test, in the unfolded frame.
+      // |E|^2 <next folded back into f's plane, v>: the paper's direction test, in the unfolded frame.
       if (Dot(next, edge) * Dot(v, edge) + 4.0 * outOfFirst * intoSecond <= 0.0)
       {
         break; // the flow reverses

@@ -1026,8 +1026,11 @@ TEST(PolyDataShockAdvectionFilter, ScalingAndTranslatingMeshAndValuesChangeNothi
 
 TEST(PolyDataShockAdvectionFilter, ThreadCountDoesNotChangeTheResult)
 {
-  // An irregular mesh (a sphere with an uneven point distribution) and a 3-channel signal.
-  auto mesh = Sphere();
+  // An irregular mesh (a sphere with an uneven point distribution) and a 3-channel
+  // signal, large enough that every step (numbering, connectivity, flow, advection)
+  // gets a second thread (shock::ThreadsForWork).
+  auto mesh = Sphere(200);
+  ASSERT_GT(mesh->GetNumberOfPoints(), 2 * 16384); // 2 x shock::MinimumWorkPerThread
   for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
   {
     double x[3];

@@ -6,6 +6,7 @@
 // TestScreenedPoissonFit); here the VTK class is exercised as users run it.
 #include "vtkPolyDataShockSharpenFilter.h"
 
+#include "ShockTypes.h"
 #include "TestFilterHelpers.h"
 #include "TestMeshesVTK.h"
 
@@ -488,7 +489,9 @@ TEST(PolyDataShockSharpenFilter, ScalingAndTranslatingTheMeshTransformsTheResult
 
 TEST(PolyDataShockSharpenFilter, ThreadCountDoesNotChangeTheResult)
 {
-  auto box = RoundedCube(16);
+  // Large enough that every step gets a second thread (shock::ThreadsForWork).
+  auto box = RoundedCube(80);
+  ASSERT_GT(box->GetNumberOfPoints(), 2 * shock::MinimumWorkPerThread);
   for (int solver : { Filter::CONJUGATE_GRADIENT, Filter::EXACT })
   {
     auto one = Sharpen(box, 512.0, [solver](Filter* f) {

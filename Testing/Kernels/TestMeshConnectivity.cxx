@@ -10,8 +10,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -423,4 +425,46 @@ TEST(MeshOrder, CoincidentPointsAreTheFirstWithTheSameCoordinates)
       EXPECT_EQ(shock::CoincidentPoints(numbering, points->data(), threads), expected) << threads;
     }
   }
+}
+
+TEST(MeshOrder, LargeMeshesGiveTheSameOrdersOnOneAndTwoThreads)
+{
+  // Above the work size at which ThreadsForWork gives a second thread, so that the
+  // parallel counting sort and the parallel search of copies really run on two.
+  MeshData m = shocktest::WithDuplicatePoints(shocktest::Icosphere(6));
+  const std::int64_t np = m.NumberOfPoints();
+  const std::int64_t nt = m.NumberOfTriangles();
+  ASSERT_GT(std::min(np, nt), 2 * shock::MinimumWorkPerThread);
+  ASSERT_EQ(shock::ThreadsForWork(2, np), 2);
+  const shock::MeshNumbering one = shock::LocalityNumbering(np, m.points.data(), nt, m.triangles.data(), 1);
+  const shock::MeshNumbering two = shock::LocalityNumbering(np, m.points.data(), nt, m.triangles.data(), 2);
+  EXPECT_TRUE(std::equal(one.points.begin(), one.points.end(), two.points.begin(), two.points.end()));
+  EXPECT_TRUE(std::equal(one.rank.begin(), one.rank.end(), two.rank.begin(), two.rank.end()));
+  EXPECT_TRUE(std::equal(one.triangles.begin(), one.triangles.end(), two.triangles.begin(), two.triangles.end()));
+  // The triangle order against a sort by (first corner, index).
+  std::vector<std::pair<std::int64_t, std::int64_t>> byCorner;
+  for (std::int64_t f = 0; f < nt; ++f)
+  {
+    const std::int64_t* t = &m.triangles[static_cast<size_t>(3 * f)];
+    byCorner.push_back({ std::min({ one.rank[static_cast<size_t>(t[0])], one.rank[static_cast<size_t>(t[1])],
+                           one.rank[static_cast<size_t>(t[2])] }),
+      f });
+  }
+  std::sort(byCorner.begin(), byCorner.end());
+  for (std::int64_t f = 0; f < nt; ++f)
+  {
+    ASSERT_EQ(two.triangles[static_cast<size_t>(f)], byCorner[static_cast<size_t>(f)].second) << f;
+  }
+  // The copies against the first index of each coordinate triple.
+  std::map<std::array<double, 3>, std::int64_t> first;
+  std::vector<std::int64_t> expected(static_cast<size_t>(np));
+  for (std::int64_t p = 0; p < np; ++p)
+  {
+    const std::array<double, 3> x{ m.points[static_cast<size_t>(3 * p)], m.points[static_cast<size_t>(3 * p + 1)],
+      m.points[static_cast<size_t>(3 * p + 2)] };
+    expected[static_cast<size_t>(p)] = first.emplace(x, p).first->second;
+  }
+  EXPECT_LT(first.size(), static_cast<size_t>(np)); // there are copies
+  EXPECT_EQ(shock::CoincidentPoints(one, m.points.data(), 1), expected);
+  EXPECT_EQ(shock::CoincidentPoints(two, m.points.data(), 2), expected);
 }
