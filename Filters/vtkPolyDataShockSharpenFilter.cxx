@@ -422,7 +422,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   shock::SharpeningReport report;
   shock::MeshFlowFields fields;
   if (!this->Sharpen(prepared.mesh, piece.controller ? &distribution.partition : nullptr,
-        distribution.meanEdgeLength, positions, normals, report, fields))
+        distribution.meanEdgeLength, !prepared.pointOrder.empty(), positions, normals, report, fields))
   {
     return 0;
   }
@@ -444,8 +444,9 @@ int vtkPolyDataShockSharpenFilter::RequestData(
 }
 
 bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
-  const shock::MeshPartition* partition, double meanEdgeLength, std::vector<double>& positions,
-  std::vector<double>& normals, shock::SharpeningReport& report, shock::MeshFlowFields& fields)
+  const shock::MeshPartition* partition, double meanEdgeLength, bool localNumbering,
+  std::vector<double>& positions, std::vector<double>& normals, shock::SharpeningReport& report,
+  shock::MeshFlowFields& fields)
 {
   shock::SharpeningParameters parameters;
   parameters.advection = vtkShockFilterInternals::MakeParameters(this);
@@ -459,6 +460,7 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   parameters.fit.maxIterations = this->SolverIterations;
   parameters.fit.tolerance = this->SolverTolerance;
   parameters.fit.partition = partition;
+  parameters.fit.rowsInMeshOrder = localNumbering; // renumbered for locality: no row order of its own
   shock::Status status;
   if (mesh.NumberOfPoints() == 0)
   {

@@ -292,8 +292,8 @@ protected:
 
   /// Run the kernels (a piece of a distributed mesh with `partition`); false after vtkErrorMacro.
   bool Sharpen(const shock::TriangleMesh& mesh, const shock::MeshPartition* partition,
-    double meanEdgeLength, std::vector<double>& positions, std::vector<double>& normals,
-    shock::SharpeningReport& report, shock::MeshFlowFields& fields);
+    double meanEdgeLength, bool localNumbering, std::vector<double>& positions,
+    std::vector<double>& normals, shock::SharpeningReport& report, shock::MeshFlowFields& fields);
 
   /// The prepared mesh of `input` in the length unit `unit` (MeshUnit), kept between
   /// executions (the kernels' cache goes with it); renumbered for locality unless

@@ -141,7 +141,7 @@ struct Targets
  */
 Status BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
   const MeshPartition* partition, int threads, const Targets& targets, FitSystem& system,
-  Coordinates& b);
+  Coordinates& b, bool rowsInMeshOrder = false);
 
 /**
  * Solve A x = b for the three coordinates with the chosen solver, from

@@ -359,28 +359,28 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
 }
 Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
   const MeshPartition* partition, int threads, const fit::Targets* targets, FitSystem& system,
-  Coordinates& b);
+  Coordinates& b, bool rowsInMeshOrder);
 } // namespace
 
 Status BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
-  const MeshPartition* partition, int threads, FitSystem& system)
+  const MeshPartition* partition, int threads, FitSystem& system, bool rowsInMeshOrder)
 {
   Coordinates none;
-  return BuildSystem(mesh, screeningWeight, partition, threads, nullptr, system, none);
+  return BuildSystem(mesh, screeningWeight, partition, threads, nullptr, system, none, rowsInMeshOrder);
 }
 
 Status fit::BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
   const MeshPartition* partition, int threads, const Targets& targets, FitSystem& system,
-  Coordinates& b)
+  Coordinates& b, bool rowsInMeshOrder)
 {
-  return BuildSystem(mesh, screeningWeight, partition, threads, &targets, system, b);
+  return BuildSystem(mesh, screeningWeight, partition, threads, &targets, system, b, rowsInMeshOrder);
 }
 
 namespace
 {
 Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
   const MeshPartition* partition, int threads, const fit::Targets* targets, FitSystem& system,
-  Coordinates& b)
+  Coordinates& b, bool rowsInMeshOrder)
 {
   system.Clear();
   if (!(std::isfinite(screeningWeight) && screeningWeight > 0.0))
@@ -389,7 +389,7 @@ Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
   }
   auto data = std::make_shared<FitSystemData>();
   const std::int64_t np = mesh.NumberOfPoints();
-  if (partition)
+  if (partition || rowsInMeshOrder)
   {
     data->frame = UnitAreaFrame(mesh, partition, threads);
     IdentityOrder(np, *data);
@@ -435,6 +435,7 @@ Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
   system.points = mesh.NumberOfPoints();
   system.triangles = mesh.NumberOfTriangles();
   system.screeningWeight = screeningWeight;
+  system.rowsInMeshOrder = rowsInMeshOrder;
   return {};
 }
 } // namespace

@@ -12,7 +12,9 @@
  * one-rings (a renumbering that keeps each row's neighbours close in memory:
  * meshes made by subdivision number new points far from their neighbours, and
  * the conjugate gradients' products then wait on memory), except for a piece
- * of a distributed mesh, whose rows are its points.
+ * of a distributed mesh, whose rows are its points, and a mesh whose numbering
+ * is already local (rowsInMeshOrder: renumbered by LocalityNumbering), whose
+ * rows are its points too.
  */
 #ifndef ShockFitSystem_h
 #define ShockFitSystem_h
@@ -37,12 +39,14 @@ struct FitSystem
   std::int64_t points = 0;                   ///< that mesh's size when built
   std::int64_t triangles = 0;
   double screeningWeight = 0.0;
+  bool rowsInMeshOrder = false;
 
-  /// Built for `mesh` (the same object, unchanged since: the caller's promise) and eps.
-  bool Matches(const TriangleMesh& target, double eps) const
+  /// Built for `mesh` (the same object, unchanged since: the caller's promise), eps and row order.
+  bool Matches(const TriangleMesh& target, double eps, bool meshOrder = false) const
   {
     return this->data && this->mesh == &target && this->points == target.NumberOfPoints() &&
-      this->triangles == target.NumberOfTriangles() && this->screeningWeight == eps;
+      this->triangles == target.NumberOfTriangles() && this->screeningWeight == eps &&
+      this->rowsInMeshOrder == meshOrder;
   }
   void Clear() { *this = FitSystem(); }
 };
@@ -54,7 +58,7 @@ struct FitSystem
  * points' numbering. A mesh without area gives an empty system (data null).
  */
 Status BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
-  const MeshPartition* partition, int threads, FitSystem& system);
+  const MeshPartition* partition, int threads, FitSystem& system, bool rowsInMeshOrder = false);
 
 } // namespace shock
 

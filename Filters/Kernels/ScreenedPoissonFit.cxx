@@ -264,12 +264,12 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
   FitSystem own;
   FitSystem& system = cache && !partition ? *cache : own;
   // (Built anew, the system comes with the right-hand sides, in the same pass.)
-  out.reusedSystem = system.Matches(mesh, parameters.screeningWeight);
+  out.reusedSystem = system.Matches(mesh, parameters.screeningWeight, parameters.rowsInMeshOrder);
   Coordinates b;
   if (!out.reusedSystem)
   {
     status = fit::BuildFitSystem(mesh, parameters.screeningWeight, partition, threads,
-      { targetNormals, parameters.target }, system, b);
+      { targetNormals, parameters.target }, system, b, parameters.rowsInMeshOrder);
   }
   if (!status.Ok() || !system.data)
   {

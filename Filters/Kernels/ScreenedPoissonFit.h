@@ -130,6 +130,14 @@ struct FitParameters
   /// owned points' positions are fitted; the others (ghosts) are set from their owners
   /// where the piece needs them. Not for FitSolver::Exact.
   const MeshPartition* partition = nullptr;
+  /**
+   * Whether the mesh's numbering already keeps neighbours near in memory (a mesh
+   * renumbered by LocalityNumbering, as the surface filters do): the system's
+   * rows then follow the points' numbering instead of a breadth-first
+   * renumbering of their own (FitSystem.h). The solution is the same up to the
+   * rounding of sums taken in another order.
+   */
+  bool rowsInMeshOrder = false;
 };
 
 /// What a fit did. The residual is that of the normalised system (unit area).
@@ -174,7 +182,7 @@ void FitTargetGradients(const TriangleMesh& mesh, std::int64_t f, const double n
  *                      not alias targetNormals. Never contains NaN or infinity.
  * @param parameters    see FitParameters.
  * @param report        optional: iterations, residual, timings, counters.
- * @param system        optional: the system of this mesh and screening weight
+ * @param system        optional: the system of this mesh, screening weight and row order
  *                      (FitSystem.h), reused when it matches and (re)built into
  *                      it otherwise; not used for a piece (parameters.partition).
  *                      The caller clears it when the mesh changes.
