@@ -538,7 +538,10 @@ std::vector<double> PreparedMesh::ToMeshPoints(std::vector<double> values, int c
     for (std::int64_t i = begin; i < end; ++i)
     {
       const size_t from = static_cast<size_t>(this->pointOrder[static_cast<size_t>(i)]) * C;
-      std::copy(&values[from], &values[from] + C, &mesh[static_cast<size_t>(i) * C]);
+      for (size_t c = 0; c < C; ++c)
+      {
+        mesh[static_cast<size_t>(i) * C + c] = values[from + c];
+      }
     }
   });
   return mesh;
@@ -561,7 +564,10 @@ std::vector<double> PreparedMesh::FromMeshPoints(std::vector<double> values, int
     for (std::int64_t i = begin; i < end; ++i)
     {
       const size_t to = static_cast<size_t>(this->pointOrder[static_cast<size_t>(i)]) * C;
-      std::copy(&values[static_cast<size_t>(i) * C], &values[static_cast<size_t>(i) * C] + C, &input[to]);
+      for (size_t c = 0; c < C; ++c)
+      {
+        input[to + c] = values[static_cast<size_t>(i) * C + c];
+      }
     }
   });
   return input;

@@ -219,7 +219,14 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
     ThreadsForWork(p.numberOfThreads, std::max(mesh.NumberOfPoints(), mesh.NumberOfTriangles())) };
   const std::int64_t count = (run.CellSignal() ? run.Triangles() : run.Points()) * run.C;
   const double* input = signal.values;
-  std::copy(input, input + count, output);
+  // The output is the input unless an advection pass writes it whole (below).
+  auto keepTheInput = [&] {
+#pragma omp parallel for num_threads(run.threads) schedule(static)
+    for (std::int64_t i = 0; i < count; ++i)
+    {
+      output[i] = input[i];
+    }
+  };
   if (fields)
   {
     fields->potential.assign(static_cast<size_t>(run.Points()), 0.0);
@@ -228,6 +235,7 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
   const auto setupStart = Clock::now();
   if (!Prepare(run))
   {
+    keepTheInput();
     return {};
   }
   report.flowSeconds += SecondsSince(setupStart);
@@ -298,11 +306,11 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
     }
   }
 
-  if (report.aborted)
+  if (report.aborted || !advect)
   {
-    std::copy(input, input + count, output);
+    keepTheInput();
   }
-  else if (p.flowMode != FlowMode::Fixed && advect)
+  else if (p.flowMode != FlowMode::Fixed)
   {
     std::copy(steps.current.begin(), steps.current.end(), output);
   }
