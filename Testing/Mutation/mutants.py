@@ -216,6 +216,15 @@ MUTANTS = [
          original="const bool join = q > p && sharing == 2;",
          replacement="const bool join = q > p && sharing >= 2;",
          bug="an edge of three or more triangles joins two of them"),
+    # --- mesh numbering ------------------------------------------------------------
+    dict(id="mesh-order-chunks-reversed", file=K + "MeshOrder.cxx",
+         original="      for (int chunk = 0; chunk < chunks; ++chunk)\n      {\n        std::int64_t& slot",
+         replacement="      for (int chunk = chunks - 1; chunk >= 0; --chunk)\n      {\n        std::int64_t& slot",
+         bug="the parallel counting sort of triangles puts later chunks first (order depends on threads)"),
+    dict(id="mesh-order-copies-adjacent-only", file=K + "MeshOrder.cxx",
+         original="        for (std::int64_t k = i; k < j; ++k)",
+         replacement="        for (std::int64_t k = std::max(i, j - 1); k < j; ++k)",
+         bug="coincident points are searched only next to each other in the Morton order"),
     # --- screened Poisson fit ----------------------------------------------------
     dict(id="fit-lumped-mass", file=K + "FitSystem.cxx",
          original="entry(t[c]) += mass + system.beta * area * Dot(gp, Load(mesh.HatGradient(f, c)));",
