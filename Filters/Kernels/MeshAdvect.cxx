@@ -193,7 +193,10 @@ bool AdvectFaces(
       SurfacePoint local = FaceStart(f);
       SurfacePoint& q = positions ? (*positions)[static_cast<size_t>(f)] : local;
       steps += pass.Trace(q, cut);
-      std::fill(acc, acc + C, 0.0);
+      for (int c = 0; c < C; ++c)
+      {
+        acc[c] = 0.0;
+      }
       if (!SampleSurface(mesh, q, pass.sampling, source, acc))
       {
         std::copy(own, own + C, acc);
@@ -218,7 +221,10 @@ bool AdvectVertices(
     }
     double* acc = out + p * C;
     const double* own = source.points + p * C;
-    std::fill(acc, acc + C, 0.0);
+    for (int c = 0; c < C; ++c)
+    {
+      acc[c] = 0.0; // a loop: std::fill of C values (C known at run time) would call memset
+    }
     int samples = 0;
     if (source.validPoint[static_cast<size_t>(p)])
     {

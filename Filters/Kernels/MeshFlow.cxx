@@ -10,15 +10,44 @@ ValueVector UmbrellaWeights(const TriangleMesh& mesh, double length, int threads
 {
   const CompressedLists& ring = mesh.OneRing();
   const double l = length;
+  const std::int64_t np = mesh.NumberOfPoints();
   ValueVector weights(ring.items.size()); // every entry written below
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t p = 0; p < mesh.NumberOfPoints(); ++p)
+  auto weight = [&](std::int64_t p, std::int64_t q) {
+    const Vec3 d = Combine(1.0, Load(mesh.Point(p)), -1.0, Load(mesh.Point(q)));
+    return std::exp(-Dot(d, d) / (l * l));
+  };
+  // An edge's weight once, from its lower end; the upper end finds the same
+  // value in the lower end's (sorted) ring: x_p - x_q = -(x_q - x_p) exactly,
+  // so the weight is the same number either way.
+#pragma omp parallel num_threads(threads)
   {
-    const Vec3 x = Load(mesh.Point(p));
-    for (std::int64_t k = ring.Begin(p); k < ring.End(p); ++k)
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < np; ++p)
     {
-      const Vec3 d = Combine(1.0, x, -1.0, Load(mesh.Point(ring.items[static_cast<size_t>(k)])));
-      weights[static_cast<size_t>(k)] = std::exp(-Dot(d, d) / (l * l));
+      for (std::int64_t k = ring.Begin(p); k < ring.End(p); ++k)
+      {
+        const std::int64_t q = ring.items[static_cast<size_t>(k)];
+        if (q > p)
+        {
+          weights[static_cast<size_t>(k)] = weight(p, q);
+        }
+      }
+    }
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < np; ++p)
+    {
+      for (std::int64_t k = ring.Begin(p); k < ring.End(p); ++k)
+      {
+        const std::int64_t q = ring.items[static_cast<size_t>(k)];
+        if (q < p)
+        {
+          const auto first = ring.items.begin() + ring.Begin(q);
+          const auto last = ring.items.begin() + ring.End(q);
+          const auto at = std::lower_bound(first, last, p);
+          weights[static_cast<size_t>(k)] =
+            at != last && *at == p ? weights[static_cast<size_t>(at - ring.items.begin())] : weight(p, q);
+        }
+      }
     }
   }
   return weights;
@@ -37,7 +66,10 @@ void UmbrellaSmooth(const TriangleMesh& mesh, const ValueVector& weights,
     {
       double* out = &smoothed[static_cast<size_t>(p * C)];
       const double* self = &values[static_cast<size_t>(p * C)];
-      std::copy(self, self + C, out);
+      for (int c = 0; c < C; ++c)
+      {
+        out[c] = self[c]; // a loop: a copy of C values (C known at run time) would call memmove
+      }
       if (!validPoint[static_cast<size_t>(p)])
       {
         continue;

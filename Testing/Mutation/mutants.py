@@ -178,7 +178,7 @@ MUTANTS = [
          replacement="q.barycentric[k] = (t[k] == p ? 1.0 : 0.0);",
          bug="vertex advection traces from the vertex itself, no offset into the face"),
     dict(id="mesh-advect-vertices-no-reset", file=K + "MeshAdvect.cxx",
-         original="    const double* own = source.points + p * C;\n    std::fill(acc, acc + C, 0.0);",
+         original="    const double* own = source.points + p * C;\n    for (int c = 0; c < C; ++c)\n    {\n      acc[c] = 0.0; // a loop: std::fill of C values (C known at run time) would call memset\n    }",
          replacement="    const double* own = source.points + p * C;",
          bug="vertex advection accumulates onto the output's old content"),
     dict(id="mesh-advect-faces-from-corner", file=K + "MeshAdvect.cxx",
