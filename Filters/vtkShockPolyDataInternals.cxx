@@ -521,56 +521,47 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
   return true;
 }
 
-std::vector<double> PreparedMesh::ToMeshPoints(std::vector<double> values, int components, int threads) const
+namespace
 {
-  if (this->pointOrder.empty())
+/// `values` (C per point) moved between the input's numbering and the mesh's `order` (new -> old).
+std::vector<double> Renumbered(const shock::IdVector& order, std::vector<double> values,
+  int components, int threads, bool toMesh, const char* caller)
+{
+  if (order.empty())
   {
     return values;
   }
-  if (values.size() != this->pointOrder.size() * static_cast<size_t>(components))
+  if (values.size() != order.size() * static_cast<size_t>(components))
   {
-    throw std::invalid_argument("PreparedMesh::ToMeshPoints: not one tuple per point of the mesh");
+    throw std::invalid_argument(std::string("PreparedMesh::") + caller + ": not one tuple per point of the mesh");
   }
-  std::vector<double> mesh(values.size());
-  const auto n = static_cast<std::int64_t>(this->pointOrder.size());
+  std::vector<double> moved(values.size());
+  const auto n = static_cast<std::int64_t>(order.size());
   const size_t C = static_cast<size_t>(components);
   shock::ParallelFor(n, shock::ThreadsForWork(threads, n), [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i)
     {
-      const size_t from = static_cast<size_t>(this->pointOrder[static_cast<size_t>(i)]) * C;
+      const size_t mesh = static_cast<size_t>(i) * C;
+      const size_t input = static_cast<size_t>(order[static_cast<size_t>(i)]) * C;
       for (size_t c = 0; c < C; ++c)
       {
-        mesh[static_cast<size_t>(i) * C + c] = values[from + c];
+        // A loop: a copy of C values (C known at run time) would call memmove.
+        moved[(toMesh ? mesh : input) + c] = values[(toMesh ? input : mesh) + c];
       }
     }
   });
-  return mesh;
+  return moved;
+}
+}
+
+std::vector<double> PreparedMesh::ToMeshPoints(std::vector<double> values, int components, int threads) const
+{
+  return Renumbered(this->pointOrder, std::move(values), components, threads, true, "ToMeshPoints");
 }
 
 std::vector<double> PreparedMesh::FromMeshPoints(std::vector<double> values, int components, int threads) const
 {
-  if (this->pointOrder.empty())
-  {
-    return values;
-  }
-  if (values.size() != this->pointOrder.size() * static_cast<size_t>(components))
-  {
-    throw std::invalid_argument("PreparedMesh::FromMeshPoints: not one tuple per point of the mesh");
-  }
-  std::vector<double> input(values.size());
-  const auto n = static_cast<std::int64_t>(this->pointOrder.size());
-  const size_t C = static_cast<size_t>(components);
-  shock::ParallelFor(n, shock::ThreadsForWork(threads, n), [&](std::int64_t begin, std::int64_t end) {
-    for (std::int64_t i = begin; i < end; ++i)
-    {
-      const size_t to = static_cast<size_t>(this->pointOrder[static_cast<size_t>(i)]) * C;
-      for (size_t c = 0; c < C; ++c)
-      {
-        input[to + c] = values[static_cast<size_t>(i) * C + c];
-      }
-    }
-  });
-  return input;
+  return Renumbered(this->pointOrder, std::move(values), components, threads, false, "FromMeshPoints");
 }
 
 namespace

@@ -68,6 +68,31 @@ inline bool UpdateSucceeds(vtkAlgorithm* algorithm)
   return algorithm->GetExecutive()->Update() != 0;
 }
 
+/// Every array of `from` into `to`, tuple k of each taken from tuple order[k]; active attributes kept.
+inline void CopyTuples(vtkDataSetAttributes* from, const std::vector<vtkIdType>& order, vtkDataSetAttributes* to)
+{
+  for (int a = 0; a < from->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* source = from->GetArray(a);
+    vtkSmartPointer<vtkDataArray> copy = vtk::TakeSmartPointer(source->NewInstance());
+    copy->SetName(source->GetName());
+    copy->SetNumberOfComponents(source->GetNumberOfComponents());
+    copy->SetNumberOfTuples(static_cast<vtkIdType>(order.size()));
+    for (size_t k = 0; k < order.size(); ++k)
+    {
+      copy->SetTuple(static_cast<vtkIdType>(k), order[k], source);
+    }
+    to->AddArray(copy);
+    for (int kind = 0; kind < vtkDataSetAttributes::NUM_ATTRIBUTES; ++kind)
+    {
+      if (source == from->GetAttribute(kind))
+      {
+        to->SetActiveAttribute(source->GetName(), kind);
+      }
+    }
+  }
+}
+
 /// `mesh` with its points and cells renumbered: new point j is old point points[j], new cell k old cell cells[k].
 inline vtkSmartPointer<vtkPolyData> Renumbered(vtkPolyData* mesh, const std::vector<vtkIdType>& points,
   const std::vector<vtkIdType>& cells)
@@ -99,46 +124,8 @@ inline vtkSmartPointer<vtkPolyData> Renumbered(vtkPolyData* mesh, const std::vec
     polys->InsertNextCell(ids);
   }
   out->SetPolys(polys);
-  for (int a = 0; a < mesh->GetPointData()->GetNumberOfArrays(); ++a)
-  {
-    vtkDataArray* from = mesh->GetPointData()->GetArray(a);
-    vtkSmartPointer<vtkDataArray> to = vtk::TakeSmartPointer(from->NewInstance());
-    to->SetName(from->GetName());
-    to->SetNumberOfComponents(from->GetNumberOfComponents());
-    to->SetNumberOfTuples(static_cast<vtkIdType>(points.size()));
-    for (size_t j = 0; j < points.size(); ++j)
-    {
-      to->SetTuple(static_cast<vtkIdType>(j), points[j], from);
-    }
-    out->GetPointData()->AddArray(to);
-    for (int kind = 0; kind < vtkDataSetAttributes::NUM_ATTRIBUTES; ++kind)
-    {
-      if (from == mesh->GetPointData()->GetAttribute(kind))
-      {
-        out->GetPointData()->SetActiveAttribute(from->GetName(), kind);
-      }
-    }
-  }
-  for (int a = 0; a < mesh->GetCellData()->GetNumberOfArrays(); ++a)
-  {
-    vtkDataArray* from = mesh->GetCellData()->GetArray(a);
-    vtkSmartPointer<vtkDataArray> to = vtk::TakeSmartPointer(from->NewInstance());
-    to->SetName(from->GetName());
-    to->SetNumberOfComponents(from->GetNumberOfComponents());
-    to->SetNumberOfTuples(static_cast<vtkIdType>(cells.size()));
-    for (size_t k = 0; k < cells.size(); ++k)
-    {
-      to->SetTuple(static_cast<vtkIdType>(k), cells[k], from);
-    }
-    out->GetCellData()->AddArray(to);
-    for (int kind = 0; kind < vtkDataSetAttributes::NUM_ATTRIBUTES; ++kind)
-    {
-      if (from == mesh->GetCellData()->GetAttribute(kind))
-      {
-        out->GetCellData()->SetActiveAttribute(from->GetName(), kind);
-      }
-    }
-  }
+  CopyTuples(mesh->GetPointData(), points, out->GetPointData());
+  CopyTuples(mesh->GetCellData(), cells, out->GetCellData());
   return out;
 }
 

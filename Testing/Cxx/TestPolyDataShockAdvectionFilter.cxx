@@ -1024,13 +1024,10 @@ TEST(PolyDataShockAdvectionFilter, ScalingAndTranslatingMeshAndValuesChangeNothi
   EXPECT_EQ(intensityOff, 0u) << "max difference " << MaxAbsDifference(intensity, reference);
 }
 
-TEST(PolyDataShockAdvectionFilter, ThreadCountDoesNotChangeTheResult)
+/// A sphere with an uneven point distribution and a 3-channel signal "Rgb" (active scalars).
+vtkSmartPointer<vtkPolyData> UnevenRgbSphere(int resolution)
 {
-  // An irregular mesh (a sphere with an uneven point distribution) and a 3-channel
-  // signal, large enough that every step (numbering, connectivity, flow, advection)
-  // gets a second thread (shock::ThreadsForWork).
-  auto mesh = Sphere(200);
-  ASSERT_GT(mesh->GetNumberOfPoints(), 2 * 16384); // 2 x shock::MinimumWorkPerThread
+  auto mesh = Sphere(resolution);
   for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
   {
     double x[3];
@@ -1040,6 +1037,16 @@ TEST(PolyDataShockAdvectionFilter, ThreadCountDoesNotChangeTheResult)
   }
   mesh->GetPointData()->SetScalars(PointArray(mesh, "Rgb",
     [](const double x[3], int c) { return c == 1 ? 1.0 - BlurredStep(x) : BlurredStep(x) * (c + 1) + x[0]; }, 3));
+  return mesh;
+}
+
+TEST(PolyDataShockAdvectionFilter, ThreadCountDoesNotChangeTheResult)
+{
+  // An irregular mesh (a sphere with an uneven point distribution) and a 3-channel
+  // signal, large enough that every step (numbering, connectivity, flow, advection)
+  // gets a second thread (shock::ThreadsForWork).
+  auto mesh = UnevenRgbSphere(200);
+  ASSERT_GT(mesh->GetNumberOfPoints(), 2 * 16384); // 2 x shock::MinimumWorkPerThread
   auto threads = [](int n) {
     return [n](Filter* f) {
       f->SetNumberOfThreads(n);
@@ -1068,16 +1075,7 @@ TEST(PolyDataShockAdvectionFilter, TheInputsNumberingChangesNothing)
   // The filter renumbers the mesh internally for speed (points along a Morton
   // curve) and maps its results back: any numbering of the same mesh gives the
   // same results, point for point and cell for cell, flow arrays included.
-  auto mesh = Sphere(40);
-  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
-  {
-    double x[3];
-    mesh->GetPoint(p, x);
-    const double f = 1.0 + 0.05 * std::sin(37.0 * x[0] + 11.0 * x[1] * x[2]);
-    mesh->GetPoints()->SetPoint(p, f * x[0], f * x[1], f * x[2]);
-  }
-  mesh->GetPointData()->SetScalars(PointArray(mesh, "Rgb",
-    [](const double x[3], int c) { return c == 1 ? 1.0 - BlurredStep(x) : BlurredStep(x) * (c + 1) + x[0]; }, 3));
+  auto mesh = UnevenRgbSphere(40);
   mesh->GetCellData()->AddArray(CellArray(mesh, "Shade", [](const double x[3], int) { return BlurredStep(x); }));
   // Two numberings: reversed, and shuffled.
   std::vector<vtkIdType> reversed(static_cast<size_t>(mesh->GetNumberOfPoints()));

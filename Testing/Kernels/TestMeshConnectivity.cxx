@@ -307,6 +307,20 @@ std::uint64_t MortonByDefinition(const double* x, const double low[3], const dou
   }
   return code;
 }
+/// (smallest corner's rank, index) of every triangle, sorted: the expected triangle order.
+std::vector<std::pair<std::int64_t, std::int64_t>> ByFirstCorner(const MeshData& m, const shock::IdVector& rank)
+{
+  std::vector<std::pair<std::int64_t, std::int64_t>> byCorner;
+  for (std::int64_t f = 0; f < m.NumberOfTriangles(); ++f)
+  {
+    const std::int64_t* t = &m.triangles[static_cast<size_t>(3 * f)];
+    byCorner.push_back({ std::min({ rank[static_cast<size_t>(t[0])], rank[static_cast<size_t>(t[1])],
+                           rank[static_cast<size_t>(t[2])] }),
+      f });
+  }
+  std::sort(byCorner.begin(), byCorner.end());
+  return byCorner;
+}
 }
 
 TEST(MeshOrder, PointsFollowTheMortonCurveAndTrianglesTheirFirstCorner)
@@ -358,15 +372,7 @@ TEST(MeshOrder, PointsFollowTheMortonCurveAndTrianglesTheirFirstCorner)
       ASSERT_EQ(one.rank[static_cast<size_t>(one.points[static_cast<size_t>(i)])], i);
     }
     const std::int64_t nt = m.NumberOfTriangles();
-    std::vector<std::pair<std::int64_t, std::int64_t>> byCorner;
-    for (std::int64_t f = 0; f < nt; ++f)
-    {
-      const std::int64_t* t = &m.triangles[static_cast<size_t>(3 * f)];
-      byCorner.push_back({ std::min({ one.rank[static_cast<size_t>(t[0])], one.rank[static_cast<size_t>(t[1])],
-                             one.rank[static_cast<size_t>(t[2])] }),
-        f });
-    }
-    std::sort(byCorner.begin(), byCorner.end());
+    const auto byCorner = ByFirstCorner(m, one.rank);
     ASSERT_EQ(one.triangles.size(), static_cast<size_t>(nt));
     for (std::int64_t f = 0; f < nt; ++f)
     {
@@ -442,15 +448,7 @@ TEST(MeshOrder, LargeMeshesGiveTheSameOrdersOnOneAndTwoThreads)
   EXPECT_TRUE(std::equal(one.rank.begin(), one.rank.end(), two.rank.begin(), two.rank.end()));
   EXPECT_TRUE(std::equal(one.triangles.begin(), one.triangles.end(), two.triangles.begin(), two.triangles.end()));
   // The triangle order against a sort by (first corner, index).
-  std::vector<std::pair<std::int64_t, std::int64_t>> byCorner;
-  for (std::int64_t f = 0; f < nt; ++f)
-  {
-    const std::int64_t* t = &m.triangles[static_cast<size_t>(3 * f)];
-    byCorner.push_back({ std::min({ one.rank[static_cast<size_t>(t[0])], one.rank[static_cast<size_t>(t[1])],
-                           one.rank[static_cast<size_t>(t[2])] }),
-      f });
-  }
-  std::sort(byCorner.begin(), byCorner.end());
+  const auto byCorner = ByFirstCorner(m, one.rank);
   for (std::int64_t f = 0; f < nt; ++f)
   {
     ASSERT_EQ(two.triangles[static_cast<size_t>(f)], byCorner[static_cast<size_t>(f)].second) << f;

@@ -433,48 +433,38 @@ TEST(MeshSteps, TraceSlidesAlongAnEdgeBothTrianglesPushInto)
   SmallMesh m = Hinge();
   m.Build();
   const V3 into = Mul(1.0 / Norm3({ -0.3, 0.0, 1.0 }), { -0.3, 0.0, 1.0 }); // in B, away from the edge
-  const double w = 1.0 / 1.3;
-  const double speed = (1.0 - w) * 1.0 + w * 0.8;
-  for (const double sense : { 1.0, -1.0 })
-  {
-    const V3 vB = Add(Mul(-0.3, into), { 0.0, 0.8 * sense, 0.0 });
+  // Trace from the centre of A, (-1/3, 1, 0), with A's flow (1, sense, 0) and B's
+  // flow `across` along `into` plus `along` along the edge (y): at the edge after 1/3.
+  auto trace = [&](double sense, double across, double along, double t) {
+    const V3 vB = Add(Mul(across, into), { 0.0, along, 0.0 });
     std::vector<double> velocity = { 1.0, sense, 0.0, vB[0], vB[1], vB[2] };
     AdvectionParameters p;
     p.tracing = Tracing::FaceCrossing;
     SurfacePoint q;
-    q.triangle = 0; // the centre of A, (-1/3, 1, 0): at the edge after 1/3, at y = 1 + sense / 3
-    const double t = 0.6;
+    q.triangle = 0;
     TraceOnMesh(m.mesh, velocity.data(), q, t, p);
-    const V3 x = Position(m, q);
+    return q;
+  };
+  const double w = 1.0 / 1.3;
+  const double speed = (1.0 - w) * 1.0 + w * 0.8;
+  const double t = 0.6;
+  for (const double sense : { 1.0, -1.0 })
+  {
+    const V3 x = Position(m, trace(sense, -0.3, 0.8 * sense, t));
     EXPECT_NEAR(x[0], 0.0, 1e-12) << sense;
     EXPECT_NEAR(x[1], 1.0 + sense / 3.0 + sense * speed * (t - 1.0 / 3.0), 1e-12) << sense;
     EXPECT_NEAR(x[2], 0.0, 1e-12) << sense;
   }
   // B's unfolded flow (-0.3, 0.2) makes an obtuse angle with A's (1, 1)
   // (-0.3 + 0.2 < 0): the flow reverses, the trace stops where it meets the edge.
-  {
-    const V3 vB = Add(Mul(-0.3, into), { 0.0, 0.2, 0.0 });
-    std::vector<double> velocity = { 1.0, 1.0, 0.0, vB[0], vB[1], vB[2] };
-    AdvectionParameters p;
-    p.tracing = Tracing::FaceCrossing;
-    SurfacePoint q;
-    q.triangle = 0;
-    TraceOnMesh(m.mesh, velocity.data(), q, 0.6, p);
-    const V3 x = Position(m, q);
-    EXPECT_NEAR(x[0], 0.0, 1e-12);
-    EXPECT_NEAR(x[1], 4.0 / 3.0, 1e-12);
-  }
+  const V3 stop = Position(m, trace(1.0, -0.3, 0.2, t));
+  EXPECT_NEAR(stop[0], 0.0, 1e-12);
+  EXPECT_NEAR(stop[1], 4.0 / 3.0, 1e-12);
   // Where B's unfolded flow leaves the edge (+0.3 instead of -0.3) the trace enters B.
-  const V3 vB = Add(Mul(0.3, into), { 0.0, 0.8, 0.0 });
-  std::vector<double> velocity = { 1.0, 1.0, 0.0, vB[0], vB[1], vB[2] };
-  AdvectionParameters p;
-  p.tracing = Tracing::FaceCrossing;
-  SurfacePoint q;
-  q.triangle = 0;
-  TraceOnMesh(m.mesh, velocity.data(), q, 0.6, p);
-  EXPECT_EQ(q.triangle, 1);
-  const V3 expected = Add({ 0.0, 4.0 / 3.0, 0.0 }, Mul(0.6 - 1.0 / 3.0, vB));
-  const V3 x = Position(m, q);
+  const SurfacePoint entered = trace(1.0, 0.3, 0.8, t);
+  EXPECT_EQ(entered.triangle, 1);
+  const V3 expected = Add({ 0.0, 4.0 / 3.0, 0.0 }, Mul(t - 1.0 / 3.0, Add(Mul(0.3, into), { 0.0, 0.8, 0.0 })));
+  const V3 x = Position(m, entered);
   for (int k = 0; k < 3; ++k)
     EXPECT_NEAR(x[k], expected[k], 1e-12);
 }
