@@ -35,52 +35,6 @@
 
 namespace
 {
-/**
- * For each point, the first point with exactly the same coordinates (itself when
- * unique). Coincident copies then share one vertex of the mesh. Coordinates must be finite.
- */
-std::vector<std::int64_t> CoincidentRepresentatives(const shock::ValueVector& points, int threads)
-{
-  const std::int64_t n = static_cast<std::int64_t>(points.size() / 3);
-  std::vector<std::int64_t> order(static_cast<size_t>(n));
-  std::iota(order.begin(), order.end(), 0);
-  auto key = [&points](std::int64_t p) {
-    return std::array<double, 3>{ points[3 * p], points[3 * p + 1], points[3 * p + 2] };
-  };
-  // Sorting by (coordinates, id) puts every group of copies together, lowest id first.
-  // A strict total order (finite coordinates, distinct ids): the sorted order is
-  // unique, so the pieces sorted in parallel and merged give exactly it.
-  auto less = [&key](std::int64_t a, std::int64_t b) {
-    const auto ka = key(a), kb = key(b);
-    return ka != kb ? ka < kb : a < b;
-  };
-  const int pieces = static_cast<int>(std::min<std::int64_t>(
-    std::min(8, shock::ResolveThreadCount(threads)), std::max<std::int64_t>(1, n / 65536)));
-  auto begin = [n, pieces](int i) { return n / pieces * i + std::min<std::int64_t>(i, n % pieces); };
-  shock::ParallelFor(pieces, pieces, [&](std::int64_t first, std::int64_t last) {
-    for (std::int64_t i = first; i < last; ++i)
-    {
-      std::sort(order.begin() + begin(static_cast<int>(i)), order.begin() + begin(static_cast<int>(i) + 1), less);
-    }
-  });
-  for (int width = 1; width < pieces; width *= 2)
-  {
-    for (int i = 0; i + width < pieces; i += 2 * width)
-    {
-      std::inplace_merge(order.begin() + begin(i), order.begin() + begin(i + width),
-        order.begin() + begin(std::min(pieces, i + 2 * width)), less);
-    }
-  }
-  std::vector<std::int64_t> representative(static_cast<size_t>(n));
-  for (size_t k = 0; k < order.size(); ++k)
-  {
-    const bool sameAsPrevious = k > 0 && key(order[k]) == key(order[k - 1]);
-    representative[static_cast<size_t>(order[k])] =
-      sameAsPrevious ? representative[static_cast<size_t>(order[k - 1])] : order[k];
-  }
-  return representative;
-}
-
 /// True when the quad's two fan triangles (0,1,2) and (0,2,3) have the same orientation.
 bool ConvexQuad(vtkPoints* points, const vtkIdType* ids)
 {
@@ -483,16 +437,16 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
     }
   }
   const auto numberOfPoints = static_cast<std::int64_t>(out.triangles.points.size() / 3);
+  // The Morton order serves the renumbering and the search for coincident
+  // points (copies share its cells), whether or not the mesh is renumbered.
   shock::MeshNumbering numbering;
-  if (localityOrder)
+  if (localityOrder || mergeCoincidentPoints)
   {
     numbering = shock::MortonOrder(numberOfPoints, points.data(), threads);
   }
   if (mergeCoincidentPoints)
   {
-    // Along the Morton order coincident points are neighbours: no sort of their own.
-    out.representative = localityOrder ? shock::CoincidentPoints(numbering, points.data(), threads)
-                                       : CoincidentRepresentatives(points, threads);
+    out.representative = shock::CoincidentPoints(numbering, points.data(), threads);
     shock::IdVector& ids = out.triangles.triangles;
     const auto count = static_cast<std::int64_t>(ids.size());
     shock::ParallelFor(count, shock::ThreadsForWork(threads, count), [&](std::int64_t begin, std::int64_t end) {

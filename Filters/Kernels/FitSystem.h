@@ -39,7 +39,7 @@ struct FitSystem
   std::int64_t points = 0;                   ///< that mesh's size when built
   std::int64_t triangles = 0;
   double screeningWeight = 0.0;
-  bool rowsInMeshOrder = false;
+  bool rowsInMeshOrder = false; ///< rows in the mesh's numbering (FitParameters::rowsInMeshOrder), not breadth-first
 
   /// Built for `mesh` (the same object, unchanged since: the caller's promise), eps and row order.
   bool Matches(const TriangleMesh& target, double eps, bool meshOrder = false) const

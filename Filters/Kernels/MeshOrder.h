@@ -60,7 +60,8 @@ void OrderTriangles(MeshNumbering& numbering, std::int64_t numberOfTriangles, co
 
 /**
  * MortonOrder then OrderTriangles. Deterministic: no result of this file
- * depends on the number of threads.
+ * depends on `threads` (OpenMP threads of every function here; 0 = all cores,
+ * fewer for small inputs).
  */
 MeshNumbering LocalityNumbering(std::int64_t numberOfPoints, const double* points,
   std::int64_t numberOfTriangles, const std::int64_t* ids, int threads);
