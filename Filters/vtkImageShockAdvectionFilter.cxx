@@ -255,11 +255,12 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDa
     shock::AdvectionReport report;
     shock::AdvectionParameters parameters = vtkShockFilterInternals::MakeParameters(this);
     parameters.hierarchyLevels = this->HierarchyLevels;
-    status = signal.floats
-      ? shock::AdvectGridSignal(
-          grid, components, signal.floats, output, parameters, &report, fields, progress)
-      : shock::AdvectGridSignal(
-          grid, components, signal.doubles, output, parameters, &report, fields, progress);
+    const auto advect = [&](const auto* values) {
+      return shock::AdvectGridSignal(
+        grid, components, values, output, parameters, &report, fields, progress);
+    };
+    status = signal.floats ? advect(signal.floats)
+                           : (signal.bytes ? advect(signal.bytes) : advect(signal.doubles));
     if (status.Ok())
     {
       this->RecordRun(
@@ -280,8 +281,16 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDa
     // The PDE works on double buffers.
     if (!signal.doubles)
     {
-      signal.doubleCopy = shock::AllocateLargeArray<double>(array->GetNumberOfValues());
-      std::copy(signal.floats, signal.floats + array->GetNumberOfValues(), signal.doubleCopy.get());
+      const vtkIdType count = array->GetNumberOfValues();
+      signal.doubleCopy = shock::AllocateLargeArray<double>(count);
+      if (signal.floats)
+      {
+        std::copy(signal.floats, signal.floats + count, signal.doubleCopy.get());
+      }
+      else
+      {
+        std::copy(signal.bytes, signal.bytes + count, signal.doubleCopy.get());
+      }
       signal.doubles = signal.doubleCopy.get();
     }
     const shock::LargeArray<double> solved =

@@ -224,6 +224,11 @@ KernelSignal SignalForKernel(vtkDataArray* array, int threads)
     signal.doubles = doubles->GetPointer(0);
     return signal;
   }
+  if (auto* bytes = vtkAOSDataArrayTemplate<unsigned char>::FastDownCast(array))
+  {
+    signal.bytes = bytes->GetPointer(0);
+    return signal;
+  }
   const vtkIdType count = array->GetNumberOfValues();
   CopyTo worker;
   switch (array->GetDataType())

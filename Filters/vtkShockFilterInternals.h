@@ -48,15 +48,16 @@ vtkSmartPointer<vtkDataArray> FromDoubles(
   vtkDataArray* prototype, const double* values, int threads);
 
 /**
- * The values a grid kernel reads, as float or double (exactly one pointer is
- * set): the array's own storage when it is a contiguous float or double array
- * (no copy), else a copy converted on `threads` threads: float for the 8- and
- * 16-bit integer types (exact), double for the others.
+ * The values a grid kernel reads, as float, double or unsigned 8-bit (exactly
+ * one pointer is set): the array's own storage when it is a contiguous array of
+ * one of these types (no copy), else a copy converted on `threads` threads:
+ * float for the other 8- and 16-bit integer types (exact), double for the others.
  */
 struct KernelSignal
 {
   const float* floats = nullptr;
   const double* doubles = nullptr;
+  const unsigned char* bytes = nullptr;
   shock::LargeArray<float> floatCopy;
   shock::LargeArray<double> doubleCopy;
 };

@@ -48,7 +48,7 @@ void SmoothBlockAllValid(int C, const T* in, double scale, double* out,
   const std::array<std::int64_t, N>& offset, const std::array<double, N>& weight)
 {
   const std::int64_t count = length * C;
-  std::copy(in, in + count, out); // T to double is exact (T is float or double)
+  std::copy(in, in + count, out); // T to double is exact (T is float, double or 8-bit)
   for (std::int64_t v = rowStart ? C : 0; v < count; ++v)
   {
     out[v] += alphaX * in[v - C];
@@ -189,7 +189,7 @@ void SmoothPass(const Lattice<D>& L, int C, const T* in, double scale, double* o
 /**
  * `passes` smoothing passes (SmoothPass) of scale x in, into out; passes = 0 gives
  * the scaled copy. `scratch`, of the size of out, is used when passes >= 2.
- * `in` is float or double; the passes compute in double.
+ * `in` is float, double or 8-bit; the passes compute in double.
  */
 template <int D, typename T>
 void UmbrellaSmooth(const Lattice<D>& L, int C, const T* in, double scale, double* out,
@@ -419,7 +419,7 @@ public:
   /// Face layers per slab (>= 1); a test hook: the flow does not depend on it.
   void SetSlabFaces(std::int64_t faces) { this->SlabFaces = std::max<std::int64_t>(faces, 1); }
 
-  /// Compute the flow of `signal` (float or double), intensities divided by `range`.
+  /// Compute the flow of `signal` (float, double or 8-bit), intensities divided by `range`.
   template <typename T>
   void Compute(const T* signal, double range)
   {

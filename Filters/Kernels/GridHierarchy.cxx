@@ -249,17 +249,20 @@ bool TraceThroughCoarseLevels(const std::vector<GridShape>& shapes, int C, const
   return true;
 }
 
-// The instantiations the grid kernel uses: 1 to 3 axes, float or double signals.
+// The instantiations the grid kernel uses: 1 to 3 axes, float, double or 8-bit signals.
 #define SHOCK_TRACE_THROUGH_COARSE_LEVELS(D, T)                                                    \
   template bool TraceThroughCoarseLevels<D, T>(const std::vector<GridShape>&, int, const T*, double, \
     const unsigned char*, const AdvectionParameters&, double, float*, AdvectionReport&,             \
     const ProgressFunction&, double);
 SHOCK_TRACE_THROUGH_COARSE_LEVELS(1, float)
 SHOCK_TRACE_THROUGH_COARSE_LEVELS(1, double)
+SHOCK_TRACE_THROUGH_COARSE_LEVELS(1, unsigned char)
 SHOCK_TRACE_THROUGH_COARSE_LEVELS(2, float)
 SHOCK_TRACE_THROUGH_COARSE_LEVELS(2, double)
+SHOCK_TRACE_THROUGH_COARSE_LEVELS(2, unsigned char)
 SHOCK_TRACE_THROUGH_COARSE_LEVELS(3, float)
 SHOCK_TRACE_THROUGH_COARSE_LEVELS(3, double)
+SHOCK_TRACE_THROUGH_COARSE_LEVELS(3, unsigned char)
 #undef SHOCK_TRACE_THROUGH_COARSE_LEVELS
 
 } // namespace grid

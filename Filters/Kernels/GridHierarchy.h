@@ -54,7 +54,7 @@ std::vector<GridShape> PyramidShapes(const GridShape& fine, int requested);
  * through the levels shapes.size() - 1 down to 1, for flow time `time` (input
  * units) each. Only the finest level samples (AdvectVertices from the positions). `signal` is
  * the signal whose flow is wanted, `range` its intensity scale, `validSample`
- * null when every sample is finite; T is float or double. Returns false when
+ * null when every sample is finite; T is float, double or 8-bit. Returns false when
  * `progress` asks to stop.
  */
 template <int D, typename T>

@@ -126,7 +126,7 @@ void WriteSignal(std::int64_t numSamples, int C, const T* values, const SampleWr
 }
 
 /**
- * The grid run on a signal stored as T (float or double). The updates before the
+ * The grid run on a signal stored as T (float, double or 8-bit). The updates before the
  * last (Composed and Naive flows) keep their results in double buffers; the
  * last update hands its results to `output`.
  */
@@ -311,6 +311,13 @@ Status AdvectGridSignal(const GridShape& shape, int components, const float* inp
 }
 
 Status AdvectGridSignal(const GridShape& shape, int components, const double* input,
+  const SampleWriter& output, const AdvectionParameters& parameters, AdvectionReport* report,
+  GridFlowFields* fields, const ProgressFunction& progress)
+{
+  return AdvectGrid(shape, components, input, output, parameters, report, fields, progress);
+}
+
+Status AdvectGridSignal(const GridShape& shape, int components, const unsigned char* input,
   const SampleWriter& output, const AdvectionParameters& parameters, AdvectionReport* report,
   GridFlowFields* fields, const ProgressFunction& progress)
 {

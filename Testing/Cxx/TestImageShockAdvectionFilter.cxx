@@ -222,8 +222,8 @@ TEST(ImageShockAdvectionFilter, EveryNumericTypeKeepsItsTypeAndMatchesDouble)
 
 TEST(ImageShockAdvectionFilter, EveryStorageIsReadAndWrittenAsTheKernelComputesIt)
 {
-  // The filter reads float and double arrays in place and other types through
-  // a copy, and writes the results straight into an array of the input's type:
+  // The filter reads float, double and unsigned char arrays in place and other
+  // types through a copy, and writes the results straight into an array of the input's type:
   // for every storage and flow mode, the output is the kernel's double result on
   // the same values, rounded and clamped for integers, and the input is untouched.
   std::vector<vtkSmartPointer<vtkDataArray>> arrays = { vtkSmartPointer<vtkUnsignedCharArray>::New(),

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <random>
 
 namespace
 {
@@ -375,6 +376,52 @@ TEST(GridShockAdvection, ResultDoesNotDependOnTheThreadCount)
         p.numberOfThreads = threads;
         EXPECT_EQ(Filter(shape, 3, input, p), serial);
       }
+    }
+  }
+}
+
+// 8-bit samples are read in place (no float copy): every path of the kernel
+// that reads the signal (flow, short and general sampling roads, stored
+// positions, coarse levels) must give exactly the result of the float copy.
+TEST(GridShockAdvection, EightBitSamplesGiveTheResultOfTheirFloatCopy)
+{
+  for (const GridShape& shape : { Grid(67, 45), Grid(13, 11, 9), Grid(23, 1) })
+  {
+    const int C = 3;
+    std::mt19937 random(11);
+    std::uniform_int_distribution<int> byte(0, 255);
+    const auto smooth = Bumps(shape, C);
+    std::vector<unsigned char> bytes(smooth.size());
+    for (size_t k = 0; k < bytes.size(); ++k)
+    {
+      // Bumps in [0, 1] to [0, 250], with noise so that some samples are 0 or 255.
+      bytes[k] = static_cast<unsigned char>(
+        std::clamp(static_cast<int>(250.0 * smooth[k]) + byte(random) % 11 - 5, 0, 255));
+    }
+    const std::vector<float> floats(bytes.begin(), bytes.end());
+    for (int variant = 0; variant < 5; ++variant)
+    {
+      AdvectionParameters p = WithTime(200.0);
+      p.flowMode = variant == 1 ? FlowMode::Composed : (variant == 2 ? FlowMode::Naive : FlowMode::Fixed);
+      p.flowUpdates = 3;
+      p.sampling = variant == 3 ? Sampling::Nearest : Sampling::Linear;
+      p.hierarchyLevels = variant == 4 ? 2 : 1;
+      std::vector<double> fromBytes(bytes.size()), fromFloats(bytes.size());
+      const auto into = [C](std::vector<double>& out) {
+        return [&out, C](std::int64_t first, std::int64_t count, const double* values) {
+          std::copy(values, values + count * C, out.begin() + first * C);
+        };
+      };
+      ASSERT_TRUE(AdvectGridSignal(shape, C, bytes.data(), into(fromBytes), p).Ok());
+      ASSERT_TRUE(AdvectGridSignal(shape, C, floats.data(), into(fromFloats), p).Ok());
+      EXPECT_EQ(fromBytes, fromFloats) << "variant " << variant;
+      // Not the identity.
+      double change = 0.0;
+      for (size_t k = 0; k < bytes.size(); ++k)
+      {
+        change = std::max(change, std::abs(fromBytes[k] - bytes[k]));
+      }
+      EXPECT_GT(change, 10.0) << "variant " << variant;
     }
   }
 }
