@@ -261,8 +261,8 @@ private:
       const double sy = std::abs(vy);
       const double cx = static_cast<double>(c[0]);
       const double cy = static_cast<double>(c[1]);
-      const double dx = std::max(vx > 0.0 ? cx + 1.0 - x : x - cx, 0.0);
-      const double dy = std::max(vy > 0.0 ? cy + 1.0 - y : y - cy, 0.0);
+      const double dx = std::max((cx + static_cast<double>(vx > 0.0) - x) * std::copysign(1.0, vx), 0.0);
+      const double dy = std::max((cy + static_cast<double>(vy > 0.0) - y) * std::copysign(1.0, vy), 0.0);
       const int axis = (vx == 0.0 || dy * sx < dx * sy) ? 1 : 0;
       const double distance = axis ? dy : dx;
       const double speed = axis ? sy : sx;
