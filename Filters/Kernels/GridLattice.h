@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace shock
@@ -216,6 +217,21 @@ struct SignalRange
 template <typename T>
 SignalRange ScanSignal(std::int64_t numSamples, int components, const T* values, int threads)
 {
+  if constexpr (std::is_integral_v<T>)
+  {
+    // Integers are finite: the range alone, in T (a loop that vectorises).
+    const std::int64_t count = numSamples * components;
+    T lowest = std::numeric_limits<T>::max();
+    T highest = std::numeric_limits<T>::lowest();
+#pragma omp parallel for simd schedule(static) num_threads(threads) \
+  reduction(min : lowest) reduction(max : highest)
+    for (std::int64_t v = 0; v < count; ++v)
+    {
+      lowest = std::min(lowest, values[v]);
+      highest = std::max(highest, values[v]);
+    }
+    return { static_cast<double>(lowest), static_cast<double>(highest), true };
+  }
   double low = std::numeric_limits<double>::infinity();
   double high = -low;
   bool allFinite = true;
