@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace
@@ -708,17 +709,21 @@ namespace
 {
 /**
  * AdvectVertices on the D axes of grid g, with random face velocities (a mix
- * of traces that stay in their faces and of traces that cross several), on
- * `signal` (C components per sample). Checked sample by sample:
+ * of traces that stay in their faces and of traces that cross several; a share
+ * `slow` of the faces slow, the others up to `fast`), on `signal` (C components per sample). Checked
+ * sample by sample:
  * - interior samples (the short road) bit for bit against the reads of the
- *   former formulation: the far reads as a Stencil applied per component,
- *   then the neighbourhood (the order of the sums is part of the contract:
- *   results stay byte-identical);
+ *   former formulation: when the road tries traces within their faces first,
+ *   the far reads as a Stencil applied per component, then the neighbourhood;
+ *   otherwise the reads of all traces as one Stencil (the order of the sums is
+ *   part of the contract: results stay byte-identical);
  * - every sample, to rounding, against the general per-trace path.
- * Both kinds of trace occur on the interior samples.
+ * Both kinds of trace occur on the interior samples. `withinFirst`: the road
+ * the slow share must select.
  */
 template <int D>
-std::vector<double> AdvectRandom(const RefGrid& g, int C, const std::vector<double>& signal)
+std::vector<double> AdvectRandom(const RefGrid& g, int C, const std::vector<double>& signal,
+  double slow, double fast, bool withinFirst)
 {
   const Lattice<D> L(g.Shape());
   const std::vector<double> direction = Random(L.numFaces * D, 82, -1.0, 1.0);
@@ -727,13 +732,14 @@ std::vector<double> AdvectRandom(const RefGrid& g, int C, const std::vector<doub
   for (std::int64_t f = 0; f < L.numFaces; ++f)
     for (int d = 0; d < D; ++d) // a third of the faces slow: their traces stay
       velocity[f * D + d] =
-        static_cast<float>(direction[f * D + d] * (size[f] < 0.33 ? 0.0004 : 1.5 * size[f]));
+        static_cast<float>(direction[f * D + d] * (size[f] < slow ? 0.0004 : fast * size[f]));
   AdvectionParameters p;
   const GridTracer<D> tracer(L, velocity.data(), p);
   AdvectionReport report;
   const ProgressFunction none;
   const AdvectionContext<D> ctx{ L, C, 1, Sampling::Linear, nullptr, none, report };
   const double t = 1.0;
+  EXPECT_EQ(TriesWithinFaceFirst<D>(L, tracer, t), withinFirst) << "share of slow faces " << slow;
   std::vector<double> out(signal.size());
   EXPECT_TRUE(AdvectVertices<D>(ctx, tracer, t, signal.data(), Into(out, C), nullptr, 0.0, 1.0));
   constexpr int Corners = Lattice<D>::Corners;
@@ -764,12 +770,14 @@ std::vector<double> AdvectRandom(const RefGrid& g, int C, const std::vector<doub
     for (int b = 0; b < Corners; ++b)
     {
       const std::int64_t f = faces.Face(index[0], b);
-      if (TraceWithinFace<D>(tracer.Velocity(f), b, t, weights))
+      double unused[Neighbourhood<D>::Size] = {};
+      const bool stays = TraceWithinFace<D>(tracer.Velocity(f), b, t, withinFirst ? weights : unused);
+      stay += stays ? 1 : 0;
+      leave += stays ? 0 : 1;
+      if (stays && withinFirst)
       {
-        ++stay;
         continue;
       }
-      ++leave;
       std::array<double, D> q;
       std::array<std::int64_t, D> cell;
       StartInFace<D>(index, b, q, cell);
@@ -800,7 +808,7 @@ std::vector<double> AdvectRandom(const RefGrid& g, int C, const std::vector<doub
 /// of `together` (AdvectRandom of all C); returns the largest change.
 template <int D>
 double EachComponentAlone(const RefGrid& g, int C, const std::vector<double>& signal,
-  const std::vector<double>& together)
+  const std::vector<double>& together, double slow, double fast, bool withinFirst)
 {
   double moved = 0.0;
   for (int c = 0; c < C; ++c)
@@ -808,7 +816,7 @@ double EachComponentAlone(const RefGrid& g, int C, const std::vector<double>& si
     std::vector<double> alone(g.Samples());
     for (int s = 0; s < g.Samples(); ++s)
       alone[s] = signal[s * C + c];
-    const std::vector<double> out = AdvectRandom<D>(g, 1, alone);
+    const std::vector<double> out = AdvectRandom<D>(g, 1, alone, slow, fast, withinFirst);
     for (int s = 0; s < g.Samples(); ++s)
     {
       EXPECT_EQ(out[s], together[s * C + c]) << s << " " << c;
@@ -826,18 +834,29 @@ TEST(GridSteps, EveryComponentIsAdvectedAsIfAlone)
   // each component gives alone and what the former per-component stencil
   // gave, and to rounding the general per-trace path's average; on lines,
   // images and volumes; and the signal moved.
-  const RefGrid line{ { 23, 1, 1 }, { 1.3, 1.0, 1.0 } };
+  const RefGrid line{ { 61, 1, 1 }, { 1.3, 1.0, 1.0 } };
   const RefGrid image{ { 9, 7, 1 }, { 1.0, 1.4, 1.0 } };
   const RefGrid volume{ { 5, 6, 4 }, { 1.0, 0.8, 1.2 } };
-  for (int C : { 1, 2, 3, 4, 5, 6, 7, 9 })
+  // Both roads: many faces slow (traces tried within their faces first), and
+  // few slow, the others fast (lines and images trace everything; volumes still
+  // try first).
+  for (const auto& [slow, fast] : { std::pair{ 0.45, 1.5 }, std::pair{ 0.2, 6.0 } })
   {
-    SCOPED_TRACE(C);
-    const auto lineSignal = Random(line.Samples() * C, 80 + C, -2.0, 3.0);
-    EXPECT_GT(EachComponentAlone<1>(line, C, lineSignal, AdvectRandom<1>(line, C, lineSignal)), 0.1);
-    const auto imageSignal = Random(image.Samples() * C, 81 + C, -2.0, 3.0);
-    EXPECT_GT(EachComponentAlone<2>(image, C, imageSignal, AdvectRandom<2>(image, C, imageSignal)), 0.1);
-    const auto volumeSignal = Random(volume.Samples() * C, 82 + C, -2.0, 3.0);
-    EXPECT_GT(EachComponentAlone<3>(volume, C, volumeSignal, AdvectRandom<3>(volume, C, volumeSignal)), 0.1);
+    for (int C : { 1, 2, 3, 4, 5, 6, 7, 9 })
+    {
+      SCOPED_TRACE(C);
+      SCOPED_TRACE(slow);
+      const bool first = slow > 0.4;
+      const auto lineSignal = Random(line.Samples() * C, 80 + C, -2.0, 3.0);
+      const auto lineOut = AdvectRandom<1>(line, C, lineSignal, slow, fast, first);
+      EXPECT_GT(EachComponentAlone<1>(line, C, lineSignal, lineOut, slow, fast, first), 0.1);
+      const auto imageSignal = Random(image.Samples() * C, 81 + C, -2.0, 3.0);
+      const auto imageOut = AdvectRandom<2>(image, C, imageSignal, slow, fast, first);
+      EXPECT_GT(EachComponentAlone<2>(image, C, imageSignal, imageOut, slow, fast, first), 0.1);
+      const auto volumeSignal = Random(volume.Samples() * C, 82 + C, -2.0, 3.0);
+      const auto volumeOut = AdvectRandom<3>(volume, C, volumeSignal, slow, fast, true);
+      EXPECT_GT(EachComponentAlone<3>(volume, C, volumeSignal, volumeOut, slow, fast, true), 0.1);
+    }
   }
 }
 
