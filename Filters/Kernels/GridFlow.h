@@ -216,17 +216,31 @@ void UmbrellaSmooth(const Lattice<D>& L, int C, const T* in, double scale, doubl
   }
 }
 
-/// Face gradient of channel c: per axis, the mean finite difference over the face's parallel edges.
+/// Offsets, in values, of a face's corners from its lower corner, for C values per sample.
 template <int D>
-std::array<double, D> FaceGradient(
-  const Lattice<D>& L, const double* values, int C, int c, std::int64_t base)
+std::array<std::int64_t, Lattice<D>::Corners> CornerOffsets(const Lattice<D>& L, int C)
+{
+  std::array<std::int64_t, Lattice<D>::Corners> offset;
+  for (int b = 0; b < Lattice<D>::Corners; ++b)
+  {
+    offset[b] = L.corner[b] * C;
+  }
+  return offset;
+}
+
+/// Face gradient of the channel whose value at the face's lower corner is at
+/// `lower`, the other corners at `offset` (CornerOffsets): per axis, the mean
+/// finite difference over the face's parallel edges.
+template <int D>
+SHOCK_ALWAYS_INLINE std::array<double, D> FaceGradientAt(const Lattice<D>& L, const double* lower,
+  const std::array<std::int64_t, Lattice<D>::Corners>& offset)
 {
   constexpr int Corners = Lattice<D>::Corners;
   // Each corner value is read once.
   double corner[Corners];
   for (int b = 0; b < Corners; ++b)
   {
-    corner[b] = values[(base + L.corner[b]) * C + c];
+    corner[b] = lower[offset[b]];
   }
   std::array<double, D> g{};
   for (int d = 0; d < D; ++d)
@@ -244,6 +258,14 @@ std::array<double, D> FaceGradient(
   return g;
 }
 
+/// Face gradient of channel c of the face whose lower corner is sample `base`.
+template <int D>
+std::array<double, D> FaceGradient(
+  const Lattice<D>& L, const double* values, int C, int c, std::int64_t base)
+{
+  return FaceGradientAt<D>(L, values + base * C + c, CornerOffsets<D>(L, C));
+}
+
 /**
  * Section 3.3: |grad I|^2 per face, summed over the C channels (the channels are
  * coupled through one flow); 0 on invalid faces (`validFace` null: all valid).
@@ -253,6 +275,7 @@ void FaceEnergy(const Lattice<D>& L, int C, const double* values, const unsigned
   double* energy, int threads)
 {
   const RowBlocks<D> blocks(L.m);
+  const auto offset = CornerOffsets<D>(L, C);
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::int64_t k = 0; k < blocks.Count(); ++k)
   {
@@ -265,9 +288,10 @@ void FaceEnergy(const Lattice<D>& L, int C, const double* values, const unsigned
       double e = 0.0;
       if (!validFace || validFace[f0 + j])
       {
+        const double* lower = values + (base0 + j) * C;
         for (int channel = 0; channel < C; ++channel)
         {
-          const auto g = FaceGradient<D>(L, values, C, channel, base0 + j);
+          const auto g = FaceGradientAt<D>(L, lower + channel, offset);
           for (int d = 0; d < D; ++d)
           {
             e += g[d] * g[d];
@@ -357,6 +381,7 @@ void BackTraceVelocity(const Lattice<D>& L, const double* potential,
     toIndex[d] = -0.5 / L.h[d];
   }
   const RowBlocks<D> blocks(L.m);
+  const auto offset = CornerOffsets<D>(L, 1);
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::int64_t k = 0; k < blocks.Count(); ++k)
   {
@@ -372,7 +397,7 @@ void BackTraceVelocity(const Lattice<D>& L, const double* potential,
         std::fill(v, v + D, 0.0f);
         continue;
       }
-      const auto g = FaceGradient<D>(L, potential, 1, 0, base0 + j);
+      const auto g = FaceGradientAt<D>(L, potential + base0 + j, offset);
       for (int d = 0; d < D; ++d)
       {
         v[d] = static_cast<float>(g[d] * toIndex[d]);
