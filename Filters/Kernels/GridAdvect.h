@@ -209,6 +209,8 @@ struct Neighbourhood
 {
   static constexpr int Size = D == 1 ? 3 : (D == 2 ? 9 : 27);
   std::array<std::int64_t, Size> valueOffset{}; // offset of entry k's values (C per sample)
+  // Offset of the values of a cell's corner b from its lower corner's.
+  std::array<std::int64_t, Lattice<D>::Corners> cornerOffset{};
 
   /// The start of a trace, offset from the sample towards its face's centre, as a
   /// coordinate in the face: the sample is the face's lower corner (bit 0) or its upper one.
@@ -237,6 +239,10 @@ struct Neighbourhood
         o += (rest % 3 - 1) * L.sampleStride[d];
       }
       this->valueOffset[k] = o * C;
+    }
+    for (int b = 0; b < Lattice<D>::Corners; ++b)
+    {
+      this->cornerOffset[b] = L.corner[b] * C;
     }
   }
 };
@@ -388,11 +394,11 @@ SHOCK_ALWAYS_INLINE void CombineReads(const Lattice<D>& L, const Neighbourhood<D
   {
     // SampleGrid's multilinear read, every corner valid.
     std::array<double, D> frac;
-    const std::int64_t base = LocateCell<D>(L, ends[e], frac);
+    const T* lower = source + LocateCell<D>(L, ends[e], frac) * C + c0;
     for (int b = 0; b < Corners; ++b)
     {
       const double w = CornerWeight<D>(frac, b);
-      const T* value = source + (base + L.corner[b]) * C + c0;
+      const T* value = lower + hood.cornerOffset[b];
       for (int k = 0; k < K; ++k)
       {
         partial[k][(e * Corners + b) % 4] += w * Widen(value[k]);
