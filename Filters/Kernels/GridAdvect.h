@@ -247,6 +247,20 @@ struct Neighbourhood
   }
 };
 
+/// StartInFace with the sample's index coordinates also given as doubles (`at`).
+template <int D>
+SHOCK_ALWAYS_INLINE void StartInFace(const std::array<std::int64_t, D>& i,
+  const std::array<double, D>& at, int b, std::array<double, D>& q, std::array<std::int64_t, D>& c)
+{
+  constexpr double offset[2] = { VertexOffset * 0.5, VertexOffset * -0.5 };
+  for (int d = 0; d < D; ++d)
+  {
+    const int bit = (b >> d) & 1;
+    c[d] = i[d] - bit;
+    q[d] = at[d] + offset[bit];
+  }
+}
+
 /**
  * The start of the trace of sample i into its adjacent face through corner
  * pattern b: offset from the sample towards the face centre (index position q);
@@ -256,12 +270,12 @@ template <int D>
 void StartInFace(const std::array<std::int64_t, D>& i, int b, std::array<double, D>& q,
   std::array<std::int64_t, D>& c)
 {
+  std::array<double, D> at;
   for (int d = 0; d < D; ++d)
   {
-    const int bit = (b >> d) & 1;
-    c[d] = i[d] - bit;
-    q[d] = static_cast<double>(i[d]) + VertexOffset * (0.5 - bit);
+    at[d] = static_cast<double>(i[d]);
   }
+  StartInFace<D>(i, at, b, q, c);
 }
 
 /**
@@ -356,6 +370,20 @@ SHOCK_ALWAYS_INLINE void TraceLeavingFace(const GridTracer<D>& tracer, double ti
 {
   std::array<std::int64_t, D> c;
   StartInFace<D>(i, b, end, c);
+  bool cut = false;
+  steps += static_cast<std::uint64_t>(tracer.Trace(end, c, f, time, cut));
+  truncated += cut ? 1 : 0;
+}
+
+/// TraceLeavingFace for a trace that may stay in its face, the sample's index
+/// coordinates also given as doubles (`at`).
+template <int D>
+SHOCK_ALWAYS_INLINE void TraceFromSample(const GridTracer<D>& tracer, double time,
+  const std::array<std::int64_t, D>& i, const std::array<double, D>& at, int b, std::int64_t f,
+  std::array<double, D>& end, std::uint64_t& steps, std::uint64_t& truncated)
+{
+  std::array<std::int64_t, D> c;
+  StartInFace<D>(i, at, b, end, c);
   bool cut = false;
   steps += static_cast<std::uint64_t>(tracer.Trace(end, c, f, time, cut));
   truncated += cut ? 1 : 0;
@@ -576,8 +604,23 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
         }
         if (interiorRow && i[0] >= 1 && i[0] + 1 < L.n[0])
         {
-          double weights[Hood::Size] = {};
           std::array<double, D> ends[Corners]; // of the traces that leave their faces
+          if (!withinFirst)
+          {
+            // Images at large t: every trace through the tracer, no neighbourhood.
+            std::array<double, D> at;
+            for (int d = 0; d < D; ++d)
+            {
+              at[d] = static_cast<double>(i[d]);
+            }
+            for (int b = 0; b < Corners; ++b)
+            {
+              TraceFromSample<D>(tracer, time, i, at, b, faces.Face(i[0], b), ends[b], steps, truncated);
+            }
+            CombineAllReads<D, T, false>(L, hood, source, s, C, nullptr, ends, Corners, result);
+            continue;
+          }
+          double weights[Hood::Size] = {};
           int far = 0;
           if constexpr (D == 3)
           {
@@ -593,7 +636,7 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
               }
             }
           }
-          else if (withinFirst)
+          else
           {
             // Images at smaller t (measured: the 3D arrangement is slower here).
             for (int b = 0; b < Corners; ++b)
@@ -604,16 +647,6 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
                 TraceLeavingFace<D>(tracer, time, i, b, f, ends[far++], steps, truncated);
               }
             }
-          }
-          else
-          {
-            // Images at large t: every trace through the tracer, no neighbourhood.
-            for (int b = 0; b < Corners; ++b)
-            {
-              TraceLeavingFace<D>(tracer, time, i, b, faces.Face(i[0], b), ends[b], steps, truncated);
-            }
-            CombineAllReads<D, T, false>(L, hood, source, s, C, weights, ends, Corners, result);
-            continue;
           }
           CombineAllReads<D>(L, hood, source, s, C, weights, ends, far, result);
           continue;
