@@ -259,6 +259,10 @@ private:
     {
       const double sx = std::abs(vx);
       const double sy = std::abs(vy);
+      // The reciprocal speeds depend on the velocity alone: computed here, the
+      // divisions run while the position's distances are found.
+      const double rx = 1.0 / sx;
+      const double ry = 1.0 / sy;
       const double cx = static_cast<double>(c[0]);
       const double cy = static_cast<double>(c[1]);
       const double dx = std::max((cx + static_cast<double>(vx > 0.0) - x) * std::copysign(1.0, vx), 0.0);
@@ -272,7 +276,7 @@ private:
         y += vy * t;
         break; // the time is used up in this face
       }
-      const double exitTime = std::min(distance / speed, t);
+      const double exitTime = std::min(distance * (axis ? ry : rx), t);
       x += vx * exitTime;
       y += vy * exitTime;
       t -= exitTime;
