@@ -527,6 +527,72 @@ TEST(GridSteps, TraceStopsWhereTheFlowReversesInThePhysicalMetric)
   EXPECT_NEAR(h.Trace({ 0.5, 0.5 }, 1.0, Tracing::FaceCrossing)[0], 1.5, 1e-7);
 }
 
+TEST(GridSteps, TheImageTracerFollowsTheGeneralTracerOfAFlatVolume)
+{
+  // Images have a tracer of their own (GridTracer<2> crosses faces with its
+  // state in scalars). A volume one face thick, with no velocity across it, is
+  // the same image for the general tracer of GridTracer<3>: on random flows
+  // (zero components, equal speeds, starts on grid lines) both take the same
+  // paths: crossings, slides along valleys, reversals, the grid's boundary,
+  // the stepped rest of a trace pushed onto a corner.
+  const RefGrid image{ { 11, 9, 1 }, { 1.0, 1.7, 1.0 } };
+  const RefGrid volume{ { 11, 9, 2 }, { 1.0, 1.7, 0.8 } };
+  const Lattice<2> L2(image.Shape());
+  const Lattice<3> L3(volume.Shape());
+  ASSERT_EQ(L2.numFaces, L3.numFaces);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<float> v2(static_cast<size_t>(L2.numFaces * 2));
+  std::vector<float> v3(static_cast<size_t>(L3.numFaces * 3));
+  std::int64_t steps = 0, moved = 0, traces = 0, longTraces = 0;
+  for (int flow = 0; flow < 300; ++flow)
+  {
+    for (std::int64_t f = 0; f < L2.numFaces; ++f)
+    {
+      for (int d = 0; d < 2; ++d)
+      {
+        const double r = u(random);
+        const float value = r < 0.25 ? 0.0f : (r < 0.35 ? (r < 0.3 ? 0.5f : -0.5f) : static_cast<float>(2.0 * u(random) - 1.0));
+        v2[f * 2 + d] = value;
+        v3[f * 3 + d] = value;
+      }
+      v3[f * 3 + 2] = 0.0f;
+    }
+    AdvectionParameters p;
+    const GridTracer<2> planar(L2, v2.data(), p);
+    const GridTracer<3> general(L3, v3.data(), p);
+    for (int start = 0; start < 20; ++start)
+    {
+      std::array<double, 2> q2{ 10.0 * u(random), 8.0 * u(random) };
+      q2[0] = u(random) < 0.2 ? std::floor(q2[0]) : q2[0];
+      q2[1] = u(random) < 0.2 ? std::floor(q2[1]) : q2[1];
+      std::array<double, 3> q3{ q2[0], q2[1], 0.5 };
+      const double t = 12.0 * u(random);
+      std::array<std::int64_t, 2> c2;
+      std::array<std::int64_t, 3> c3;
+      const std::int64_t f2 = planar.FaceOf(q2, c2);
+      const std::int64_t f3 = general.FaceOf(q3, c3);
+      ASSERT_EQ(f2, f3);
+      bool cut2 = false, cut3 = false;
+      const std::array<double, 2> from = q2;
+      const std::int64_t n2 = planar.Trace(q2, c2, f2, t, cut2);
+      const std::int64_t n3 = general.Trace(q3, c3, f3, t, cut3);
+      ASSERT_EQ(n2, n3) << "flow " << flow << " start " << start;
+      EXPECT_NEAR(q2[0], q3[0], 1e-9) << "flow " << flow << " start " << start;
+      EXPECT_NEAR(q2[1], q3[1], 1e-9) << "flow " << flow << " start " << start;
+      EXPECT_EQ(q3[2], 0.5);
+      EXPECT_EQ(cut2, cut3);
+      steps += n2;
+      longTraces += n2 >= 3 ? 1 : 0;
+      moved += (q2 != from) ? 1 : 0;
+      ++traces;
+    }
+  }
+  EXPECT_GT(steps, traces); // random flows reverse soon: 1.2 crossings per trace
+  EXPECT_GT(longTraces, traces / 20); // but some cross several faces
+  EXPECT_GT(moved, traces / 2);
+}
+
 TEST(GridSteps, AdvectVerticesAveragesTheTracesFromTheOffsetsIntoTheAdjacentFaces)
 {
   // A uniform back-trace velocity and a linear signal: each trace ends at
