@@ -68,6 +68,10 @@ public:
     {
       return this->TraceFaceCrossingPlanar(q, c, f, t, truncated);
     }
+    else if constexpr (D == 3)
+    {
+      return this->TraceFaceCrossingSpatial(q, c, f, t, truncated);
+    }
     else
     {
       return this->TraceFaceCrossing(q, c, f, t, truncated);
@@ -132,6 +136,7 @@ private:
     return this->Dot(v, v) > 0.0;
   }
 
+public:
   /**
    * Exact tracing: straight to the next face boundary, then into the neighbour.
    * Where both faces of a boundary push towards it (a valley of the potential
@@ -141,6 +146,8 @@ private:
    * Where the trace is pushed onto a grid edge or corner from several faces at
    * once, the exact rule is not unique; the rest of that trace uses the paper's
    * stepping, which zig-zags along the edge (or stops at a sink).
+   * This is the rule for any D; Trace takes the image and volume tracers
+   * written for D = 2 and 3 (the same paths, to rounding: the tests compare).
    */
   std::int64_t TraceFaceCrossing(std::array<double, D>& q, std::array<std::int64_t, D> c,
     std::int64_t f, double t, bool& truncated) const
@@ -230,6 +237,7 @@ private:
     return steps;
   }
 
+private:
   /**
    * TraceFaceCrossing on an image (D = 2), the same rules with the state in
    * scalars. The boundary ahead is found without dividing: with d the distance
@@ -343,6 +351,136 @@ private:
       vy = w[1];
     }
     q = { x, y };
+    this->ClampToGrid(q);
+    return steps;
+  }
+
+  /**
+   * TraceFaceCrossing in a volume (D = 3), the same rules with the position and
+   * velocity in scalars: the time to the boundary ahead along each axis is the
+   * distance to it times the reciprocal speed, computed from the velocity alone
+   * (its division overlaps the position's chain of operations); an axis without
+   * motion, or the one slid along, has an infinite time and is never left.
+   */
+  std::int64_t TraceFaceCrossingSpatial(std::array<double, D>& q, std::array<std::int64_t, D> c,
+    std::int64_t f, double t, bool& truncated) const
+  {
+    static_assert(D == 3, "the spatial tracer is for volumes");
+    constexpr double never = std::numeric_limits<double>::infinity();
+    const double hx = L.h2[0];
+    const double hy = L.h2[1];
+    const double hz = L.h2[2];
+    double vx = this->V[3 * f];
+    double vy = this->V[3 * f + 1];
+    double vz = this->V[3 * f + 2];
+    if (!(hx * vx * vx + hy * vy * vy + hz * vz * vz > 0.0))
+    {
+      return 0;
+    }
+    double x = q[0];
+    double y = q[1];
+    double z = q[2];
+    int pinned = -1; // axis of the boundary the trace slides on; c is the lower face there
+    std::int64_t steps = 0;
+    while (t > 0.0)
+    {
+      const double rx = 1.0 / std::abs(vx);
+      const double ry = 1.0 / std::abs(vy);
+      const double rz = 1.0 / std::abs(vz);
+      const double cx = static_cast<double>(c[0]);
+      const double cy = static_cast<double>(c[1]);
+      const double cz = static_cast<double>(c[2]);
+      const double dx = std::max((cx + static_cast<double>(vx > 0.0) - x) * std::copysign(1.0, vx), 0.0);
+      const double dy = std::max((cy + static_cast<double>(vy > 0.0) - y) * std::copysign(1.0, vy), 0.0);
+      const double dz = std::max((cz + static_cast<double>(vz > 0.0) - z) * std::copysign(1.0, vz), 0.0);
+      const double tx = vx == 0.0 ? never : dx * rx;
+      const double ty = vy == 0.0 ? never : dy * ry;
+      const double tz = vz == 0.0 ? never : dz * rz;
+      // The first boundary reached; on a tie, the lower axis (as the general tracer).
+      int axis = ty < tx ? 1 : 0;
+      double exitTime = std::min(tx, ty);
+      axis = tz < exitTime ? 2 : axis;
+      exitTime = std::min(exitTime, tz);
+      if (!(exitTime < never))
+      {
+        break; // no motion left (a sliding velocity of zero)
+      }
+      if (exitTime >= t)
+      {
+        x += vx * t;
+        y += vy * t;
+        z += vz * t;
+        break; // the time is used up in this face
+      }
+      x += vx * exitTime;
+      y += vy * exitTime;
+      z += vz * exitTime;
+      t -= exitTime;
+      ++steps;
+      const double across = axis == 0 ? vx : (axis == 1 ? vy : vz);
+      const int dir = across > 0.0 ? 1 : -1;
+      const double boundary = static_cast<double>(dir > 0 ? c[axis] + 1 : c[axis]);
+      x = axis == 0 ? boundary : x;
+      y = axis == 1 ? boundary : y;
+      z = axis == 2 ? boundary : z;
+      const std::int64_t next = c[axis] + dir;
+      if (next < 0 || next >= L.m[axis])
+      {
+        break; // grid boundary
+      }
+      if (steps >= this->MaxSteps)
+      {
+        truncated = true;
+        break;
+      }
+      const std::int64_t left = f;
+      c[axis] = next;
+      f += dir * L.faceStride[axis];
+
+      const std::array<double, D> v{ vx, vy, vz };
+      std::array<double, D> w{ this->V[3 * f], this->V[3 * f + 1], this->V[3 * f + 2] };
+      if (pinned < 0)
+      {
+        if (!(hx * w[0] * vx + hy * w[1] * vy + hz * w[2] * vz > 0.0))
+        {
+          break; // the flow reverses: a ridge of the potential
+        }
+        if (w[axis] * dir < 0.0)
+        {
+          // Both faces push towards the boundary just crossed: slide along it.
+          pinned = axis;
+          if (dir > 0)
+          {
+            c[pinned] -= 1;
+            f = left;
+          }
+          if (!this->Sliding(f, pinned, w))
+          {
+            break;
+          }
+        }
+      }
+      else
+      {
+        // Along the boundary slid on (the crossing was along another axis).
+        if (!this->Enter(c, f, left, axis, dir, pinned, v, w))
+        {
+          break; // the flow reverses, or a sliding velocity vanishes
+        }
+        if (w[axis] * dir < 0.0)
+        {
+          // Pushed onto a grid edge or corner.
+          q = { x, y, z };
+          this->ClampToGrid(q);
+          const std::int64_t face = this->FaceOf(q, c);
+          return steps + this->TraceStepped(q, c, face, t, truncated);
+        }
+      }
+      vx = w[0];
+      vy = w[1];
+      vz = w[2];
+    }
+    q = { x, y, z };
     this->ClampToGrid(q);
     return steps;
   }

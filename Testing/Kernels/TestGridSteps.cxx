@@ -527,11 +527,72 @@ TEST(GridSteps, TraceStopsWhereTheFlowReversesInThePhysicalMetric)
   EXPECT_NEAR(h.Trace({ 0.5, 0.5 }, 1.0, Tracing::FaceCrossing)[0], 1.5, 1e-7);
 }
 
+namespace
+{
+/// Traces random starts on random flows of grid g (zero components, equal
+/// speeds, starts on grid lines) with Trace (the tracer written for D) and
+/// with the general TraceFaceCrossing: same steps, same ends to rounding.
+/// Returns the number of traces that crossed three faces or more.
+template <int D>
+int TracersAgree(const RefGrid& g, unsigned seed)
+{
+  const Lattice<D> L(g.Shape());
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<float> v(static_cast<size_t>(L.numFaces * D));
+  int longTraces = 0;
+  for (int flow = 0; flow < 200; ++flow)
+  {
+    for (float& x : v)
+    {
+      const double r = u(random);
+      x = r < 0.25 ? 0.0f : (r < 0.35 ? (r < 0.3 ? 0.5f : -0.5f) : static_cast<float>(2.0 * u(random) - 1.0));
+    }
+    AdvectionParameters p;
+    const GridTracer<D> tracer(L, v.data(), p);
+    for (int start = 0; start < 20; ++start)
+    {
+      std::array<double, D> q;
+      for (int d = 0; d < D; ++d)
+      {
+        q[d] = static_cast<double>(L.m[d]) * u(random);
+        q[d] = u(random) < 0.2 ? std::floor(q[d]) : q[d];
+      }
+      const double t = 12.0 * u(random);
+      std::array<std::int64_t, D> c;
+      const std::int64_t f = tracer.FaceOf(q, c);
+      std::array<double, D> general = q;
+      bool cut = false, generalCut = false;
+      const std::int64_t n = tracer.Trace(q, c, f, t, cut);
+      const std::int64_t generalSteps = tracer.TraceFaceCrossing(general, c, f, t, generalCut);
+      EXPECT_EQ(n, generalSteps) << "flow " << flow << " start " << start;
+      EXPECT_EQ(cut, generalCut);
+      for (int d = 0; d < D; ++d)
+      {
+        EXPECT_NEAR(q[d], general[d], 1e-9) << "flow " << flow << " start " << start << " axis " << d;
+      }
+      longTraces += n >= 3 ? 1 : 0;
+    }
+  }
+  return longTraces;
+}
+} // namespace
+
+TEST(GridSteps, TheImageAndVolumeTracersFollowTheGeneralRule)
+{
+  // Images and volumes have face-crossing tracers of their own (their state in
+  // scalars); on random flows they take the general rule's paths: crossings,
+  // slides along valleys, reversals, the grid's boundary, the stepped rest of
+  // a trace pushed onto an edge or a corner.
+  EXPECT_GT(TracersAgree<2>(RefGrid{ { 11, 9, 1 }, { 1.0, 1.7, 1.0 } }, 5), 100);
+  EXPECT_GT(TracersAgree<3>(RefGrid{ { 7, 6, 5 }, { 1.0, 1.3, 0.8 } }, 6), 100);
+}
+
 TEST(GridSteps, TheImageTracerFollowsTheGeneralTracerOfAFlatVolume)
 {
-  // Images have a tracer of their own (GridTracer<2> crosses faces with its
-  // state in scalars). A volume one face thick, with no velocity across it, is
-  // the same image for the general tracer of GridTracer<3>: on random flows
+  // A volume one face thick, with no velocity across it, is the same image:
+  // the image tracer (GridTracer<2>) and the volume tracer (GridTracer<3>) agree
+  // on it. On random flows
   // (zero components, equal speeds, starts on grid lines) both take the same
   // paths: crossings, slides along valleys, reversals, the grid's boundary,
   // the stepped rest of a trace pushed onto a corner.
