@@ -309,43 +309,16 @@ private:
       f += axis ? dir * row : dir;
 
       const std::array<double, D> v{ vx, vy };
-      std::array<double, D> w{ this->V[2 * f], this->V[2 * f + 1] };
-      if (pinned < 0)
+      std::array<double, D> w;
+      const Entry entry = this->EnterFace(c, f, left, axis, dir, pinned, v, w);
+      if (entry == Entry::Stop)
       {
-        if (!(hx * w[0] * vx + hy * w[1] * vy > 0.0))
-        {
-          break; // the flow reverses: a ridge of the potential
-        }
-        if (w[axis] * dir < 0.0)
-        {
-          // Both faces push towards the boundary just crossed: slide along it.
-          pinned = axis;
-          if (dir > 0)
-          {
-            c[pinned] -= 1;
-            f = left;
-          }
-          if (!this->Sliding(f, pinned, w))
-          {
-            break;
-          }
-        }
+        break;
       }
-      else
+      if (entry == Entry::Corner)
       {
-        // Along the boundary slid on (the crossing was along the other axis).
-        if (!this->Enter(c, f, left, axis, dir, pinned, v, w))
-        {
-          break; // the flow reverses, or a sliding velocity vanishes
-        }
-        if (w[axis] * dir < 0.0)
-        {
-          // Pushed onto a grid corner.
-          q = { x, y };
-          this->ClampToGrid(q);
-          const std::int64_t face = this->FaceOf(q, c);
-          return steps + this->TraceStepped(q, c, face, t, truncated);
-        }
+        q = { x, y };
+        return steps + this->TraceSteppedFrom(q, c, t, truncated);
       }
       vx = w[0];
       vy = w[1];
@@ -438,43 +411,16 @@ private:
       f += dir * L.faceStride[axis];
 
       const std::array<double, D> v{ vx, vy, vz };
-      std::array<double, D> w{ this->V[3 * f], this->V[3 * f + 1], this->V[3 * f + 2] };
-      if (pinned < 0)
+      std::array<double, D> w;
+      const Entry entry = this->EnterFace(c, f, left, axis, dir, pinned, v, w);
+      if (entry == Entry::Stop)
       {
-        if (!(hx * w[0] * vx + hy * w[1] * vy + hz * w[2] * vz > 0.0))
-        {
-          break; // the flow reverses: a ridge of the potential
-        }
-        if (w[axis] * dir < 0.0)
-        {
-          // Both faces push towards the boundary just crossed: slide along it.
-          pinned = axis;
-          if (dir > 0)
-          {
-            c[pinned] -= 1;
-            f = left;
-          }
-          if (!this->Sliding(f, pinned, w))
-          {
-            break;
-          }
-        }
+        break;
       }
-      else
+      if (entry == Entry::Corner)
       {
-        // Along the boundary slid on (the crossing was along another axis).
-        if (!this->Enter(c, f, left, axis, dir, pinned, v, w))
-        {
-          break; // the flow reverses, or a sliding velocity vanishes
-        }
-        if (w[axis] * dir < 0.0)
-        {
-          // Pushed onto a grid edge or corner.
-          q = { x, y, z };
-          this->ClampToGrid(q);
-          const std::int64_t face = this->FaceOf(q, c);
-          return steps + this->TraceStepped(q, c, face, t, truncated);
-        }
+        q = { x, y, z };
+        return steps + this->TraceSteppedFrom(q, c, t, truncated);
       }
       vx = w[0];
       vy = w[1];
@@ -483,6 +429,63 @@ private:
     q = { x, y, z };
     this->ClampToGrid(q);
     return steps;
+  }
+
+  /// What the image and volume tracers do after a crossing.
+  enum class Entry
+  {
+    Go,    ///< on with the velocity w
+    Stop,  ///< the flow reverses, or a sliding velocity vanishes
+    Corner ///< pushed onto a grid edge or corner: the rest of the trace is stepped
+  };
+
+  /**
+   * Enter for the image and volume tracers: the trace has crossed into face f
+   * along `axis` in direction `dir`, with velocity v. Starts sliding where both
+   * faces push into the boundary just crossed; along a boundary slid on, Enter
+   * decides, and a velocity that pushes back across the crossing means a corner.
+   */
+  SHOCK_ALWAYS_INLINE Entry EnterFace(std::array<std::int64_t, D>& c, std::int64_t& f,
+    std::int64_t left, int axis, int dir, int& pinned, const std::array<double, D>& v,
+    std::array<double, D>& w) const
+  {
+    this->Load(f, w);
+    if (pinned < 0)
+    {
+      if (!(this->Dot(w, v) > 0.0))
+      {
+        return Entry::Stop; // the flow reverses: a ridge of the potential
+      }
+      if (w[axis] * dir < 0.0)
+      {
+        // Both faces push towards the boundary just crossed: slide along it.
+        pinned = axis;
+        if (dir > 0)
+        {
+          c[pinned] -= 1;
+          f = left;
+        }
+        if (!this->Sliding(f, pinned, w))
+        {
+          return Entry::Stop;
+        }
+      }
+      return Entry::Go;
+    }
+    if (!this->Enter(c, f, left, axis, dir, pinned, v, w))
+    {
+      return Entry::Stop;
+    }
+    return w[axis] * dir < 0.0 ? Entry::Corner : Entry::Go;
+  }
+
+  /// The stepped rest of a trace at q (clamped to the grid), c its face's coordinates.
+  std::int64_t TraceSteppedFrom(
+    std::array<double, D>& q, std::array<std::int64_t, D>& c, double t, bool& truncated) const
+  {
+    this->ClampToGrid(q);
+    const std::int64_t face = this->FaceOf(q, c);
+    return this->TraceStepped(q, c, face, t, truncated);
   }
 
   /**
