@@ -434,13 +434,23 @@ bool ReadPlyHeader(std::string_view text, PlyHeader& header, std::string& proble
 }
 
 /**
- * Whether vtkPLYReader takes the elements of a header: the vertex element
- * first, with x, y and z values, then optionally the face element with a list
+ * Whether vtkPLYReader takes the elements of a header: every element with
+ * properties, the vertex element first, with x, y and z values, then optionally the face element with a list
  * of integer vertex_indices, and no property declared a list where it reads a
  * value or the other way round. False with a `problem` text otherwise.
  */
 bool CheckPlyLayout(const std::vector<PlyElement>& elements, std::string& problem)
 {
+  // vtkPLY frees an uninitialised pointer when it closes a file with an
+  // element of no properties (found by fuzzing).
+  for (const PlyElement& element : elements)
+  {
+    if (element.properties.empty())
+    {
+      problem = "the PLY element " + Quoted(element.name) + " has no properties";
+      return false;
+    }
+  }
   // vtkPLYReader reads the elements in file order but skips the data of
   // others than 'vertex' and 'face': those must come first.
   const int vertexElement = FindPlyElement(elements, "vertex"),

@@ -633,6 +633,10 @@ TEST(ShockMeshIO, MalformedFilesOfTheVtkFormatsGiveErrorsWithoutPrinting)
       "0\n",
       "no x, y and z values" },
     { "ply",
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float "
+      "z\nelement extra 2\nend_header\n0 0 0\n1 0 0\n0 1 0\n\n\n",
+      "the PLY element 'extra' has no properties" }, // vtkPLY crashed on it (fuzzing)
+    { "ply",
       "ply\nformat ascii 1.0\nelement edge 0\nproperty int a\nelement vertex 0\nproperty float x\n"
       "property float y\nproperty float z\nend_header\n",
       "needs the 'vertex' element first" },
