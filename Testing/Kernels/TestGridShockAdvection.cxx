@@ -399,9 +399,11 @@ TEST(GridShockAdvection, EightBitSamplesGiveTheResultOfTheirFloatCopy)
         std::clamp(static_cast<int>(250.0 * smooth[k]) + byte(random) % 11 - 5, 0, 255));
     }
     const std::vector<float> floats(bytes.begin(), bytes.end());
-    for (int variant = 0; variant < 5; ++variant)
+    // Variant 5: a short time, where most traces stay in their faces (the
+    // short road's neighbourhood reads bytes too); the others trace everything.
+    for (int variant = 0; variant < 6; ++variant)
     {
-      AdvectionParameters p = WithTime(200.0);
+      AdvectionParameters p = WithTime(variant == 5 ? 4.0 : 200.0);
       p.flowMode = variant == 1 ? FlowMode::Composed : (variant == 2 ? FlowMode::Naive : FlowMode::Fixed);
       p.flowUpdates = 3;
       p.sampling = variant == 3 ? Sampling::Nearest : Sampling::Linear;
@@ -421,7 +423,7 @@ TEST(GridShockAdvection, EightBitSamplesGiveTheResultOfTheirFloatCopy)
       {
         change = std::max(change, std::abs(fromBytes[k] - bytes[k]));
       }
-      EXPECT_GT(change, 10.0) << "variant " << variant;
+      EXPECT_GT(change, variant == 5 ? 0.1 : 10.0) << "variant " << variant;
     }
   }
 }

@@ -588,7 +588,7 @@ TEST(GridSteps, TheImageAndVolumeTracersFollowTheGeneralRule)
   EXPECT_GT(TracersAgree<3>(RefGrid{ { 7, 6, 5 }, { 1.0, 1.3, 0.8 } }, 6), 100);
 }
 
-TEST(GridSteps, TheImageTracerFollowsTheGeneralTracerOfAFlatVolume)
+TEST(GridSteps, TheImageTracerFollowsTheVolumeTracerOnAFlatVolume)
 {
   // A volume one face thick, with no velocity across it, is the same image:
   // the image tracer (GridTracer<2>) and the volume tracer (GridTracer<3>) agree
