@@ -30,6 +30,8 @@
 #include <limits>
 #include <vector>
 
+#include <omp.h>
+
 namespace shock
 {
 namespace grid
@@ -414,8 +416,15 @@ void BackTraceVelocity(const Lattice<D>& L, const double* potential,
  * The steps run slab by slab: consecutive layers along the last active axis,
  * each with the 2 x passes + 1 layers beyond it on either side that its faces'
  * flow depends on (recomputed, not stored). Every value is computed by the same
- * operations as over the whole grid, so the flow is the same for any slab size,
- * while the workspace holds a slab rather than the grid (and stays in cache).
+ * operations as over the whole grid, so the flow is the same for any slab size
+ * and thread count, while the workspace holds a slab rather than the grid. Each
+ * thread takes whole slabs, one after the other, in a workspace of its own:
+ * an image's slab stays in the thread's cache, no step waits for the other
+ * threads, and each thread writes only its own few megabytes again and again
+ * (when the threads shared each slab, the steps that write the shared slab
+ * buffer ran at times at half speed for a whole run: Benchmarks/RESULTS.md,
+ * "Issue 18, session 11"). A grid of fewer than two slabs per thread (a thin
+ * volume) has the threads work on each slab in turn, in one workspace.
  */
 template <int D>
 class FlowComputation
@@ -432,10 +441,7 @@ public:
     , Threads(threads)
     , VelocityField(AllocateLargeArray<float>(lattice.numFaces * D))
   {
-    // About 8 slabs, each at least 8 halos thick, so that the recomputed halo
-    // layers cost little; a grid thinner than that is one slab.
-    const std::int64_t layers = lattice.m[D - 1];
-    this->SlabFaces = std::max<std::int64_t>((layers + 7) / 8, 8 * this->Halo());
+    this->SlabFaces = this->DefaultSlabFaces();
   }
 
   /// Keep the potential of the whole grid (KeptPotential()), for ExportFlowFields.
@@ -449,44 +455,46 @@ public:
   void Compute(const T* signal, double range)
   {
     const std::int64_t M = L.m[D - 1];
-    const std::int64_t layerSamples = L.sampleStride[D - 1];
-    const std::int64_t layerFaces = L.faceStride[D - 1];
     const std::int64_t slabFaces = std::min(this->SlabFaces, M);
-    if (!this->Smoothed)
+    const std::int64_t slabs = (M + slabFaces - 1) / slabFaces;
+    // Each thread takes whole slabs when there are at least two per thread;
+    // with fewer, the threads work on each slab in turn, in one workspace.
+    const int teams = slabs >= 2 * this->Threads ? this->Threads : 1;
+    const std::int64_t layers = std::min(slabFaces + 2 * this->Halo() + 1, L.n[D - 1]);
+    if (layers > this->SpaceLayers)
     {
-      const std::int64_t layers = std::min(slabFaces + 2 * this->Halo() + 1, L.n[D - 1]);
-      this->Smoothed = AllocateLargeArray<double>(layers * layerSamples * C);
-      this->Potential = AllocateLargeArray<double>(layers * layerSamples);
+      this->Spaces.clear();
+      this->SpaceLayers = layers;
+    }
+    while (static_cast<int>(this->Spaces.size()) < teams)
+    {
+      Workspace w;
+      w.smoothed = AllocateLargeArray<double>(layers * L.sampleStride[D - 1] * C);
+      w.potential = AllocateLargeArray<double>(layers * L.sampleStride[D - 1]);
       if (this->Passes >= 2)
       {
-        this->Scratch = AllocateLargeArray<double>(layers * layerSamples * C);
+        w.scratch = AllocateLargeArray<double>(layers * L.sampleStride[D - 1] * C);
       }
+      this->Spaces.push_back(std::move(w));
     }
     if (this->Keep && !this->PotentialField)
     {
       this->PotentialField = AllocateLargeArray<double>(L.numSamples);
     }
-    for (std::int64_t f0 = 0; f0 < M; f0 += slabFaces)
+    if (teams == 1)
     {
-      const std::int64_t f1 = std::min(M, f0 + slabFaces);
-      // Sample layers [a, b] hold every value the flow of face layers [f0, f1) depends on.
-      const std::int64_t a = std::max<std::int64_t>(0, f0 - this->Halo());
-      const std::int64_t b = std::min(M, f1 + this->Halo());
-      const Lattice<D> slab = L.Layers(b - a + 1);
-      const unsigned char* validSample = this->ValidSample ? this->ValidSample + a * layerSamples : nullptr;
-      const unsigned char* validFace = this->ValidFace ? this->ValidFace + a * layerFaces : nullptr;
-      this->ComputeSlab(slab, signal + a * layerSamples * C, range, validSample, validFace);
-      // The velocity of the faces [f0, f1), from the potential of the samples [f0, f1].
-      const double* potential = this->Potential.get() + (f0 - a) * layerSamples;
-      BackTraceVelocity<D>(L.Layers(f1 - f0 + 1), potential,
-        this->ValidFace ? this->ValidFace + f0 * layerFaces : nullptr,
-        this->VelocityField.get() + f0 * layerFaces * D, this->Threads);
-      if (this->Keep)
+      for (std::int64_t k = 0; k < slabs; ++k)
       {
-        const std::int64_t end = (f1 == M ? f1 + 1 : f1) * layerSamples;
-        std::copy(potential, potential + end - f0 * layerSamples,
-          this->PotentialField.get() + f0 * layerSamples);
+        this->ComputeSlabFlow(signal, range, k * slabFaces, std::min(M, (k + 1) * slabFaces),
+          this->Spaces[0], this->Threads);
       }
+      return;
+    }
+#pragma omp parallel for schedule(static) num_threads(teams)
+    for (std::int64_t k = 0; k < slabs; ++k)
+    {
+      this->ComputeSlabFlow(signal, range, k * slabFaces, std::min(M, (k + 1) * slabFaces),
+        this->Spaces[omp_get_thread_num()], 1);
     }
   }
 
@@ -495,12 +503,7 @@ public:
    * last flow of a run, so that the advection's output reuses their memory
    * instead of raising the peak. The kept potential stays.
    */
-  void ReleaseWorkspace()
-  {
-    this->Smoothed.reset();
-    this->Scratch.reset();
-    this->Potential.reset();
-  }
+  void ReleaseWorkspace() { this->Spaces.clear(); }
 
   /// Potential P per sample, normalised units; null unless KeepPotential was asked.
   const double* KeptPotential() const { return this->PotentialField.get(); }
@@ -511,22 +514,75 @@ private:
   /// Sample layers beyond a slab's faces that their flow depends on.
   std::int64_t Halo() const { return 2 * this->Passes + 1; }
 
-  /// Smoothing, face energy, potential and its smoothing over the samples of `slab`.
-  template <typename T>
-  void ComputeSlab(const Lattice<D>& slab, const T* signal, double range,
-    const unsigned char* validSample, const unsigned char* validFace)
+  /**
+   * The slab thickness in face layers: each thread's workspace about
+   * WorkspaceBytes, and at least 10 halos (the recomputed halo layers then cost
+   * little), so that an image's slab stays in cache; then evened out so that
+   * every thread gets the same number of slabs. A grid thinner than that is
+   * one slab.
+   */
+  std::int64_t DefaultSlabFaces() const
   {
-    UmbrellaSmooth<D>(slab, C, signal, 1.0 / range, this->Smoothed.get(), this->Scratch.get(),
-      validSample, this->Passes, this->Threads);
-    // Each buffer serves twice, to save memory: the energy per face (there are
-    // fewer faces than samples) goes to the potential's buffer, and the raw
-    // potential to the smoothed signal's, each once its previous content has been used.
-    double* energy = this->Potential.get();
-    FaceEnergy<D>(slab, C, this->Smoothed.get(), validFace, energy, this->Threads);
-    double* rawPotential = this->Smoothed.get();
-    FacesToSamples<D>(slab, energy, validFace, rawPotential, this->Threads);
-    UmbrellaSmooth<D>(slab, 1, rawPotential, 1.0, this->Potential.get(), this->Scratch.get(),
-      validSample, this->Passes, this->Threads);
+    constexpr double WorkspaceBytes = 3 << 20;
+    const std::int64_t M = L.m[D - 1];
+    const double layerBytes = static_cast<double>(L.sampleStride[D - 1]) *
+      (C + 1 + (this->Passes >= 2 ? C : 0)) * sizeof(double);
+    const std::int64_t fit =
+      static_cast<std::int64_t>(WorkspaceBytes / layerBytes) - 2 * this->Halo() - 1;
+    const std::int64_t wanted = std::max<std::int64_t>(fit, 10 * this->Halo());
+    const std::int64_t perThread = std::max<std::int64_t>(1, M / (this->Threads * wanted));
+    const std::int64_t slabs = this->Threads * perThread;
+    return std::max<std::int64_t>(1, (M + slabs - 1) / slabs);
+  }
+
+  /// One thread's buffers for a slab: the smoothed signal (then the raw
+  /// potential), the face energy (then the smoothed potential), and the second
+  /// smoothing buffer (2+ passes).
+  struct Workspace
+  {
+    LargeArray<double> smoothed;
+    LargeArray<double> potential;
+    LargeArray<double> scratch;
+  };
+
+  /// The velocity of the face layers [f0, f1), in workspace `w`, by `threads` threads.
+  template <typename T>
+  void ComputeSlabFlow(const T* signal, double range, std::int64_t f0, std::int64_t f1,
+    Workspace& w, int threads)
+  {
+    const std::int64_t M = L.m[D - 1];
+    const std::int64_t layerSamples = L.sampleStride[D - 1];
+    const std::int64_t layerFaces = L.faceStride[D - 1];
+    // Sample layers [a, b] hold every value the flow of face layers [f0, f1) depends on.
+    const std::int64_t a = std::max<std::int64_t>(0, f0 - this->Halo());
+    const std::int64_t b = std::min(M, f1 + this->Halo());
+    const Lattice<D> slab = L.Layers(b - a + 1);
+    const unsigned char* validSample = this->ValidSample ? this->ValidSample + a * layerSamples : nullptr;
+    const unsigned char* validFace = this->ValidFace ? this->ValidFace + a * layerFaces : nullptr;
+    // Smoothing, face energy, potential and its smoothing over the samples of
+    // the slab. Each buffer serves twice, to save memory: the energy per face
+    // (there are fewer faces than samples) goes to the potential's buffer, and
+    // the raw potential to the smoothed signal's, each once its previous
+    // content has been used.
+    UmbrellaSmooth<D>(slab, C, signal + a * layerSamples * C, 1.0 / range, w.smoothed.get(),
+      w.scratch.get(), validSample, this->Passes, threads);
+    double* energy = w.potential.get();
+    FaceEnergy<D>(slab, C, w.smoothed.get(), validFace, energy, threads);
+    double* rawPotential = w.smoothed.get();
+    FacesToSamples<D>(slab, energy, validFace, rawPotential, threads);
+    UmbrellaSmooth<D>(slab, 1, rawPotential, 1.0, w.potential.get(), w.scratch.get(),
+      validSample, this->Passes, threads);
+    // The velocity of the faces [f0, f1), from the potential of the samples [f0, f1].
+    const double* potential = w.potential.get() + (f0 - a) * layerSamples;
+    BackTraceVelocity<D>(L.Layers(f1 - f0 + 1), potential,
+      this->ValidFace ? this->ValidFace + f0 * layerFaces : nullptr,
+      this->VelocityField.get() + f0 * layerFaces * D, threads);
+    if (this->Keep)
+    {
+      const std::int64_t end = (f1 == M ? f1 + 1 : f1) * layerSamples;
+      std::copy(potential, potential + end - f0 * layerSamples,
+        this->PotentialField.get() + f0 * layerSamples);
+    }
   }
 
   const Lattice<D>& L;
@@ -537,9 +593,8 @@ private:
   const int Threads;
   std::int64_t SlabFaces = 1;
   bool Keep = false;
-  LargeArray<double> Smoothed;       // a slab's smoothed signal, then its raw potential
-  LargeArray<double> Scratch;        // second smoothing buffer (2+ passes)
-  LargeArray<double> Potential;      // a slab's face energy, then its smoothed potential
+  std::vector<Workspace> Spaces;     // one per thread, of SpaceLayers sample layers
+  std::int64_t SpaceLayers = 0;
   LargeArray<double> PotentialField; // the whole grid's potential (KeepPotential)
   LargeArray<float> VelocityField;
 };

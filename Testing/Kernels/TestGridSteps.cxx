@@ -990,9 +990,10 @@ TEST(GridSteps, EveryComponentIsAdvectedAsIfAlone)
 TEST(GridSteps, TheFlowIsTheSameForEverySlabSize)
 {
   // The flow is computed slab by slab along the last active axis, each slab with
-  // the layers its flow depends on. Thin slabs (down to one face layer) give the
-  // Appendix pipeline's potential and flow, and bit for bit the whole grid's,
-  // with and without non-finite samples.
+  // the layers its flow depends on, each thread taking whole slabs in a
+  // workspace of its own. Thin slabs (down to one face layer), on one or two
+  // threads, give the Appendix pipeline's potential and flow, and bit for bit
+  // the whole grid's, with and without non-finite samples.
   for (int passes : { 0, 1, 2, 3 })
   {
     for (const RefGrid g : { RefGrid{ { 5, 4, 17 }, { 0.7, 1.0, 1.6 } },
@@ -1008,9 +1009,10 @@ TEST(GridSteps, TheFlowIsTheSameForEverySlabSize)
       const auto axes = g.ActiveAxes();
 
       const auto run = [&](auto lattice, std::int64_t slabFaces, const std::vector<double>& values,
-                         const unsigned char* validSample, const unsigned char* validFace) {
+                         const unsigned char* validSample, const unsigned char* validFace,
+                         int threads = 1) {
         constexpr int D = decltype(lattice)::Corners == 8 ? 3 : 2;
-        FlowComputation<D> flow(lattice, C, passes, validSample, validFace, 1);
+        FlowComputation<D> flow(lattice, C, passes, validSample, validFace, threads);
         flow.KeepPotential();
         flow.SetSlabFaces(slabFaces);
         flow.Compute(values.data(), range);
@@ -1021,11 +1023,13 @@ TEST(GridSteps, TheFlowIsTheSameForEverySlabSize)
       const auto check = [&](auto lattice) {
         const std::int64_t M = lattice.m[lattice.m.size() - 1];
         const GridFlowFields whole = run(lattice, M, input, nullptr, nullptr);
-        for (std::int64_t slabFaces : { std::int64_t(1), std::int64_t(2), std::int64_t(5) })
+        // Two threads take whole slabs (1, 2, 5 faces thick) or share each slab (8).
+        for (std::int64_t slabFaces : { std::int64_t(1), std::int64_t(2), std::int64_t(5), std::int64_t(8) })
+        for (int threads : { 1, 2 })
         {
-          const GridFlowFields sliced = run(lattice, slabFaces, input, nullptr, nullptr);
-          EXPECT_EQ(sliced.potential, whole.potential) << slabFaces << " passes " << passes;
-          EXPECT_EQ(sliced.flow, whole.flow) << slabFaces << " passes " << passes;
+          const GridFlowFields sliced = run(lattice, slabFaces, input, nullptr, nullptr, threads);
+          EXPECT_EQ(sliced.potential, whole.potential) << slabFaces << " passes " << passes << " threads " << threads;
+          EXPECT_EQ(sliced.flow, whole.flow) << slabFaces << " passes " << passes << " threads " << threads;
           for (int s = 0; s < g.Samples(); ++s)
             EXPECT_NEAR(sliced.potential[s], potential[s], 1e-12 * (1.0 + potential[s]));
           for (size_t f = 0; f < reference.size(); ++f)
@@ -1040,9 +1044,13 @@ TEST(GridSteps, TheFlowIsTheSameForEverySlabSize)
         using L = decltype(lattice);
         const ValidityMasks<L::Corners == 8 ? 3 : 2> masks(lattice, C, holes.data(), false, 1);
         const GridFlowFields wholeHoles = run(lattice, M, holes, masks.Samples(), masks.Faces());
-        const GridFlowFields slicedHoles = run(lattice, 1, holes, masks.Samples(), masks.Faces());
-        EXPECT_EQ(slicedHoles.potential, wholeHoles.potential);
-        EXPECT_EQ(slicedHoles.flow, wholeHoles.flow);
+        for (int threads : { 1, 2 })
+        {
+          const GridFlowFields slicedHoles =
+            run(lattice, 1, holes, masks.Samples(), masks.Faces(), threads);
+          EXPECT_EQ(slicedHoles.potential, wholeHoles.potential) << threads;
+          EXPECT_EQ(slicedHoles.flow, wholeHoles.flow) << threads;
+        }
         EXPECT_NE(wholeHoles.flow, whole.flow); // something changed
       };
       if (g.n[2] > 1)
