@@ -457,8 +457,9 @@ public:
     const std::int64_t M = L.m[D - 1];
     const std::int64_t slabFaces = std::min(this->SlabFaces, M);
     const std::int64_t slabs = (M + slabFaces - 1) / slabFaces;
-    // Each thread takes whole slabs when there are at least two per thread;
-    // with fewer, the threads work on each slab in turn, in one workspace.
+    // Each thread takes whole slabs as they come (a thread the machine slows
+    // down takes fewer) when there are at least two per thread; with fewer,
+    // the threads work on each slab in turn, in one workspace.
     const int teams = slabs >= 2 * this->Threads ? this->Threads : 1;
     const std::int64_t layers = std::min(slabFaces + 2 * this->Halo() + 1, L.n[D - 1]);
     if (layers > this->SpaceLayers)
@@ -490,7 +491,7 @@ public:
       }
       return;
     }
-#pragma omp parallel for schedule(static) num_threads(teams)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(teams)
     for (std::int64_t k = 0; k < slabs; ++k)
     {
       this->ComputeSlabFlow(signal, range, k * slabFaces, std::min(M, (k + 1) * slabFaces),
