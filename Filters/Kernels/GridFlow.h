@@ -518,9 +518,9 @@ private:
   /**
    * The slab thickness in face layers: each thread's workspace about
    * WorkspaceBytes, and at least 10 halos (the recomputed halo layers then cost
-   * little), so that an image's slab stays in cache; then evened out so that
-   * every thread gets the same number of slabs. A grid thinner than that is
-   * one slab.
+   * little), so that an image's slab stays in cache; then evened out to a
+   * multiple of the threads' count. A grid too thin for two such slabs per
+   * thread gets one slab per thread, which Compute has the threads share.
    */
   std::int64_t DefaultSlabFaces() const
   {
