@@ -219,16 +219,29 @@ SignalRange ScanSignal(std::int64_t numSamples, int components, const T* values,
 {
   if constexpr (std::is_integral_v<T>)
   {
-    // Integers are finite: the range alone, in T (a loop that vectorises).
+    // Integers are finite: the range alone, in T, each thread over a
+    // contiguous part with a plain loop, which the compiler vectorises (an
+    // OpenMP simd reduction over the whole array did not: 4 ms for an 8-bit
+    // photo's 7.5M values on one thread).
     const std::int64_t count = numSamples * components;
     T lowest = std::numeric_limits<T>::max();
     T highest = std::numeric_limits<T>::lowest();
-#pragma omp parallel for simd schedule(static) num_threads(threads) \
+    const int parts = std::max(1, threads);
+#pragma omp parallel for schedule(static) num_threads(threads) \
   reduction(min : lowest) reduction(max : highest)
-    for (std::int64_t v = 0; v < count; ++v)
+    for (int part = 0; part < parts; ++part)
     {
-      lowest = std::min(lowest, values[v]);
-      highest = std::max(highest, values[v]);
+      const T* first = values + count * part / parts;
+      const T* last = values + count * (part + 1) / parts;
+      T low = std::numeric_limits<T>::max();
+      T high = std::numeric_limits<T>::lowest();
+      for (const T* v = first; v < last; ++v)
+      {
+        low = std::min(low, *v);
+        high = std::max(high, *v);
+      }
+      lowest = std::min(lowest, low);
+      highest = std::max(highest, high);
     }
     return { static_cast<double>(lowest), static_cast<double>(highest), true };
   }

@@ -987,6 +987,50 @@ TEST(GridSteps, EveryComponentIsAdvectedAsIfAlone)
   }
 }
 
+TEST(GridSteps, TheSignalsRangeIsItsSmallestAndLargestValue)
+{
+  // The range that normalises the intensities: 8-bit samples scanned in parts
+  // per thread; float samples also say whether every value is finite.
+  std::mt19937 random(5);
+  std::uniform_int_distribution<int> byte(40, 200);
+  for (const std::int64_t samples : { std::int64_t(1), std::int64_t(7), std::int64_t(1001) })
+  {
+    for (int where = 0; where < 3; ++where)
+    {
+      const int C = 3;
+      std::vector<unsigned char> values(static_cast<size_t>(samples * C));
+      for (auto& v : values)
+        v = static_cast<unsigned char>(byte(random));
+      // The extremes at the ends, or in the middle of the array.
+      const size_t n = values.size();
+      const size_t low = where == 0 ? 0 : (where == 1 ? n - 1 : n / 2);
+      const size_t high = where == 0 ? n - 1 : (where == 1 ? 0 : n / 2 + 1);
+      values[low] = 3;
+      values[high] = 251;
+      const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+      for (int threads : { 1, 2, 3 })
+      {
+        const SignalRange range = ScanSignal(samples, C, values.data(), threads);
+        EXPECT_EQ(range.low, static_cast<double>(*lo)) << samples << " " << where << " " << threads;
+        EXPECT_EQ(range.high, static_cast<double>(*hi)) << samples << " " << where << " " << threads;
+        EXPECT_TRUE(range.allFinite);
+      }
+      EXPECT_EQ(*lo, 3);
+      EXPECT_EQ(*hi, 251);
+    }
+  }
+  // Floats: a sample with a non-finite component takes no part.
+  std::vector<float> floats = { 0.5f, 2.0f, -1.0f, 7.0f, std::numeric_limits<float>::quiet_NaN(),
+    100.0f, 3.0f, -4.0f };
+  for (int threads : { 1, 2 })
+  {
+    const SignalRange range = ScanSignal(4, 2, floats.data(), threads);
+    EXPECT_EQ(range.low, -4.0);
+    EXPECT_EQ(range.high, 7.0);
+    EXPECT_FALSE(range.allFinite);
+  }
+}
+
 TEST(GridSteps, TheFlowIsTheSameForEverySlabSize)
 {
   // The flow is computed slab by slab along the last active axis, each slab with
