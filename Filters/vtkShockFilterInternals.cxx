@@ -125,18 +125,6 @@ struct CopyTo
   }
 };
 
-/// RoundAndClamp<unsigned char> without branches, so that a loop of it
-/// vectorises: NaN fails the first comparison and gives 0, as there; the
-/// clamped value is at least 0, so only its rest of at least 0.5 rounds up.
-inline unsigned char RoundAndClampByte(double v)
-{
-  double clamped = v > 0.0 ? v : 0.0;
-  clamped = clamped < 255.0 ? clamped : 255.0;
-  const int truncated = static_cast<int>(clamped);
-  const double rest = clamped - static_cast<double>(truncated);
-  return static_cast<unsigned char>(truncated + (rest >= 0.5 ? 1 : 0));
-}
-
 /// Makes the writer of OutputForKernel for an array of a dispatchable type.
 struct MakeWriter
 {
@@ -149,12 +137,7 @@ struct MakeWriter
       // Photographs: straight into the array's storage.
       unsigned char* values = array->GetPointer(0);
       writer = [values, C](std::int64_t first, std::int64_t count, const double* in) {
-        unsigned char* out = values + first * C;
-        const std::int64_t n = count * C;
-        for (std::int64_t i = 0; i < n; ++i)
-        {
-          out[i] = RoundAndClampByte(in[i]);
-        }
+        shock::RoundAndClampBytes(in, count * C, values + first * C);
       };
       return;
     }

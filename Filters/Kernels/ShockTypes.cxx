@@ -7,6 +7,10 @@
 #include <sys/mman.h>
 #endif
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -18,6 +22,58 @@
 
 namespace shock
 {
+
+namespace
+{
+/// One value of RoundAndClampBytes: NaN fails `v > 0` and gives 0; the clamped
+/// value is at least 0, so only a rest of at least 0.5 rounds (up).
+inline unsigned char RoundAndClampByte(double v)
+{
+  double clamped = v > 0.0 ? v : 0.0;
+  clamped = clamped < 255.0 ? clamped : 255.0;
+  const int truncated = static_cast<int>(clamped);
+  const double rest = clamped - static_cast<double>(truncated);
+  return static_cast<unsigned char>(truncated + (rest >= 0.5 ? 1 : 0));
+}
+
+#ifdef __SSE2__
+/// RoundAndClampByte of two values, as two 32-bit integers in the low half.
+inline __m128i RoundAndClampPair(const double* in)
+{
+  const __m128d v = _mm_loadu_pd(in);
+  // maxpd and minpd return their second operand when the first is NaN or the
+  // two are equal: v > 0 ? v : 0, then clamped < 255 ? clamped : 255.
+  const __m128d clamped = _mm_min_pd(_mm_max_pd(v, _mm_setzero_pd()), _mm_set1_pd(255.0));
+  const __m128i truncated = _mm_cvttpd_epi32(clamped);
+  const __m128d rest = _mm_sub_pd(clamped, _mm_cvtepi32_pd(truncated));
+  // All ones (-1) in each 64-bit lane whose rest is at least 0.5, moved to the
+  // two low 32-bit lanes: subtracting it adds 1 there.
+  const __m128i up = _mm_shuffle_epi32(_mm_castpd_si128(_mm_cmpge_pd(rest, _mm_set1_pd(0.5))),
+    _MM_SHUFFLE(3, 3, 2, 0));
+  return _mm_sub_epi32(truncated, up);
+}
+#endif
+}
+
+void RoundAndClampBytes(const double* in, std::int64_t count, unsigned char* out)
+{
+  std::int64_t i = 0;
+#ifdef __SSE2__
+  for (; i + 8 <= count; i += 8)
+  {
+    const __m128i low = _mm_unpacklo_epi64(RoundAndClampPair(in + i), RoundAndClampPair(in + i + 2));
+    const __m128i high =
+      _mm_unpacklo_epi64(RoundAndClampPair(in + i + 4), RoundAndClampPair(in + i + 6));
+    // 0 .. 255 in 32 bits, packed to 16 and then to 8 bits without saturating.
+    const __m128i bytes = _mm_packus_epi16(_mm_packs_epi32(low, high), _mm_setzero_si128());
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out + i), bytes);
+  }
+#endif
+  for (; i < count; ++i)
+  {
+    out[i] = RoundAndClampByte(in[i]);
+  }
+}
 
 Status CheckAdvectionParameters(const AdvectionParameters& parameters)
 {

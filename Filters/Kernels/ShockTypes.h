@@ -136,6 +136,13 @@ void ParallelFor(std::int64_t count, int threads,
   const std::function<void(std::int64_t begin, std::int64_t end)>& body);
 
 /**
+ * Results as 8-bit values: each clamped to [0, 255] and rounded half away from
+ * zero (as std::round), NaN as 0: out[i] for in[i], i < count. Eight values at a
+ * time with SSE2 where available (the same operations: the same bytes).
+ */
+void RoundAndClampBytes(const double* in, std::int64_t count, unsigned char* out);
+
+/**
  * Uninitialised storage for the large arrays of the kernels and filters (signals,
  * potentials, flows), released with FreeLarge and the same size. On Linux, blocks
  * of 2 MiB and more are mapped on their own, aligned to and advised for
