@@ -38,6 +38,66 @@ namespace grid
 {
 
 /**
+ * SmoothBlockAllValid with K neighbour rows, each of the block's `count` values
+ * in one pass: the same operations in the same order (the value, plus its
+ * left and right neighbours' terms where they exist, plus the rows' terms,
+ * times the weight total's share), so the same results.
+ */
+template <int K, size_t N, typename T>
+void SmoothRowFused(int C, const T* in, double scale, double* out, std::int64_t count,
+  bool rowStart, bool rowEnd, double alphaX, const std::array<std::int64_t, N>& offset,
+  const std::array<double, N>& weight)
+{
+  const T* rows[K];
+  double w[K];
+  double total = 1.0 + alphaX + alphaX;
+  double edgeTotal = 1.0 + alphaX;
+  for (int r = 0; r < K; ++r)
+  {
+    rows[r] = in + offset[r] * C;
+    w[r] = weight[r];
+  }
+  for (int r = 0; r < K; ++r)
+  {
+    total += w[r];
+    edgeTotal += w[r];
+  }
+  const double inner = scale / total;
+  const double edge = scale / edgeTotal;
+  // A value at the row's start or end: the neighbour it has, along x.
+  const auto endValue = [&](std::int64_t v, bool left) {
+    double o = static_cast<double>(in[v]);
+    o += alphaX * (left ? in[v - C] : in[v + C]);
+    for (int r = 0; r < K; ++r)
+    {
+      o += w[r] * rows[r][v];
+    }
+    out[v] = o * edge;
+  };
+  const std::int64_t innerBegin = rowStart ? C : 0;
+  const std::int64_t innerEnd = rowEnd ? count - C : count;
+  for (std::int64_t v = 0; v < innerBegin; ++v)
+  {
+    endValue(v, false);
+  }
+  for (std::int64_t v = innerBegin; v < innerEnd; ++v)
+  {
+    double o = static_cast<double>(in[v]);
+    o += alphaX * in[v - C];
+    o += alphaX * in[v + C];
+    for (int r = 0; r < K; ++r)
+    {
+      o += w[r] * rows[r][v];
+    }
+    out[v] = o * inner;
+  }
+  for (std::int64_t v = innerEnd; v < count; ++v)
+  {
+    endValue(v, true);
+  }
+}
+
+/**
  * SmoothPass on a block of `length` samples of one row when every sample is
  * valid: the same operations in the same order as the general case, arranged as
  * whole-block loops over the values, which vectorise. The weight total is the
@@ -50,6 +110,24 @@ void SmoothBlockAllValid(int C, const T* in, double scale, double* out,
   const std::array<std::int64_t, N>& offset, const std::array<double, N>& weight)
 {
   const std::int64_t count = length * C;
+  if constexpr (N >= 2)
+  {
+    // Interior rows of images (2 neighbour rows) and volumes (4): each value
+    // in one pass.
+    const bool whole = !(rowStart && rowEnd && count <= C); // a row has >= 2 samples
+    if (whole && (neighbours == 2 || (N >= 4 && neighbours == 4)))
+    {
+      if (neighbours == 2)
+      {
+        SmoothRowFused<2>(C, in, scale, out, count, rowStart, rowEnd, alphaX, offset, weight);
+      }
+      else if constexpr (N >= 4)
+      {
+        SmoothRowFused<4>(C, in, scale, out, count, rowStart, rowEnd, alphaX, offset, weight);
+      }
+      return;
+    }
+  }
   std::copy(in, in + count, out); // T to double is exact (T is float, double or 8-bit)
   for (std::int64_t v = rowStart ? C : 0; v < count; ++v)
   {
@@ -457,26 +535,26 @@ public:
     const std::int64_t M = L.m[D - 1];
     const std::int64_t slabFaces = std::min(this->SlabFaces, M);
     const std::int64_t slabs = (M + slabFaces - 1) / slabFaces;
-    // Each thread takes whole slabs as they come (a thread the machine slows
-    // down takes fewer) when there are at least two per thread; with fewer,
-    // the threads work on each slab in turn, in one workspace.
-    const int teams = slabs >= 2 * this->Threads ? this->Threads : 1;
+    const int teams = this->ThreadsTakeWholeSlabs(slabFaces, slabs) ? this->Threads : 1;
     const std::int64_t layers = std::min(slabFaces + 2 * this->Halo() + 1, L.n[D - 1]);
-    if (layers > this->SpaceLayers)
+    if (static_cast<int>(this->Spaces.size()) < teams)
     {
-      this->Spaces.clear();
-      this->SpaceLayers = layers;
+      this->Spaces.resize(static_cast<size_t>(teams));
     }
-    while (static_cast<int>(this->Spaces.size()) < teams)
+    for (int t = 0; t < teams; ++t)
     {
-      Workspace w;
-      w.smoothed = AllocateLargeArray<double>(layers * L.sampleStride[D - 1] * C);
-      w.potential = AllocateLargeArray<double>(layers * L.sampleStride[D - 1]);
-      if (this->Passes >= 2)
+      Workspace& w = this->Spaces[static_cast<size_t>(t)];
+      if (w.layers < layers)
       {
-        w.scratch = AllocateLargeArray<double>(layers * L.sampleStride[D - 1] * C);
+        w = Workspace(); // the smaller buffers go first
+        w.smoothed = AllocateLargeArray<double>(layers * L.sampleStride[D - 1] * C);
+        w.potential = AllocateLargeArray<double>(layers * L.sampleStride[D - 1]);
+        if (this->Passes >= 2)
+        {
+          w.scratch = AllocateLargeArray<double>(layers * L.sampleStride[D - 1] * C);
+        }
+        w.layers = layers;
       }
-      this->Spaces.push_back(std::move(w));
     }
     if (this->Keep && !this->PotentialField)
     {
@@ -515,25 +593,65 @@ private:
   /// Sample layers beyond a slab's faces that their flow depends on.
   std::int64_t Halo() const { return 2 * this->Passes + 1; }
 
+  /// Bytes of a workspace per sample layer.
+  double LayerBytes() const
+  {
+    return static_cast<double>(L.sampleStride[D - 1]) * (C + 1 + (this->Passes >= 2 ? C : 0)) *
+      static_cast<double>(sizeof(double));
+  }
+
   /**
-   * The slab thickness in face layers: each thread's workspace about
-   * WorkspaceBytes, and at least 10 halos (the recomputed halo layers then cost
-   * little), so that an image's slab stays in cache; then evened out to a
-   * multiple of the threads' count. A grid too thin for two such slabs per
-   * thread gets one slab per thread, which Compute has the threads share.
+   * Whether each thread takes whole slabs (of `slabFaces` face layers, `slabs` of
+   * them) in a workspace of its own (one thread: slabs of that size one after
+   * the other): with at least two slabs per thread, and
+   * when the threads' workspaces together take no more than 3 MiB per thread or
+   * an eighth of the grid (a volume's layers are large: its threads share each
+   * slab, in one workspace).
+   */
+  bool ThreadsTakeWholeSlabs(std::int64_t slabFaces, std::int64_t slabs) const
+  {
+    if (slabs < 2 * this->Threads)
+    {
+      return false;
+    }
+    const double layers = static_cast<double>(
+      std::min(slabFaces + 2 * this->Halo() + 1, L.n[D - 1]));
+    const double workspaces = this->Threads * layers * this->LayerBytes();
+    const double bound = std::max(this->Threads * WorkspaceBytes,
+      static_cast<double>(L.n[D - 1]) * this->LayerBytes() / 8.0);
+    return workspaces <= bound;
+  }
+
+  /**
+   * The slab thickness in face layers. Where the threads can take whole slabs
+   * (ThreadsTakeWholeSlabs): each thread's workspace about WorkspaceBytes and
+   * at least 8 halos thick (the recomputed halo layers then cost little), so
+   * that an image's slab stays in cache, evened out to at least two slabs per
+   * thread. Otherwise about 8 slabs, each at least 8 halos thick, which the
+   * threads share; a grid thinner than that is one slab.
    */
   std::int64_t DefaultSlabFaces() const
   {
-    constexpr double WorkspaceBytes = 3 << 20;
     const std::int64_t M = L.m[D - 1];
-    const double layerBytes = static_cast<double>(L.sampleStride[D - 1]) *
-      (C + 1 + (this->Passes >= 2 ? C : 0)) * sizeof(double);
+    const std::int64_t H = this->Halo();
     const std::int64_t fit =
-      static_cast<std::int64_t>(WorkspaceBytes / layerBytes) - 2 * this->Halo() - 1;
-    const std::int64_t wanted = std::max<std::int64_t>(fit, 10 * this->Halo());
-    const std::int64_t perThread = std::max<std::int64_t>(1, M / (this->Threads * wanted));
-    const std::int64_t slabs = this->Threads * perThread;
-    return std::max<std::int64_t>(1, (M + slabs - 1) / slabs);
+      static_cast<std::int64_t>(WorkspaceBytes / this->LayerBytes()) - 2 * H - 1;
+    const std::int64_t wanted = std::max<std::int64_t>(fit, 8 * H);
+    const std::int64_t perThread = M / (std::max(1, this->Threads) * wanted);
+    if (perThread >= 2)
+    {
+      const std::int64_t slabs = this->Threads * perThread;
+      std::int64_t faces = (M + slabs - 1) / slabs;
+      if ((M + faces - 1) / faces < 2 * this->Threads)
+      {
+        faces = M / slabs; // rounded down: at least `slabs` slabs
+      }
+      if (this->ThreadsTakeWholeSlabs(faces, (M + faces - 1) / faces))
+      {
+        return faces;
+      }
+    }
+    return std::max<std::int64_t>((M + 7) / 8, 8 * H);
   }
 
   /// One thread's buffers for a slab: the smoothed signal (then the raw
@@ -541,6 +659,7 @@ private:
   /// smoothing buffer (2+ passes).
   struct Workspace
   {
+    std::int64_t layers = 0; // sample layers it holds
     LargeArray<double> smoothed;
     LargeArray<double> potential;
     LargeArray<double> scratch;
@@ -594,8 +713,8 @@ private:
   const int Threads;
   std::int64_t SlabFaces = 1;
   bool Keep = false;
-  std::vector<Workspace> Spaces;     // one per thread, of SpaceLayers sample layers
-  std::int64_t SpaceLayers = 0;
+  std::vector<Workspace> Spaces;     // one per thread taking whole slabs, else one
+  static constexpr double WorkspaceBytes = 3 << 20; // per thread taking whole slabs
   LargeArray<double> PotentialField; // the whole grid's potential (KeepPotential)
   LargeArray<float> VelocityField;
 };

@@ -1081,6 +1081,28 @@ TEST(GridSteps, TheFlowIsTheSameForEverySlabSize)
               EXPECT_NEAR(sliced.flow[f * 3 + axes[d]], reference[f][d],
                 2e-7 * (1.0 + std::abs(reference[f][d])));
         }
+        // One computation reused with slabs thick, thin, then thicker again (its
+        // workspaces grow and are reused), on two threads.
+        {
+          constexpr int D = decltype(lattice)::Corners == 8 ? 3 : 2;
+          FlowComputation<D> flow(lattice, C, passes, nullptr, nullptr, 2);
+          flow.KeepPotential();
+          for (std::int64_t slabFaces : { M, std::int64_t(1), std::int64_t(3), std::int64_t(2), M })
+          {
+            flow.SetSlabFaces(slabFaces);
+            flow.Compute(input.data(), range);
+            GridFlowFields fields;
+            ExportFlowFields<D>(lattice, flow, fields);
+            EXPECT_EQ(fields.flow, whole.flow) << "reused, " << slabFaces << " passes " << passes;
+            EXPECT_EQ(fields.potential, whole.potential) << "reused, " << slabFaces;
+          }
+          flow.ReleaseWorkspace();
+          flow.SetSlabFaces(4);
+          flow.Compute(input.data(), range);
+          GridFlowFields fields;
+          ExportFlowFields<D>(lattice, flow, fields);
+          EXPECT_EQ(fields.flow, whole.flow) << "after a release, passes " << passes;
+        }
         // Non-finite samples: the masks are cut with the slabs.
         std::vector<double> holes = input;
         holes[C * (g.Samples() / 2)] = std::numeric_limits<double>::quiet_NaN();
