@@ -96,7 +96,7 @@ std::string ImageHelp()
           "  For png/jpg/bmp/pnm other types are rounded and clamped to 0..255 (a note\n"
           "  on stderr says so); other component counts and volumes are refused.\n"
           "  Memory: about 8 bytes per pixel (12 per voxel) plus 2 to 16 per sample\n"
-          "  and component (14 per pixel of a large 8-bit RGB photo, 21 per voxel of\n"
+          "  and component (14 per pixel of a large 8-bit RGB photo, 20 per voxel of\n"
           "  a float volume); an input declaring more samples than --max-samples is\n"
           "  refused before it is read.\n"
        << TimingsHelp({ "command", "dimensions", "samples", "components", "time", "flow_mode",
