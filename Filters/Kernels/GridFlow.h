@@ -626,9 +626,9 @@ private:
    * The slab thickness in face layers. Where the threads can take whole slabs
    * (ThreadsTakeWholeSlabs): each thread's workspace about WorkspaceBytes and
    * at least 8 halos thick (the recomputed halo layers then cost little), so
-   * that an image's slab stays in cache, evened out to at least two slabs per
-   * thread. Otherwise about 8 slabs, each at least 8 halos thick, which the
-   * threads share; a grid thinner than that is one slab.
+   * that an image's slab stays in cache, evened out over the threads, at
+   * least two slabs each. Otherwise about 8 slabs, each at least 8 halos
+   * thick, which the threads share; a grid thinner than that is one slab.
    */
   std::int64_t DefaultSlabFaces() const
   {
@@ -637,7 +637,9 @@ private:
     const std::int64_t fit =
       static_cast<std::int64_t>(WorkspaceBytes / this->LayerBytes()) - 2 * H - 1;
     const std::int64_t wanted = std::max<std::int64_t>(fit, 8 * H);
-    const std::int64_t perThread = M / (std::max(1, this->Threads) * wanted);
+    // Slabs at most `wanted` thick, at least two per thread.
+    const std::int64_t teamWork = std::max(1, this->Threads) * wanted;
+    const std::int64_t perThread = (M + teamWork - 1) / teamWork;
     if (perThread >= 2)
     {
       const std::int64_t slabs = this->Threads * perThread;
