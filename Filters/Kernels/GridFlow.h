@@ -38,18 +38,23 @@ namespace grid
 {
 
 /**
- * SmoothBlockAllValid with K neighbour rows, each of the block's `count` values
- * in one pass: the same operations in the same order (the value, plus its
- * left and right neighbours' terms where they exist, plus the rows' terms,
- * times the weight total's share), so the same results.
+ * SmoothPass on a block of one row when every sample is valid: the block's
+ * `count` values (C per sample), with K neighbour rows along the other axes at
+ * sample offsets `offset` and weights `weight`, each value in one pass. The
+ * operations are the masked path's in its order (the value, plus its left and
+ * right neighbours' terms where they exist, plus the rows' terms, times the
+ * weight total's share), so the results are its bits. The weight total is the
+ * same along the row except at its ends (`rowStart`, `rowEnd`: the block holds
+ * them; a row has >= 2 samples).
  */
 template <int K, size_t N, typename T>
 void SmoothRowFused(int C, const T* in, double scale, double* out, std::int64_t count,
   bool rowStart, bool rowEnd, double alphaX, const std::array<std::int64_t, N>& offset,
   const std::array<double, N>& weight)
 {
-  const T* rows[K];
-  double w[K];
+  static_assert(K <= static_cast<int>(N), "more neighbour rows than offsets");
+  std::array<const T*, K> rows{};
+  std::array<double, K> w{};
   double total = 1.0 + alphaX + alphaX;
   double edgeTotal = 1.0 + alphaX;
   for (int r = 0; r < K; ++r)
@@ -97,87 +102,36 @@ void SmoothRowFused(int C, const T* in, double scale, double* out, std::int64_t 
   }
 }
 
-/**
- * SmoothPass on a block of `length` samples of one row when every sample is
- * valid: the same operations in the same order as the general case, arranged as
- * whole-block loops over the values, which vectorise. The weight total is the
- * same along the row except at its ends (`rowStart`, `rowEnd`: the block holds
- * them). `offset` are sample offsets of the neighbours along the other axes.
- */
+/// SmoothRowFused for a block of `length` samples with `neighbours` (0 .. N, at most 4) rows.
 template <size_t N, typename T>
 void SmoothBlockAllValid(int C, const T* in, double scale, double* out,
   std::int64_t length, bool rowStart, bool rowEnd, double alphaX, int neighbours,
   const std::array<std::int64_t, N>& offset, const std::array<double, N>& weight)
 {
   const std::int64_t count = length * C;
-  if constexpr (N >= 2)
+  switch (neighbours)
   {
-    // Interior rows of images (2 neighbour rows) and volumes (4): each value
-    // in one pass.
-    const bool whole = !(rowStart && rowEnd && count <= C); // a row has >= 2 samples
-    if (whole && (neighbours == 2 || (N >= 4 && neighbours == 4)))
-    {
-      if (neighbours == 2)
+    case 0:
+      SmoothRowFused<0>(C, in, scale, out, count, rowStart, rowEnd, alphaX, offset, weight);
+      break;
+    case 1:
+      SmoothRowFused<1>(C, in, scale, out, count, rowStart, rowEnd, alphaX, offset, weight);
+      break;
+    case 2:
+      SmoothRowFused<2>(C, in, scale, out, count, rowStart, rowEnd, alphaX, offset, weight);
+      break;
+    case 3:
+      if constexpr (N >= 3)
       {
-        SmoothRowFused<2>(C, in, scale, out, count, rowStart, rowEnd, alphaX, offset, weight);
+        SmoothRowFused<3>(C, in, scale, out, count, rowStart, rowEnd, alphaX, offset, weight);
       }
-      else if constexpr (N >= 4)
+      break;
+    default:
+      if constexpr (N >= 4)
       {
         SmoothRowFused<4>(C, in, scale, out, count, rowStart, rowEnd, alphaX, offset, weight);
       }
-      return;
-    }
-  }
-  std::copy(in, in + count, out); // T to double is exact (T is float, double or 8-bit)
-  for (std::int64_t v = rowStart ? C : 0; v < count; ++v)
-  {
-    out[v] += alphaX * in[v - C];
-  }
-  for (std::int64_t v = 0; v < (rowEnd ? count - C : count); ++v)
-  {
-    out[v] += alphaX * in[v + C];
-  }
-  for (int r = 0; r < neighbours; ++r)
-  {
-    const T* row = in + offset[r] * C;
-    for (std::int64_t v = 0; v < count; ++v)
-    {
-      out[v] += weight[r] * row[v];
-    }
-  }
-  const auto factor = [&](bool left, bool right) {
-    double total = 1.0;
-    total += left ? alphaX : 0.0;
-    total += right ? alphaX : 0.0;
-    for (int r = 0; r < neighbours; ++r)
-    {
-      total += weight[r];
-    }
-    return scale / total;
-  };
-  // The row's end samples miss one neighbour along x (a row has >= 2 samples).
-  const std::int64_t innerBegin = rowStart ? C : 0;
-  const std::int64_t innerEnd = rowEnd ? count - C : count;
-  const double inner = factor(true, true);
-  for (std::int64_t v = innerBegin; v < innerEnd; ++v)
-  {
-    out[v] *= inner;
-  }
-  if (rowStart)
-  {
-    const double first = factor(false, true);
-    for (int c = 0; c < C; ++c)
-    {
-      out[c] *= first;
-    }
-  }
-  if (rowEnd)
-  {
-    const double last = factor(true, false);
-    for (std::int64_t v = count - C; v < count; ++v)
-    {
-      out[v] *= last;
-    }
+      break;
   }
 }
 
