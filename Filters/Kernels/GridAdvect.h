@@ -9,6 +9,7 @@
 
 #include "GridLattice.h"
 #include "GridTrace.h"
+#include "ParallelItems.h"
 #include "ShockTypes.h"
 
 #include <algorithm>
@@ -562,23 +563,15 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
   const bool withinFirst = shortRoad && TriesWithinFaceFirst<D>(L, tracer, time);
 
   const RowBlocks<D> blocks(L.n);
-  // Progress is reported, and an abort honoured, between chunks of blocks.
-  const std::int64_t chunkCount =
-    std::max<std::int64_t>(1, std::min<std::int64_t>(64, L.numSamples / 8192));
-  const std::int64_t chunkSize = (blocks.Count() + chunkCount - 1) / chunkCount;
+  // The blocks are independent: the threads take them one at a time as they come.
+  ParallelItems items(blocks.Count(), 1, ctx.progress, progressStart, progressSpan);
   std::uint64_t steps = 0;
   std::uint64_t truncated = 0;
-
-  for (std::int64_t chunk = 0; chunk < chunkCount; ++chunk)
-  {
-    const std::int64_t begin = chunk * chunkSize;
-    const std::int64_t end = std::min(blocks.Count(), begin + chunkSize);
 #pragma omp parallel num_threads(ctx.threads) reduction(+ : steps, truncated)
-    {
+  {
     // The results of one block, handed to `out` at its end.
     std::vector<double> row(static_cast<size_t>(BlockLength * C));
-#pragma omp for schedule(dynamic)
-    for (std::int64_t k = begin; k < end; ++k)
+    for (std::int64_t k, end; items.Next(k, end); items.Done(k, end))
     {
       std::array<std::int64_t, D> i;
       const std::int64_t length = blocks.Get(k, i);
@@ -663,18 +656,10 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
       }
       out(s0, length, row.data());
     }
-    }
-    if (ctx.progress &&
-      !ctx.progress(progressStart + progressSpan * static_cast<double>(end) / blocks.Count()))
-    {
-      ctx.report.traceSteps += steps;
-      ctx.report.truncatedTraces += truncated;
-      return false;
-    }
   }
   ctx.report.traceSteps += steps;
   ctx.report.truncatedTraces += truncated;
-  return true;
+  return items.Finish();
 }
 
 /// Initial Composed-flow positions: the offsets of AdvectVertices, D floats per

@@ -1,5 +1,7 @@
 #include "MeshAdvect.h"
 
+#include "ParallelItems.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -141,26 +143,20 @@ SurfacePoint FaceStart(std::int64_t f)
 template <typename Body>
 bool AdvectionPass::ForEach(std::int64_t n, Body&& body)
 {
-  const std::int64_t chunkCount = std::max<std::int64_t>(1, std::min<std::int64_t>(64, n / 8192));
-  const std::int64_t chunkSize = (n + chunkCount - 1) / chunkCount;
+  ParallelItems items(n, 256, this->progress, this->progressStart, this->progressSpan);
   std::uint64_t steps = 0;
   std::uint64_t truncated = 0;
-  bool completed = true;
-  for (std::int64_t chunk = 0; chunk < chunkCount && completed; ++chunk)
+#pragma omp parallel num_threads(this->threads) reduction(+ : steps, truncated)
+  for (std::int64_t begin, end; items.Next(begin, end); items.Done(begin, end))
   {
-    const std::int64_t begin = chunk * chunkSize;
-    const std::int64_t end = std::min(n, begin + chunkSize);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(this->threads) reduction(+ : steps, truncated)
     for (std::int64_t i = begin; i < end; ++i)
     {
       body(i, steps, truncated);
     }
-    completed = !this->progress ||
-      this->progress(this->progressStart + this->progressSpan * static_cast<double>(end) / n);
   }
   this->report.traceSteps += steps;
   this->report.truncatedTraces += truncated;
-  return completed;
+  return items.Finish();
 }
 
 std::uint64_t AdvectionPass::Trace(SurfacePoint& q, std::uint64_t& truncated) const

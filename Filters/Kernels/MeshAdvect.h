@@ -52,7 +52,8 @@ SurfacePoint VertexStart(const TriangleMesh& mesh, std::int64_t p, std::int64_t 
 SurfacePoint FaceStart(std::int64_t f);
 
 /// One advection pass: traces along a tracer's velocity for `time`, in parallel
-/// chunks with progress reports between them, counting steps into `report`.
+/// (ParallelItems: no barrier between parts, progress reported as it goes),
+/// counting steps into `report`.
 struct AdvectionPass
 {
   const TriangleMesh& mesh;
@@ -65,7 +66,7 @@ struct AdvectionPass
   double progressSpan;
   AdvectionReport& report;
 
-  /// Run body(i, steps, truncated) for i in [0, n) in parallel chunks; false when aborted.
+  /// Run body(i, steps, truncated) for i in [0, n) in parallel; false when aborted.
   template <typename Body>
   bool ForEach(std::int64_t n, Body&& body);
 
