@@ -571,6 +571,7 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
   {
     // The results of one block, handed to `out` at its end.
     std::vector<double> row(static_cast<size_t>(BlockLength * C));
+    // One block at a time (grain 1): the items handed out are [k, k + 1).
     for (std::int64_t k, end; items.Next(k, end); items.Done(k, end))
     {
       std::array<std::int64_t, D> i;
