@@ -49,23 +49,27 @@ int main(int argc, char* argv[])
   // Steps per window, from a calibration run of 2 million steps.
   const double start = Now();
   volatile double sink = Chain(1.0, 2000000);
-  const double perStep = (Now() - start) / 2e6;
+  const double perStep = std::max(1e-12, (Now() - start) / 2e6);
   const long steps = std::max(1L, static_cast<long>(windowMs * 1e-3 / perStep));
 
   std::vector<std::vector<double>> times(static_cast<size_t>(threads));
+  std::vector<double> results(static_cast<size_t>(threads)); // kept, so the work is done
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<double>& mine = times[static_cast<size_t>(omp_get_thread_num())];
+    const size_t me = static_cast<size_t>(omp_get_thread_num());
     double x = 1.0;
     for (int w = 0; w < windows; ++w)
     {
       const double t0 = Now();
       x = Chain(x, steps);
-      mine.push_back(Now() - t0);
+      times[me].push_back(Now() - t0);
     }
-    sink = x;
+    results[me] = x;
   }
-  (void)sink;
+  for (double x : results)
+  {
+    sink = sink + x;
+  }
   for (int t = 0; t < static_cast<int>(times.size()); ++t)
   {
     std::vector<double> v = times[static_cast<size_t>(t)];

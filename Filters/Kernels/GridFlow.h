@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -109,6 +110,7 @@ void SmoothBlockAllValid(int C, const T* in, double scale, double* out,
   const std::array<std::int64_t, N>& offset, const std::array<double, N>& weight)
 {
   const std::int64_t count = length * C;
+  assert(neighbours >= 0 && neighbours <= std::min<int>(static_cast<int>(N), 4));
   switch (neighbours)
   {
     case 0:

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <exception>
 
 #include <omp.h>
 
@@ -31,7 +32,8 @@ namespace shock
  * the calling thread (OpenMP's thread 0) reports the items done each time it
  * passes another 1/64 of them (Done), and Finish reports the end. When the
  * callback returns false, every thread stops at its next Next, and Finish
- * returns false without another report.
+ * returns false without another report; when it throws, the same, and Finish
+ * rethrows the exception (an exception must not leave an OpenMP region).
  *
  *     ParallelItems items(count, grain, progress, start, span);
  *     #pragma omp parallel num_threads(threads)
@@ -78,23 +80,36 @@ public:
     if (due > this->Reported)
     {
       this->Reported = due;
-      if (!this->Progress(this->Start +
-            this->Span * static_cast<double>(finished) / static_cast<double>(this->Count)))
+      bool go = false;
+      try
+      {
+        go = this->Progress(
+          this->Start + this->Span * static_cast<double>(finished) / static_cast<double>(this->Count));
+      }
+      catch (...)
+      {
+        this->Thrown = std::current_exception(); // rethrown by Finish, outside the region
+      }
+      if (!go)
       {
         this->Aborted.store(true, std::memory_order_relaxed);
       }
     }
   }
 
-  /// After the region: false when aborted; otherwise reports the end and returns
-  /// what the callback says.
+  /// After the region: rethrows what the callback threw; false when aborted;
+  /// otherwise reports the end (at most 1) and returns what the callback says.
   bool Finish()
   {
+    if (this->Thrown)
+    {
+      std::rethrow_exception(this->Thrown);
+    }
     if (this->Aborted.load())
     {
       return false;
     }
-    return !this->Progress || this->Progress(this->Start + this->Span);
+    return !this->Progress || this->Progress(std::min(1.0, this->Start + this->Span));
   }
 
 private:
@@ -109,6 +124,7 @@ private:
   alignas(64) std::atomic<std::int64_t> Finished{ 0 };
   alignas(64) std::atomic<bool> Aborted{ false };
   std::int64_t Reported = 0; // 1/64 steps reported (thread 0 only)
+  std::exception_ptr Thrown; // what the callback threw (thread 0 only)
 };
 
 } // namespace shock

@@ -96,8 +96,11 @@ struct AdvectionReport
 };
 
 /**
- * Progress callback, called from the calling thread between chunks of work with
- * the fraction done in [0, 1]. Returning false aborts the run promptly.
+ * Progress callback, called only from the calling thread (during a parallel
+ * pass, while the other threads go on: ParallelItems.h) with the fraction done
+ * in [0, 1], never decreasing. Returning false aborts the run promptly. It
+ * should be cheap; an exception it throws aborts the pass and is rethrown to
+ * the kernel's caller once the threads have stopped.
  */
 using ProgressFunction = std::function<bool(double fraction)>;
 

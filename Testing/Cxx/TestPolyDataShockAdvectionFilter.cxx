@@ -1611,7 +1611,7 @@ TEST(PolyDataShockAdvectionFilter, NaNValuesStayPutAndDoNotSpread)
 
 TEST(PolyDataShockAdvectionFilter, ReportsProgressAndHonoursAbort)
 {
-  auto mesh = StepSphere(224); // about 50K points: several progress chunks
+  auto mesh = StepSphere(224); // about 50K points: several progress reports
   ASSERT_LE(mesh->GetNumberOfPoints(), 50000);
   vtkNew<Filter> filter;
   filter->SetInputData(mesh);
@@ -1660,7 +1660,7 @@ TEST(PolyDataShockAdvectionFilter, ReportsProgressAndHonoursAbort)
   aborting->Update();
   ASSERT_TRUE(state.aborted);
   EXPECT_EQ(state.callsAfterAbort, 0);
-  EXPECT_LE(state.calls, 4); // executive 0, flow done 0.1, first chunk, executive 1.0
+  EXPECT_LE(state.calls, 4); // executive 0, flow done 0.1, first report in the pass, executive 1.0
   EXPECT_LT(aborting->GetLastTraceSteps(), fullSteps / 2);
   EXPECT_EQ(Values(aborting->GetOutput()->GetPointData()->GetScalars()), Values(mesh->GetPointData()->GetScalars()));
 }

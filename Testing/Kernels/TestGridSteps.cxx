@@ -261,13 +261,16 @@ TEST(GridSteps, UmbrellaSmoothingUsesGaussianWeightsOfTheNormalisedEdgeLengths)
 
 TEST(GridSteps, TheAllValidSmoothingIsTheMaskedOneBitForBit)
 {
-  // Without a mask, blocks of a row are smoothed by whole-block loops (interior
-  // rows in one pass per value); with a mask, sample by sample. Every sample
-  // valid, both must perform the same operations: the same bits, for rows
-  // longer than a block (blocks that start and end inside a row, a tail block
-  // of one sample), 8-bit and double values, one and two threads.
+  // Without a mask, every block of a row is smoothed in one pass per value
+  // (SmoothRowFused); with a mask, sample by sample. Every sample valid, both
+  // must perform the same operations: the same bits, for rows longer than a
+  // block (blocks that start and end inside a row, a tail block of one sample)
+  // and rows that are one block (both ends in it, down to 2 samples), 0 to 4
+  // neighbour rows, 8-bit and double values, one and two threads.
   for (const RefGrid g : { RefGrid{ { 257, 4, 1 }, { 1.0, 2.5, 1.0 } },
-         RefGrid{ { 513, 3, 3 }, { 0.7, 1.0, 1.9 } }, RefGrid{ { 300, 1, 1 }, { 1.3, 1.0, 1.0 } } })
+         RefGrid{ { 513, 3, 3 }, { 0.7, 1.0, 1.9 } }, RefGrid{ { 300, 1, 1 }, { 1.3, 1.0, 1.0 } },
+         RefGrid{ { 2, 3, 3 }, { 1.0, 0.8, 1.4 } }, RefGrid{ { 5, 4, 1 }, { 1.0, 2.5, 1.0 } },
+         RefGrid{ { 130, 1, 1 }, { 1.0, 1.0, 1.0 } } })
   {
     const int C = 3;
     const auto values = Random(g.Samples() * C, 13, -2.0, 5.0);
