@@ -259,6 +259,10 @@ MUTANTS = [
          original="begin = this->Taken.fetch_add(this->Grain, std::memory_order_relaxed);",
          replacement="begin = this->Taken.fetch_add(this->Grain, std::memory_order_relaxed) / 2;",
          bug="threads are handed overlapping items (some run twice, others never)"),
+    dict(id="items-throw-escapes", file=K + "ParallelItems.h",
+         original="      catch (...)\n      {\n        this->Thrown = std::current_exception(); // rethrown by Finish, outside the region\n      }",
+         replacement="      catch (...)\n      {\n        throw;\n      }",
+         bug="an exception from the progress callback leaves the OpenMP region (std::terminate)"),
     # --- mesh geometry ---------------------------------------------------------
     dict(id="mesh-area-twice", file=K + "MeshGeometry.cxx",
          original="this->area[f] = 0.5 * twiceArea;",
