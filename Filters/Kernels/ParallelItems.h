@@ -70,9 +70,13 @@ public:
   /// Items [begin, end) are done; on thread 0, reports progress at each 1/64.
   void Done(std::int64_t begin, std::int64_t end)
   {
+    if (!this->Progress)
+    {
+      return; // nothing to report: the count of items done is not needed
+    }
     const std::int64_t finished =
       this->Finished.fetch_add(end - begin, std::memory_order_relaxed) + (end - begin);
-    if (!this->Progress || omp_get_thread_num() != 0 || finished >= this->Count)
+    if (omp_get_thread_num() != 0 || finished >= this->Count)
     {
       return;
     }
