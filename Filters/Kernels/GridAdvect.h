@@ -7,6 +7,7 @@
 #ifndef GridAdvect_h
 #define GridAdvect_h
 
+#include "GridAvx2.h"
 #include "GridLattice.h"
 #include "GridTrace.h"
 #include "ParallelItems.h"
@@ -16,8 +17,14 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <limits>
 #include <type_traits>
 #include <vector>
+
+#ifdef SHOCK_GRID_AVX2
+#include <immintrin.h>
+#endif
 
 namespace shock
 {
@@ -364,7 +371,7 @@ bool TriesWithinFaceFirst(const Lattice<D>& L, const GridTracer<D>& tracer, doub
  * The trace of interior sample i into face f (corner pattern b) that leaves
  * its face: through the tracer; its end is stored in `end`.
  */
-template <int D>
+template <int D, bool Wide>
 SHOCK_ALWAYS_INLINE void TraceLeavingFace(const GridTracer<D>& tracer, double time,
   const std::array<std::int64_t, D>& i, int b, std::int64_t f, std::array<double, D>& end,
   std::uint64_t& steps, std::uint64_t& truncated)
@@ -372,13 +379,13 @@ SHOCK_ALWAYS_INLINE void TraceLeavingFace(const GridTracer<D>& tracer, double ti
   std::array<std::int64_t, D> c;
   StartInFace<D>(i, b, end, c);
   bool cut = false;
-  steps += static_cast<std::uint64_t>(tracer.Trace(end, c, f, time, cut));
+  steps += static_cast<std::uint64_t>(tracer.template Trace<Wide>(end, c, f, time, cut));
   truncated += cut ? 1 : 0;
 }
 
 /// TraceLeavingFace for a trace that may stay in its face, the sample's index
 /// coordinates also given as doubles (`at`).
-template <int D>
+template <int D, bool Wide>
 SHOCK_ALWAYS_INLINE void TraceFromSample(const GridTracer<D>& tracer, double time,
   const std::array<std::int64_t, D>& i, const std::array<double, D>& at, int b, std::int64_t f,
   std::array<double, D>& end, std::uint64_t& steps, std::uint64_t& truncated)
@@ -386,18 +393,18 @@ SHOCK_ALWAYS_INLINE void TraceFromSample(const GridTracer<D>& tracer, double tim
   std::array<std::int64_t, D> c;
   StartInFace<D>(i, at, b, end, c);
   bool cut = false;
-  steps += static_cast<std::uint64_t>(tracer.Trace(end, c, f, time, cut));
+  steps += static_cast<std::uint64_t>(tracer.template Trace<Wide>(end, c, f, time, cut));
   truncated += cut ? 1 : 0;
 }
 
 /// TraceLeavingFace kept out of line, so that a loop of traces that mostly stay
 /// in their faces (3D) stays small.
-template <int D>
+template <int D, bool Wide>
 SHOCK_NOINLINE void TraceLeavingFaceOutOfLine(const GridTracer<D>& tracer, double time,
   const std::array<std::int64_t, D>& i, int b, std::int64_t f, std::array<double, D>& end,
   std::uint64_t& steps, std::uint64_t& truncated)
 {
-  TraceLeavingFace<D>(tracer, time, i, b, f, end, steps, truncated);
+  TraceLeavingFace<D, Wide>(tracer, time, i, b, f, end, steps, truncated);
 }
 
 /**
@@ -488,11 +495,114 @@ SHOCK_ALWAYS_INLINE void CombineAllReads(const Lattice<D>& L, const Neighbourhoo
 }
 
 /**
+ * @name AVX2 reads of 8-bit images with 3 or 4 components (see GridAvx2.h)
+ * The components of a sample in the four lanes of a register: one 4-byte load
+ * and two conversions per corner instead of a widening per component, with
+ * the products and sums of CombineAllReads in the same order per component.
+ */
+///@{
+#ifdef SHOCK_GRID_AVX2
+/// The four bytes at p as four doubles.
+SHOCK_TARGET_AVX2 inline __m256d FourBytesAvx2(const unsigned char* p)
+{
+  std::int32_t word;
+  std::memcpy(&word, p, sizeof(word));
+  return _mm256_cvtepi32_pd(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(word)));
+}
+
+/**
+ * CombineAllReads<2, unsigned char, UseHood> for C = 3 or 4 components, the
+ * four traces' ends given (far = 4) when UseHood is false. Each read takes four
+ * bytes, one past the sample's own with C = 3: cells and neighbourhoods whose
+ * lower corner is above `lastLower` (those that hold the last sample) are left
+ * to CombineAllReads, and false is returned, nothing written.
+ */
+template <bool UseHood>
+SHOCK_TARGET_AVX2 inline bool CombineByteReadsAvx2(const Lattice<2>& L,
+  const Neighbourhood<2>& hood, const unsigned char* source, std::int64_t s, int C,
+  std::int64_t lastLower, const double* weights, const std::array<double, 2>* ends, int far,
+  double* result)
+{
+  std::int64_t lower[4];
+  std::array<double, 2> frac[4];
+  for (int e = 0; e < far; ++e)
+  {
+    lower[e] = LocateCell<2>(L, ends[e], frac[e]);
+    if (lower[e] > lastLower)
+    {
+      return false;
+    }
+  }
+  if (UseHood && s > lastLower) // the neighbourhood's highest sample is s + corner[3]
+  {
+    return false;
+  }
+  // One sum per corner, the lanes the components (partial[k][b] of CombineReads).
+  __m256d corner[4] = { _mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd(),
+    _mm256_setzero_pd() };
+  for (int e = 0; e < far; ++e)
+  {
+    const unsigned char* values = source + lower[e] * C;
+    for (int b = 0; b < 4; ++b)
+    {
+      const __m256d w = _mm256_set1_pd(CornerWeight<2>(frac[e], b));
+      corner[b] = _mm256_add_pd(corner[b], _mm256_mul_pd(w, FourBytesAvx2(values + hood.cornerOffset[b])));
+    }
+  }
+  __m256d total =
+    _mm256_add_pd(_mm256_add_pd(corner[0], corner[1]), _mm256_add_pd(corner[2], corner[3]));
+  if constexpr (UseHood)
+  {
+    __m256d sum[4] = { total, _mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd() };
+    const unsigned char* own = source + s * C;
+    for (int e = 0; e < Neighbourhood<2>::Size; ++e)
+    {
+      // Entries 0..7 into sums e mod 4, entry 8 into the first (CombineReads's order).
+      const int r = e < 8 ? e % 4 : 0;
+      sum[r] = _mm256_add_pd(sum[r],
+        _mm256_mul_pd(_mm256_set1_pd(weights[e]), FourBytesAvx2(own + hood.valueOffset[e])));
+    }
+    total = _mm256_add_pd(_mm256_add_pd(sum[0], sum[1]), _mm256_add_pd(sum[2], sum[3]));
+  }
+  _mm256_maskstore_pd(result, C == 4 ? _mm256_set1_epi64x(-1) : _mm256_set_epi64x(0, -1, -1, -1),
+    _mm256_div_pd(total, _mm256_set1_pd(4.0)));
+  return true;
+}
+#endif
+
+/**
+ * The combine of AdvectVertices's short road for sample s: CombineAllReads, or
+ * with Wide and `vectorReads` (D = 2, 8-bit samples, C = 3 or 4) its AVX2
+ * version, which only a caller built for AVX2 may take.
+ */
+template <int D, typename T, bool Wide, bool UseHood = true>
+SHOCK_ALWAYS_INLINE void CombineSampleReads(bool vectorReads, std::int64_t lastLower,
+  const Lattice<D>& L, const Neighbourhood<D>& hood, const T* source, std::int64_t s, int C,
+  const double* weights, const std::array<double, D>* ends, int far, double* result)
+{
+#ifdef SHOCK_GRID_AVX2
+  if constexpr (Wide && D == 2 && std::is_same_v<T, unsigned char>)
+  {
+    if (vectorReads &&
+      CombineByteReadsAvx2<UseHood>(L, hood, source, s, C, lastLower, weights, ends, far, result))
+    {
+      return;
+    }
+  }
+#endif
+  (void)vectorReads;
+  (void)lastLower;
+  CombineAllReads<D, T, UseHood>(L, hood, source, s, C, weights, ends, far, result);
+}
+
+///@}
+
+/**
  * Appendix A AdvectVertices for one sample i (index s), any case: traces from
  * the offset into each adjacent face (or from the stored positions), reads
  * added to `stencil`; returns the number of traces.
  */
-template <int D>
+template <int D, bool Wide = false>
 int TraceSample(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, double time,
   const AdjacentFaces<D>& faces, const std::array<std::int64_t, D>& i, std::int64_t s,
   float* positions, Stencil<D>& stencil, std::uint64_t& steps, std::uint64_t& truncated)
@@ -519,7 +629,7 @@ int TraceSample(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, dou
       StartInFace<D>(i, b, q, c);
     }
     bool cut = false;
-    steps += static_cast<std::uint64_t>(tracer.Trace(q, c, f, time, cut));
+    steps += static_cast<std::uint64_t>(tracer.template Trace<Wide>(q, c, f, time, cut));
     truncated += cut ? 1 : 0;
     if (stored)
     {
@@ -545,30 +655,65 @@ int TraceSample(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, dou
  * of an all-finite signal, read multilinearly, whose traces mostly stay in their
  * start faces. Their reads are gathered as weights on the sample's 3^D
  * neighbourhood and applied once; the traces that leave go through the tracer.
- * Returns false when aborted through the progress callback.
+ *
+ * The pass holds the set-up; Run is the work of one thread, which takes row
+ * blocks from `items` until none is left. Wide: Run is inlined in a region
+ * built for AVX2, and 8-bit images with 3 or 4 components are read with
+ * CombineByteReadsAvx2.
  */
 template <int D, typename T>
-bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, double time,
-  const T* source, const SampleWriter& out, float* positions, double progressStart,
-  double progressSpan)
+struct VertexAdvection
 {
-  const Lattice<D>& L = ctx.L;
-  const int C = ctx.C;
-  const unsigned char* valid = ctx.valid;
-  constexpr int Corners = Lattice<D>::Corners;
-  using Hood = Neighbourhood<D>;
-  const Hood hood(L, C);
-  const bool shortRoad =
-    !positions && !valid && ctx.sampling == Sampling::Linear && tracer.CrossesFaces();
-  const bool withinFirst = shortRoad && TriesWithinFaceFirst<D>(L, tracer, time);
+  const AdvectionContext<D>& ctx;
+  const GridTracer<D>& tracer;
+  double time;
+  const T* source;
+  const SampleWriter& out;
+  float* positions;
+  Neighbourhood<D> hood;
+  RowBlocks<D> blocks;
+  bool shortRoad;
+  bool withinFirst;
+  // The largest lower corner of a cell whose corners can all be read four bytes at a time.
+  std::int64_t lastLower;
 
-  const RowBlocks<D> blocks(L.n);
-  // The blocks are independent: the threads take them one at a time as they come.
-  ParallelItems items(blocks.Count(), 1, ctx.progress, progressStart, progressSpan);
-  std::uint64_t steps = 0;
-  std::uint64_t truncated = 0;
-#pragma omp parallel num_threads(ctx.threads) reduction(+ : steps, truncated)
+  VertexAdvection(const AdvectionContext<D>& context, const GridTracer<D>& tracer_, double time_,
+    const T* source_, const SampleWriter& out_, float* positions_)
+    : ctx(context)
+    , tracer(tracer_)
+    , time(time_)
+    , source(source_)
+    , out(out_)
+    , positions(positions_)
+    , hood(context.L, context.C)
+    , blocks(context.L.n)
+    , shortRoad(!positions_ && !context.valid && context.sampling == Sampling::Linear &&
+        tracer_.CrossesFaces())
+    , withinFirst(this->shortRoad && TriesWithinFaceFirst<D>(context.L, tracer_, time_))
+    , lastLower(context.C == 4 ? std::numeric_limits<std::int64_t>::max()
+                               : context.L.numSamples - 2 - context.L.corner[Lattice<D>::Corners - 1])
   {
+  }
+
+  template <bool Wide>
+  SHOCK_ALWAYS_INLINE void Run(
+    ParallelItems& items, std::uint64_t& steps, std::uint64_t& truncated) const
+  {
+    const Lattice<D>& L = this->ctx.L;
+    const int C = this->ctx.C;
+    const unsigned char* valid = this->ctx.valid;
+    constexpr int Corners = Lattice<D>::Corners;
+    using Hood = Neighbourhood<D>;
+    const Hood& hood = this->hood;
+    const RowBlocks<D>& blocks = this->blocks;
+    const GridTracer<D>& tracer = this->tracer;
+    const double time = this->time;
+    const T* source = this->source;
+    const bool shortRoad = this->shortRoad;
+    const bool withinFirst = this->withinFirst;
+    const std::int64_t lastLower = this->lastLower;
+    float* positions = this->positions;
+    const bool vectorReads = Wide && D == 2 && std::is_same_v<T, unsigned char> && (C == 3 || C == 4);
     // The results of one block, handed to `out` at its end.
     std::vector<double> row(static_cast<size_t>(BlockLength * C));
     // One block at a time (grain 1): the items handed out are [k, k + 1).
@@ -609,9 +754,10 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
             }
             for (int b = 0; b < Corners; ++b)
             {
-              TraceFromSample<D>(tracer, time, i, at, b, faces.Face(i[0], b), ends[b], steps, truncated);
+              TraceFromSample<D, Wide>(tracer, time, i, at, b, faces.Face(i[0], b), ends[b], steps, truncated);
             }
-            CombineAllReads<D, T, false>(L, hood, source, s, C, nullptr, ends, Corners, result);
+            CombineSampleReads<D, T, Wide, false>(
+              vectorReads, lastLower, L, hood, source, s, C, nullptr, ends, Corners, result);
             continue;
           }
           double weights[Hood::Size] = {};
@@ -626,7 +772,7 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
               const std::int64_t f = faces.Face(i[0], b);
               if (!TraceWithinFace<D>(tracer.Velocity(f), b, time, weights))
               {
-                TraceLeavingFaceOutOfLine<D>(tracer, time, i, b, f, ends[far++], steps, truncated);
+                TraceLeavingFaceOutOfLine<D, Wide>(tracer, time, i, b, f, ends[far++], steps, truncated);
               }
             }
           }
@@ -638,25 +784,77 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
               const std::int64_t f = faces.Face(i[0], b);
               if (!TraceWithinFace<D>(tracer.Velocity(f), b, time, weights))
               {
-                TraceLeavingFace<D>(tracer, time, i, b, f, ends[far++], steps, truncated);
+                TraceLeavingFace<D, Wide>(tracer, time, i, b, f, ends[far++], steps, truncated);
               }
             }
           }
-          CombineAllReads<D>(L, hood, source, s, C, weights, ends, far, result);
+          CombineSampleReads<D, T, Wide>(
+            vectorReads, lastLower, L, hood, source, s, C, weights, ends, far, result);
           continue;
         }
         // The traces' reads are gathered first, then combined per component in
         // registers (no read-modify-write of the output per corner).
         Stencil<D> stencil;
         const int traces =
-          TraceSample<D>(ctx, tracer, time, faces, i, s, positions, stencil, steps, truncated);
+          TraceSample<D, Wide>(this->ctx, tracer, time, faces, i, s, positions, stencil, steps, truncated);
         for (int c = 0; c < C; ++c)
         {
           result[c] = stencil.Apply(source, C, c) / traces;
         }
       }
-      out(s0, length, row.data());
+      this->out(s0, length, row.data());
     }
+  }
+};
+
+/// The threads' region of a VertexAdvection pass, built for the baseline x86-64.
+template <int D, typename T>
+void RunVertexAdvection(const VertexAdvection<D, T>& pass, ParallelItems& items,
+  std::uint64_t& steps, std::uint64_t& truncated)
+{
+  std::uint64_t passSteps = 0;
+  std::uint64_t passTruncated = 0;
+#pragma omp parallel num_threads(pass.ctx.threads) reduction(+ : passSteps, passTruncated)
+  pass.template Run<false>(items, passSteps, passTruncated);
+  steps += passSteps;
+  truncated += passTruncated;
+}
+
+#ifdef SHOCK_GRID_AVX2
+/// RunVertexAdvection built for AVX2 (GridAvx2.h).
+template <int D, typename T>
+SHOCK_TARGET_AVX2 void RunVertexAdvectionAvx2(const VertexAdvection<D, T>& pass,
+  ParallelItems& items, std::uint64_t& steps, std::uint64_t& truncated)
+{
+  std::uint64_t passSteps = 0;
+  std::uint64_t passTruncated = 0;
+#pragma omp parallel num_threads(pass.ctx.threads) reduction(+ : passSteps, passTruncated)
+  pass.template Run<true>(items, passSteps, passTruncated);
+  steps += passSteps;
+  truncated += passTruncated;
+}
+#endif
+
+/// AdvectVertices (see VertexAdvection); false when aborted through the progress callback.
+template <int D, typename T>
+bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, double time,
+  const T* source, const SampleWriter& out, float* positions, double progressStart,
+  double progressSpan)
+{
+  const VertexAdvection<D, T> pass(ctx, tracer, time, source, out, positions);
+  // The blocks are independent: the threads take them one at a time as they come.
+  ParallelItems items(pass.blocks.Count(), 1, ctx.progress, progressStart, progressSpan);
+  std::uint64_t steps = 0;
+  std::uint64_t truncated = 0;
+#ifdef SHOCK_GRID_AVX2
+  if (UsesAvx2())
+  {
+    RunVertexAdvectionAvx2<D, T>(pass, items, steps, truncated);
+  }
+  else
+#endif
+  {
+    RunVertexAdvection<D, T>(pass, items, steps, truncated);
   }
   ctx.report.traceSteps += steps;
   ctx.report.truncatedTraces += truncated;

@@ -8,6 +8,7 @@
 #ifndef GridTrace_h
 #define GridTrace_h
 
+#include "GridAvx2.h"
 #include "GridLattice.h"
 #include "ShockTypes.h"
 
@@ -55,8 +56,11 @@ public:
 
   /**
    * Trace q (index coordinates), which lies in face f with coordinates c (as
-   * FaceOf finds them), for time t; returns the number of steps taken.
+   * FaceOf finds them), for time t; returns the number of steps taken. Wide:
+   * the image and volume tracers' AVX2 build (GridAvx2.h), for callers that
+   * checked UsesAvx2.
    */
+  template <bool Wide = false>
   std::int64_t Trace(std::array<double, D>& q, const std::array<std::int64_t, D>& c,
     std::int64_t f, double t, bool& truncated) const
   {
@@ -64,6 +68,16 @@ public:
     {
       return this->TraceStepped(q, c, f, t, truncated);
     }
+#ifdef SHOCK_GRID_AVX2
+    if constexpr (Wide && D == 2)
+    {
+      return this->TraceFaceCrossingPlanarAvx2(q, c, f, t, truncated);
+    }
+    else if constexpr (Wide && D == 3)
+    {
+      return this->TraceFaceCrossingSpatialAvx2(q, c, f, t, truncated);
+    }
+#endif
     if constexpr (D == 2)
     {
       return this->TraceFaceCrossingPlanar(q, c, f, t, truncated);
@@ -246,8 +260,23 @@ private:
    * when d >= t |v| along that axis; the one division, d / |v|, is the time of
    * a crossing. An axis slid along has velocity 0 there and is never left.
    */
-  std::int64_t TraceFaceCrossingPlanar(std::array<double, D>& q, std::array<std::int64_t, D> c,
-    std::int64_t f, double t, bool& truncated) const
+  SHOCK_NOINLINE std::int64_t TraceFaceCrossingPlanar(std::array<double, D>& q,
+    std::array<std::int64_t, D> c, std::int64_t f, double t, bool& truncated) const
+  {
+    return this->PlanarTrace(q, c, f, t, truncated);
+  }
+#ifdef SHOCK_GRID_AVX2
+  /// TraceFaceCrossingPlanar built for AVX2.
+  SHOCK_NOINLINE SHOCK_TARGET_AVX2 std::int64_t TraceFaceCrossingPlanarAvx2(
+    std::array<double, D>& q, std::array<std::int64_t, D> c, std::int64_t f, double t,
+    bool& truncated) const
+  {
+    return this->PlanarTrace(q, c, f, t, truncated);
+  }
+#endif
+  /// The body of TraceFaceCrossingPlanar, built into each of its two versions.
+  SHOCK_ALWAYS_INLINE std::int64_t PlanarTrace(std::array<double, D>& q,
+    std::array<std::int64_t, D> c, std::int64_t f, double t, bool& truncated) const
   {
     static_assert(D == 2, "the planar tracer is for images");
     const double hx = L.h2[0];
@@ -335,8 +364,23 @@ private:
    * (its division overlaps the position's chain of operations); an axis without
    * motion, or the one slid along, has an infinite time and is never left.
    */
-  std::int64_t TraceFaceCrossingSpatial(std::array<double, D>& q, std::array<std::int64_t, D> c,
-    std::int64_t f, double t, bool& truncated) const
+  SHOCK_NOINLINE std::int64_t TraceFaceCrossingSpatial(std::array<double, D>& q,
+    std::array<std::int64_t, D> c, std::int64_t f, double t, bool& truncated) const
+  {
+    return this->SpatialTrace(q, c, f, t, truncated);
+  }
+#ifdef SHOCK_GRID_AVX2
+  /// TraceFaceCrossingSpatial built for AVX2.
+  SHOCK_NOINLINE SHOCK_TARGET_AVX2 std::int64_t TraceFaceCrossingSpatialAvx2(
+    std::array<double, D>& q, std::array<std::int64_t, D> c, std::int64_t f, double t,
+    bool& truncated) const
+  {
+    return this->SpatialTrace(q, c, f, t, truncated);
+  }
+#endif
+  /// The body of TraceFaceCrossingSpatial, built into each of its two versions.
+  SHOCK_ALWAYS_INLINE std::int64_t SpatialTrace(std::array<double, D>& q,
+    std::array<std::int64_t, D> c, std::int64_t f, double t, bool& truncated) const
   {
     static_assert(D == 3, "the spatial tracer is for volumes");
     constexpr double never = std::numeric_limits<double>::infinity();

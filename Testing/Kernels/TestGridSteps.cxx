@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -1026,6 +1027,245 @@ TEST(GridSteps, EveryComponentIsAdvectedAsIfAlone)
       EXPECT_GT(EachComponentAlone<3>(volume, C, volumeSignal, volumeOut, slow, fast, true), 0.1);
     }
   }
+}
+
+namespace
+{
+/// Forbids the AVX2 build for its lifetime (the portable build runs).
+struct PortableBuild
+{
+  PortableBuild() { AllowAvx2(false); }
+  ~PortableBuild() { AllowAvx2(true); }
+  PortableBuild(const PortableBuild&) = delete;
+  PortableBuild& operator=(const PortableBuild&) = delete;
+};
+
+/// Random back-trace velocities on L: zero components, equal speeds, and
+/// a share `slow` of faces so slow that their traces stay in them.
+template <int D>
+std::vector<float> RandomVelocity(const Lattice<D>& L, std::mt19937& random, double slow, double fast)
+{
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<float> v(static_cast<size_t>(L.numFaces * D));
+  for (std::int64_t f = 0; f < L.numFaces; ++f)
+  {
+    const double speed = u(random) < slow ? 0.0004 : fast;
+    for (int d = 0; d < D; ++d)
+    {
+      const double r = u(random);
+      v[f * D + d] = static_cast<float>(
+        r < 0.15 ? 0.0 : (r < 0.25 ? (r < 0.2 ? 0.5 : -0.5) * speed : (2.0 * u(random) - 1.0) * speed));
+    }
+  }
+  return v;
+}
+
+/// Trace<true> (the AVX2 build) against Trace<false> on random flows of grid g:
+/// the same steps, truncation and ends, bit for bit. Returns the number of
+/// traces that crossed three faces or more.
+template <int D>
+int Avx2TracesAreThePortableOnes(const RefGrid& g, unsigned seed)
+{
+  const Lattice<D> L(g.Shape());
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int longTraces = 0;
+  for (int flow = 0; flow < 200; ++flow)
+  {
+    const std::vector<float> v = RandomVelocity<D>(L, random, 0.0, 1.0);
+    AdvectionParameters p;
+    const GridTracer<D> tracer(L, v.data(), p);
+    for (int start = 0; start < 20; ++start)
+    {
+      std::array<double, D> q;
+      for (int d = 0; d < D; ++d)
+      {
+        q[d] = static_cast<double>(L.m[d]) * u(random);
+        q[d] = u(random) < 0.2 ? std::floor(q[d]) : q[d];
+      }
+      const double t = 12.0 * u(random);
+      std::array<std::int64_t, D> c;
+      const std::int64_t f = tracer.FaceOf(q, c);
+      std::array<double, D> wide = q;
+      bool cut = false, wideCut = false;
+      const std::int64_t n = tracer.template Trace<false>(q, c, f, t, cut);
+      const std::int64_t wideSteps = tracer.template Trace<true>(wide, c, f, t, wideCut);
+      EXPECT_EQ(n, wideSteps) << "flow " << flow << " start " << start;
+      EXPECT_EQ(cut, wideCut);
+      for (int d = 0; d < D; ++d)
+      {
+        EXPECT_EQ(q[d], wide[d]) << "flow " << flow << " start " << start << " axis " << d;
+      }
+      longTraces += n >= 3 ? 1 : 0;
+    }
+  }
+  return longTraces;
+}
+
+/// AdvectVertices of `signal` (C per sample) on grid g along a random flow,
+/// for time t, on `threads` threads.
+template <int D, typename T>
+std::vector<double> AdvectAlongRandomFlow(const RefGrid& g, int C, const std::vector<T>& signal,
+  const std::vector<float>& velocity, double t, int threads)
+{
+  const Lattice<D> L(g.Shape());
+  AdvectionParameters p;
+  const GridTracer<D> tracer(L, velocity.data(), p);
+  AdvectionReport report;
+  const ProgressFunction none;
+  const AdvectionContext<D> ctx{ L, C, threads, Sampling::Linear, nullptr, none, report };
+  std::vector<double> out(signal.size());
+  EXPECT_TRUE(AdvectVertices<D>(ctx, tracer, t, signal.data(), Into(out, C), nullptr, 0.0, 1.0));
+  return out;
+}
+} // namespace
+
+TEST(GridSteps, TheAvx2TracersTakeThePortablePathsBitForBit)
+{
+  // The image and volume tracers built for AVX2 (GridAvx2.h) do the portable
+  // build's operations: on random flows, the same crossings, slides,
+  // reversals and stepped rests, ending at the same doubles.
+  if (!UsesAvx2())
+  {
+    GTEST_SKIP() << "this processor has no AVX2: only the portable build runs";
+  }
+  EXPECT_GT(Avx2TracesAreThePortableOnes<2>(RefGrid{ { 11, 9, 1 }, { 1.0, 1.7, 1.0 } }, 15), 100);
+  EXPECT_GT(Avx2TracesAreThePortableOnes<3>(RefGrid{ { 7, 6, 5 }, { 1.0, 1.3, 0.8 } }, 16), 100);
+}
+
+TEST(GridSteps, TheAvx2AdvectionGivesThePortableValuesBitForBit)
+{
+  // AdvectVertices built for AVX2, with its reads of 8-bit images of 3 or 4
+  // components a sample at a time, gives the portable build's values bit for
+  // bit: any number of components, 8-bit, float and double signals, images
+  // and volumes, both roads (traces tried in their faces first or not), 1 and
+  // 2 threads. The flow pushes the traces near the last sample into the last
+  // cell, whose 3-component reads are left to the portable code (the
+  // sanitizers' build would see a read past the array).
+  if (!UsesAvx2())
+  {
+    GTEST_SKIP() << "this processor has no AVX2: only the portable build runs";
+  }
+  const RefGrid image{ { 23, 17, 1 }, { 1.0, 1.4, 1.0 } };
+  const RefGrid volume{ { 9, 7, 6 }, { 1.0, 0.8, 1.2 } };
+  std::mt19937 random(17);
+  std::uniform_int_distribution<int> byte(0, 255);
+  for (const auto& [slow, fast, t] : { std::tuple{ 0.7, 1.5, 1.0 }, std::tuple{ 0.1, 3.0, 40.0 } })
+  {
+    SCOPED_TRACE(t);
+    const Lattice<2> L(image.Shape());
+    std::vector<float> flow = RandomVelocity<2>(L, random, slow, fast);
+    for (std::int64_t f = L.numFaces - 3; f < L.numFaces; ++f)
+    {
+      flow[f * 2] = 2.0f; // towards the last sample
+      flow[f * 2 + 1] = 2.0f;
+    }
+    for (int C : { 1, 2, 3, 4, 5 })
+    {
+      SCOPED_TRACE(C);
+      std::vector<unsigned char> bytes(static_cast<size_t>(image.Samples() * C));
+      for (unsigned char& b : bytes)
+      {
+        b = static_cast<unsigned char>(byte(random));
+      }
+      const std::vector<double> values = Random(bytes.size(), 90 + C, -2.0, 3.0);
+      for (int threads : { 1, 2 })
+      {
+        const std::vector<double> wide = AdvectAlongRandomFlow<2>(image, C, bytes, flow, t, threads);
+        const std::vector<double> wideValues = AdvectAlongRandomFlow<2>(image, C, values, flow, t, threads);
+        const PortableBuild portable;
+        ASSERT_FALSE(UsesAvx2());
+        const std::vector<double> narrow = AdvectAlongRandomFlow<2>(image, C, bytes, flow, t, threads);
+        const std::vector<double> narrowValues = AdvectAlongRandomFlow<2>(image, C, values, flow, t, threads);
+        double moved = 0.0;
+        for (size_t k = 0; k < bytes.size(); ++k)
+        {
+          ASSERT_EQ(wide[k], narrow[k]) << "sample " << k / C << " component " << k % C;
+          ASSERT_EQ(wideValues[k], narrowValues[k]) << "sample " << k / C << " component " << k % C;
+          moved = std::max(moved, std::abs(wide[k] - bytes[k]));
+        }
+        EXPECT_GT(moved, 10.0); // the signal moved
+        // The last cell is the first face of the sample at (n - 2, m - 2), an
+        // interior one: its trace there ends at the last sample, which it reads.
+        const size_t corner = static_cast<size_t>(image.Index(21, 15, 0) * C);
+        EXPECT_NE(wide[corner], static_cast<double>(bytes[corner]));
+      }
+    }
+  }
+  const Lattice<3> L(volume.Shape());
+  const std::vector<float> flow = RandomVelocity<3>(L, random, 0.6, 1.5);
+  const std::vector<double> values = Random(static_cast<size_t>(volume.Samples() * 2), 99, -2.0, 3.0);
+  const std::vector<double> wide = AdvectAlongRandomFlow<3>(volume, 2, values, flow, 1.0, 2);
+  const PortableBuild portable;
+  const std::vector<double> narrow = AdvectAlongRandomFlow<3>(volume, 2, values, flow, 1.0, 2);
+  EXPECT_EQ(wide, narrow);
+  EXPECT_NE(wide, values);
+}
+
+TEST(GridSteps, TheAvx2ByteReadsLeaveTheLastCellToThePortableOnes)
+{
+  // CombineByteReadsAvx2 reads four bytes per corner: with 3 components the
+  // last sample's would pass the array's end, so a cell that holds it is
+  // refused (nothing written). Elsewhere, and everywhere with 4 components,
+  // it gives CombineAllReads's values bit for bit.
+#ifdef SHOCK_GRID_AVX2
+  if (!UsesAvx2())
+  {
+    GTEST_SKIP() << "this processor has no AVX2";
+  }
+  const RefGrid image{ { 6, 5, 1 }, { 1.0, 1.0, 1.0 } };
+  const Lattice<2> L(image.Shape());
+  for (int C : { 3, 4 })
+  {
+    SCOPED_TRACE(C);
+    std::vector<unsigned char> bytes(static_cast<size_t>(image.Samples() * C));
+    for (size_t k = 0; k < bytes.size(); ++k)
+    {
+      bytes[k] = static_cast<unsigned char>((k * 37 + 11) % 256);
+    }
+    const Neighbourhood<2> hood(L, C);
+    const std::int64_t lastLower = C == 4 ? std::numeric_limits<std::int64_t>::max()
+                                          : L.numSamples - 2 - L.corner[3];
+    const std::int64_t s = image.Index(2, 2, 0);
+    double weights[Neighbourhood<2>::Size];
+    for (int e = 0; e < Neighbourhood<2>::Size; ++e)
+    {
+      weights[e] = 0.05 * (e + 1);
+    }
+    const std::array<double, 2> inside[4] = { { 0.3, 0.7 }, { 3.2, 3.9 }, { 2.5, 1.25 }, { 4.99, 0.01 } };
+    const std::array<double, 2> lastCell[4] = { { 0.3, 0.7 }, { 3.2, 3.9 }, { 4.6, 3.2 }, { 1.0, 1.0 } };
+    for (int far = 0; far <= 4; ++far)
+    {
+      double expected[4] = { -1, -1, -1, -1 }, got[4] = { -1, -1, -1, -1 };
+      CombineAllReads<2, unsigned char, true>(L, hood, bytes.data(), s, C, weights, inside, far, expected);
+      ASSERT_TRUE(CombineByteReadsAvx2<true>(L, hood, bytes.data(), s, C, lastLower, weights, inside, far, got));
+      for (int k = 0; k < 4; ++k)
+      {
+        EXPECT_EQ(got[k], expected[k]) << "far " << far << " component " << k;
+      }
+    }
+    double expected[4] = { -1, -1, -1, -1 }, got[4] = { -1, -1, -1, -1 };
+    CombineAllReads<2, unsigned char, false>(L, hood, bytes.data(), s, C, nullptr, inside, 4, expected);
+    ASSERT_TRUE(CombineByteReadsAvx2<false>(L, hood, bytes.data(), s, C, lastLower, nullptr, inside, 4, got));
+    for (int k = 0; k < 4; ++k)
+    {
+      EXPECT_EQ(got[k], expected[k]) << "component " << k;
+    }
+    EXPECT_GT(expected[0], 0.0);
+    double untouched[4] = { -1, -1, -1, -1 };
+    const bool read = CombineByteReadsAvx2<false>(L, hood, bytes.data(), s, C, lastLower, nullptr, lastCell, 4, untouched);
+    EXPECT_EQ(read, C == 4);
+    if (!read)
+    {
+      EXPECT_EQ(untouched[0], -1.0);
+    }
+    // Nor the neighbourhood of the sample whose neighbourhood holds the last sample.
+    const std::int64_t corner = image.Index(4, 3, 0);
+    EXPECT_EQ(CombineByteReadsAvx2<true>(L, hood, bytes.data(), corner, C, lastLower, weights, inside, 0, untouched), C == 4);
+  }
+#else
+  GTEST_SKIP() << "built without the AVX2 build (not x86-64)";
+#endif
 }
 
 TEST(GridSteps, TheSignalsRangeIsItsSmallestAndLargestValue)
