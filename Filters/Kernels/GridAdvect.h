@@ -564,8 +564,15 @@ SHOCK_TARGET_AVX2 inline bool CombineByteReadsAvx2(const Lattice<2>& L,
     }
     total = _mm256_add_pd(_mm256_add_pd(sum[0], sum[1]), _mm256_add_pd(sum[2], sum[3]));
   }
-  _mm256_maskstore_pd(result, C == 4 ? _mm256_set1_epi64x(-1) : _mm256_set_epi64x(0, -1, -1, -1),
-    _mm256_div_pd(total, _mm256_set1_pd(4.0)));
+  const __m256d average = _mm256_div_pd(total, _mm256_set1_pd(4.0));
+  // Plain stores (a masked store is slow on some processors): C values, not the 4th of 3.
+  _mm_storeu_pd(result, _mm256_castpd256_pd128(average));
+  const __m128d upper = _mm256_extractf128_pd(average, 1);
+  _mm_store_sd(result + 2, upper);
+  if (C == 4)
+  {
+    _mm_storeh_pd(result + 3, upper);
+  }
   return true;
 }
 #endif
