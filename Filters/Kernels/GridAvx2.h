@@ -3,10 +3,10 @@
  * @brief The AVX2 build of the grid advection, chosen at run time.
  *
  * The library is built for the baseline x86-64. Where the processor has AVX2,
- * AdvectVertices runs a second build of its loop and of the face-crossing
- * tracers, made for AVX2 with function attributes (VEX encoding: fewer
- * register moves), and reads 8-bit images with 3 or 4 components a sample at a
- * time (CombineByteReadsAvx2). Neither build fuses multiply-adds and both do
+ * AdvectVertices runs a second build of its loop and of the image tracer,
+ * made for AVX2 with function attributes (VEX encoding: fewer register
+ * moves), and reads 8-bit images with 3 or 4 components a sample at a time
+ * (CombineByteReadsAvx2). Neither build fuses multiply-adds and both do
  * the same operations in the same order, so the values are the same: the
  * tests compare the two builds bit for bit.
  */

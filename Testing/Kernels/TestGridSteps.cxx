@@ -1120,17 +1120,18 @@ std::vector<double> AdvectAlongRandomFlow(const RefGrid& g, int C, const std::ve
 }
 } // namespace
 
-TEST(GridSteps, TheAvx2TracersTakeThePortablePathsBitForBit)
+TEST(GridSteps, TheAvx2ImageTracerTakesThePortablePathsBitForBit)
 {
-  // The image and volume tracers built for AVX2 (GridAvx2.h) do the portable
-  // build's operations: on random flows, the same crossings, slides,
-  // reversals and stepped rests, ending at the same doubles.
+  // The image tracer built for AVX2 (GridAvx2.h) does the portable build's
+  // operations: on random flows, the same crossings, slides, reversals and
+  // stepped rests, ending at the same doubles. (The volume tracer has no AVX2
+  // build: Trace<true> is the portable one there.)
   if (!UsesAvx2())
   {
     GTEST_SKIP() << "this processor has no AVX2: only the portable build runs";
   }
   EXPECT_GT(Avx2TracesAreThePortableOnes<2>(RefGrid{ { 11, 9, 1 }, { 1.0, 1.7, 1.0 } }, 15), 100);
-  EXPECT_GT(Avx2TracesAreThePortableOnes<3>(RefGrid{ { 7, 6, 5 }, { 1.0, 1.3, 0.8 } }, 16), 100);
+  EXPECT_GT(Avx2TracesAreThePortableOnes<2>(RefGrid{ { 5, 13, 1 }, { 0.6, 1.0, 1.0 } }, 16), 100);
 }
 
 TEST(GridSteps, TheAvx2AdvectionGivesThePortableValuesBitForBit)
