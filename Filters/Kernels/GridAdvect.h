@@ -830,7 +830,8 @@ void RunVertexAdvection(const VertexAdvection<D, T>& pass, ParallelItems& items,
 }
 
 #ifdef SHOCK_GRID_AVX2
-/// RunVertexAdvection built for AVX2 (GridAvx2.h).
+/// RunVertexAdvection built for AVX2 (GridAvx2.h). The region is written out
+/// again, not shared: GCC builds an OpenMP region for its enclosing function's target.
 template <int D, typename T>
 SHOCK_TARGET_AVX2 void RunVertexAdvectionAvx2(const VertexAdvection<D, T>& pass,
   ParallelItems& items, std::uint64_t& steps, std::uint64_t& truncated)

@@ -572,11 +572,13 @@ TEST(GridSteps, TraceStopsWhereTheFlowReversesInThePhysicalMetric)
 namespace
 {
 /// Traces random starts on random flows of grid g (zero components, equal
-/// speeds, starts on grid lines) with Trace (the tracer written for D) and
-/// with the general TraceFaceCrossing: same steps, same ends to rounding.
-/// Returns the number of traces that crossed three faces or more.
-template <int D>
-int TracersAgree(const RefGrid& g, unsigned seed)
+/// speeds, starts on grid lines) with Trace (the tracer written for D, or the
+/// one Wide names) and with `other` (called as other(tracer, q, c, f, t, cut)
+/// on a copy of the start): the same steps and truncation, ends within
+/// `tolerance` (0: bit for bit). Returns the number of traces that crossed
+/// three faces or more.
+template <int D, bool Wide = false, typename Other>
+int TracesAgree(const RefGrid& g, unsigned seed, double tolerance, Other other)
 {
   const Lattice<D> L(g.Shape());
   std::mt19937 random(seed);
@@ -603,20 +605,36 @@ int TracersAgree(const RefGrid& g, unsigned seed)
       const double t = 12.0 * u(random);
       std::array<std::int64_t, D> c;
       const std::int64_t f = tracer.FaceOf(q, c);
-      std::array<double, D> general = q;
-      bool cut = false, generalCut = false;
-      const std::int64_t n = tracer.Trace(q, c, f, t, cut);
-      const std::int64_t generalSteps = tracer.TraceFaceCrossing(general, c, f, t, generalCut);
-      EXPECT_EQ(n, generalSteps) << "flow " << flow << " start " << start;
-      EXPECT_EQ(cut, generalCut);
+      std::array<double, D> otherEnd = q;
+      bool cut = false, otherCut = false;
+      const std::int64_t n = tracer.template Trace<Wide>(q, c, f, t, cut);
+      const std::int64_t otherSteps = other(tracer, otherEnd, c, f, t, otherCut);
+      EXPECT_EQ(n, otherSteps) << "flow " << flow << " start " << start;
+      EXPECT_EQ(cut, otherCut);
       for (int d = 0; d < D; ++d)
       {
-        EXPECT_NEAR(q[d], general[d], 1e-9) << "flow " << flow << " start " << start << " axis " << d;
+        if (tolerance > 0.0)
+        {
+          EXPECT_NEAR(q[d], otherEnd[d], tolerance) << "flow " << flow << " start " << start << " axis " << d;
+        }
+        else
+        {
+          EXPECT_EQ(q[d], otherEnd[d]) << "flow " << flow << " start " << start << " axis " << d;
+        }
       }
       longTraces += n >= 3 ? 1 : 0;
     }
   }
   return longTraces;
+}
+
+/// TracesAgree of Trace (the tracer written for D) with the general TraceFaceCrossing, to rounding.
+template <int D>
+int TracersAgree(const RefGrid& g, unsigned seed)
+{
+  return TracesAgree<D>(g, seed, 1e-9,
+    [](const GridTracer<D>& tracer, std::array<double, D>& q, const std::array<std::int64_t, D>& c,
+      std::int64_t f, double t, bool& cut) { return tracer.TraceFaceCrossing(q, c, f, t, cut); });
 }
 } // namespace
 
@@ -1060,46 +1078,13 @@ std::vector<float> RandomVelocity(const Lattice<D>& L, std::mt19937& random, dou
   return v;
 }
 
-/// Trace<true> (the AVX2 build) against Trace<false> on random flows of grid g:
-/// the same steps, truncation and ends, bit for bit. Returns the number of
-/// traces that crossed three faces or more.
+/// TracesAgree of Trace<true> (the AVX2 build) with Trace<false>, bit for bit.
 template <int D>
 int Avx2TracesAreThePortableOnes(const RefGrid& g, unsigned seed)
 {
-  const Lattice<D> L(g.Shape());
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  int longTraces = 0;
-  for (int flow = 0; flow < 200; ++flow)
-  {
-    const std::vector<float> v = RandomVelocity<D>(L, random, 0.0, 1.0);
-    AdvectionParameters p;
-    const GridTracer<D> tracer(L, v.data(), p);
-    for (int start = 0; start < 20; ++start)
-    {
-      std::array<double, D> q;
-      for (int d = 0; d < D; ++d)
-      {
-        q[d] = static_cast<double>(L.m[d]) * u(random);
-        q[d] = u(random) < 0.2 ? std::floor(q[d]) : q[d];
-      }
-      const double t = 12.0 * u(random);
-      std::array<std::int64_t, D> c;
-      const std::int64_t f = tracer.FaceOf(q, c);
-      std::array<double, D> wide = q;
-      bool cut = false, wideCut = false;
-      const std::int64_t n = tracer.template Trace<false>(q, c, f, t, cut);
-      const std::int64_t wideSteps = tracer.template Trace<true>(wide, c, f, t, wideCut);
-      EXPECT_EQ(n, wideSteps) << "flow " << flow << " start " << start;
-      EXPECT_EQ(cut, wideCut);
-      for (int d = 0; d < D; ++d)
-      {
-        EXPECT_EQ(q[d], wide[d]) << "flow " << flow << " start " << start << " axis " << d;
-      }
-      longTraces += n >= 3 ? 1 : 0;
-    }
-  }
-  return longTraces;
+  return TracesAgree<D, true>(g, seed, 0.0,
+    [](const GridTracer<D>& tracer, std::array<double, D>& q, const std::array<std::int64_t, D>& c,
+      std::int64_t f, double t, bool& cut) { return tracer.template Trace<false>(q, c, f, t, cut); });
 }
 
 /// AdvectVertices of `signal` (C per sample) on grid g along a random flow,
