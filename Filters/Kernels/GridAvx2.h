@@ -33,8 +33,11 @@ namespace detail
 inline std::atomic<bool> Avx2Allowed{ true };
 }
 
-/// Allows (the default) or forbids the AVX2 build, so that tests and benchmarks
-/// can compare it with the portable one. Not while a run is on.
+/// Allows (the default) or forbids the AVX2 build, so that tests can compare
+/// it with the portable one. Not while a run is on. It acts on the copy of the
+/// kernels linked into the caller (the library's symbols are hidden: the VTK
+/// module has its own); to compare the builds through the module, a program
+/// or ParaView, set SHOCK_AVX2=0 in the environment instead.
 inline void AllowAvx2(bool allow)
 {
   detail::Avx2Allowed.store(allow);
