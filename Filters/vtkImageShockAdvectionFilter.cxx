@@ -19,7 +19,9 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <sstream>
 #include <cmath>
+#include <cstring>
 
 vtkStandardNewMacro(vtkImageShockAdvectionFilter);
 
@@ -353,6 +355,90 @@ int UpdateGhostLevels(vtkInformation* info)
     : 0;
 }
 
+/**
+ * Crop `image` to `target` (within its extent) as vtkImageData::Crop does, but
+ * a row at a time: each point and cell array is copied with memcpy instead of
+ * one vtkDataSetAttributes::CopyData call per tuple (which took a third of a
+ * 2-process run on a 256^3 volume). Returns false, changing nothing, when an
+ * array is not a plain named vtkDataArray or an axis the image spans would be
+ * left with a single point (vtkImageData::Crop then does it).
+ */
+bool CropByRows(vtkImageData* image, const int target[6])
+{
+  const int* extent = image->GetExtent();
+  int crop[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    crop[2 * a] = std::max(target[2 * a], extent[2 * a]);
+    crop[2 * a + 1] = std::min(target[2 * a + 1], extent[2 * a + 1]);
+    const bool spans = extent[2 * a + 1] > extent[2 * a];
+    if (crop[2 * a] > crop[2 * a + 1] || (spans && crop[2 * a] == crop[2 * a + 1]))
+    {
+      return false;
+    }
+  }
+  // Sample boxes of points and cells: first index, count, and the input's count per axis.
+  struct Box
+  {
+    vtkIdType first[3], count[3], dims[3];
+  } points{}, cells{};
+  for (int a = 0; a < 3; ++a)
+  {
+    const bool spans = extent[2 * a + 1] > extent[2 * a];
+    points.first[a] = crop[2 * a] - extent[2 * a];
+    points.count[a] = crop[2 * a + 1] - crop[2 * a] + 1;
+    points.dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
+    cells.first[a] = spans ? points.first[a] : 0;
+    cells.count[a] = spans ? points.count[a] - 1 : 1;
+    cells.dims[a] = spans ? points.dims[a] - 1 : 1;
+  }
+  vtkDataSetAttributes* attributes[2] = { image->GetPointData(), image->GetCellData() };
+  for (vtkDataSetAttributes* data : attributes)
+  {
+    for (int k = 0; k < data->GetNumberOfArrays(); ++k)
+    {
+      vtkDataArray* array = data->GetArray(k);
+      if (!array || !array->GetName() || !array->HasStandardMemoryLayout())
+      {
+        return false;
+      }
+    }
+  }
+  for (int which = 0; which < 2; ++which)
+  {
+    const Box& box = which == 0 ? points : cells;
+    vtkDataSetAttributes* data = attributes[which];
+    for (int k = 0; k < data->GetNumberOfArrays(); ++k)
+    {
+      vtkDataArray* array = data->GetArray(k);
+      const size_t tupleBytes = static_cast<size_t>(array->GetDataTypeSize()) * array->GetNumberOfComponents();
+      if (array->GetNumberOfTuples() != box.dims[0] * box.dims[1] * box.dims[2])
+      {
+        continue; // not one tuple per sample: vtkImageData::Crop would not know it either
+      }
+      vtkSmartPointer<vtkDataArray> cropped = vtk::TakeSmartPointer(array->NewInstance());
+      cropped->SetName(array->GetName());
+      cropped->SetNumberOfComponents(array->GetNumberOfComponents());
+      cropped->CopyComponentNames(array);
+      cropped->SetNumberOfTuples(box.count[0] * box.count[1] * box.count[2]);
+      const char* from = static_cast<const char*>(array->GetVoidPointer(0));
+      char* to = static_cast<char*>(cropped->GetVoidPointer(0));
+      for (vtkIdType z = 0; z < box.count[2]; ++z)
+      {
+        for (vtkIdType y = 0; y < box.count[1]; ++y)
+        {
+          const vtkIdType row = ((box.first[2] + z) * box.dims[1] + box.first[1] + y) * box.dims[0] + box.first[0];
+          std::memcpy(to, from + static_cast<size_t>(row) * tupleBytes, static_cast<size_t>(box.count[0]) * tupleBytes);
+          to += static_cast<size_t>(box.count[0]) * tupleBytes;
+        }
+      }
+      data->AddArray(cropped); // same name: replaces the array at its index (attributes kept)
+    }
+  }
+  image->SetExtent(crop);
+  return true;
+}
+
 /// The extent of one piece of `extent` with `ghost` layers, split as the source splits it.
 void PieceExtent(vtkInformation* info, const int extent[6], int ghost, int piece[6])
 {
@@ -447,8 +533,23 @@ void vtkImageShockAdvectionFilter::CropToUpdateExtent(vtkInformationVector* outp
   const int* extent = output->GetExtent();
   if (!std::equal(extent, extent + 6, target))
   {
-    output->Crop(target); // intersects with the filtered extent
+    if (!CropByRows(output, target))
+    {
+      output->Crop(target); // intersects with the filtered extent
+    }
   }
+}
+
+std::string vtkImageShockAdvectionFilter::ParametersText()
+{
+  std::ostringstream text;
+  text.precision(17);
+  text << this->Superclass::ParametersText()
+       << "Method=" << this->Method << ";"
+       << "HierarchyLevels=" << this->HierarchyLevels << ";"
+       << "CourantNumber=" << this->CourantNumber << ";"
+       << "MaximumIterations=" << this->MaximumIterations << ";";
+  return text.str();
 }
 
 void vtkImageShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)

@@ -156,6 +156,8 @@ public:
   ///@}
 
 protected:
+  std::string ParametersText() override;
+
   vtkImageShockAdvectionFilter();
   ~vtkImageShockAdvectionFilter() override = default;
 

@@ -7,6 +7,7 @@
 #include "vtkMultiProcessController.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkLogger.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -74,16 +75,27 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   // array to filter; in parallel, every process agrees, then gets ghost cells.
   int association = -1;
   vtkDataArray* array = nullptr;
+  std::string selection; // the filtered array, which every piece must agree on
   auto findArray = [&](vtkPolyData* surface) -> std::string {
     array = surface->GetNumberOfPoints() > 0 ? this->GetArrayToFilter(inputVector, association) : nullptr;
+    if (array)
+    {
+      selection = std::string("filtered ") +
+        (association == vtkDataObject::FIELD_ASSOCIATION_CELLS ? "cell" : "point") + " array '" +
+        (array->GetName() ? array->GetName() : "(unnamed)") + "';";
+    }
     return array || surface->GetNumberOfPoints() == 0 ? "" : "no array to filter (see the message above)";
   };
   bool unknown = false;
   vtkSmartPointer<vtkPolyData> input;
   vtkShockParallel::SurfacePiece piece;
   std::string error;
-  if (!vtkShockPolyDataInternals::BeginSurface(inputVector,
-        this->PieceController(outputVector, unknown), this->GhostLevels, findArray, input, piece, error))
+  vtkLogStartScope(TRACE, "shock: input, agreement and ghost rings");
+  const bool begun = vtkShockPolyDataInternals::BeginSurface(inputVector,
+    this->PieceController(outputVector, unknown), this->GhostLevels, findArray, this->ParametersText(),
+    &selection, input, piece, error);
+  vtkLogEndScope("shock: input, agreement and ghost rings");
+  if (!begun)
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -95,9 +107,11 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   }
   // Normalise like the whole surface: data range and mean edge length over all
   // pieces, lengths in the unit of the whole surface (collective).
+  vtkLogStartScope(TRACE, "shock: global scales");
   this->ParallelValueScale = this->GlobalValueScale(piece.controller, inputVector);
   const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work, this->NumberOfThreads);
   this->ParallelLengthScale = this->GlobalMeanEdgeLength(piece.controller, piece.work) / (unit > 0.0 ? unit : 1.0);
+  vtkLogEndScope("shock: global scales");
   if (input->GetNumberOfPoints() == 0)
   {
     output->ShallowCopy(input);
@@ -109,10 +123,14 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   }
   // Filter the piece with its ghost cells; the output holds each owned cell once.
   vtkNew<vtkPolyData> filtered;
-  if (!this->FilterSurface(piece.work, array, association, filtered, unit))
+  vtkLogStartScope(TRACE, "shock: filter the piece");
+  const bool done = this->FilterSurface(piece.work, array, association, filtered, unit);
+  vtkLogEndScope("shock: filter the piece");
+  if (!done)
   {
     return 0;
   }
+  vtkLogScopeF(TRACE, "shock: output of the owned cells");
   output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(filtered, input).GetPointer()
                                        : filtered.GetPointer());
   return 1;

@@ -49,7 +49,7 @@
  * refused with a message saying to add Extract Surface.
  *
  * In parallel (one piece per process, as in pvbatch or pvserver with MPI) the
- * piece gets GhostLevels layers of its neighbours' cells (vtkGhostCellsGenerator
+ * piece gets GhostLevels rings of its neighbours' cells (built with the mesh's own connectivity,
  * over the Controller; see vtkShockAdvectionFilter::SetGhostLevels) and is
  * filtered with them, normalised by the data range and the mean edge length
  * over all pieces: the result equals the serial one when the flow lines stay

@@ -346,6 +346,7 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
     vtkShockParallel::Sum(controller, values, count);
   };
   partition.exchangePoints = [&out](double* values) { out.exchange.Exchange(values); };
+  partition.anyStopped = [controller](bool stopped) { return vtkShockParallel::Count(controller, stopped) > 0; };
 }
 }
 
@@ -372,7 +373,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   vtkShockParallel::SurfacePiece piece;
   std::string error;
   if (!vtkShockPolyDataInternals::BeginSurface(inputVector, controller,
-        std::max(1, this->GhostLevels), wholeOrPieces, input, piece, error))
+        std::max(1, this->GhostLevels), wholeOrPieces, this->ParametersText(), nullptr, input, piece, error))
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -421,9 +422,11 @@ int vtkPolyDataShockSharpenFilter::RequestData(
     this->GenerateSharpenedNormals ? static_cast<size_t>(3 * prepared.mesh.NumberOfTriangles()) : 0);
   shock::SharpeningReport report;
   shock::MeshFlowFields fields;
-  if (!this->Sharpen(prepared.mesh, piece.controller ? &distribution.partition : nullptr,
-        distribution.meanEdgeLength, !prepared.pointOrder.empty(), positions, normals, report, fields))
+  bool sharpened = this->Sharpen(prepared.mesh, piece.controller ? &distribution.partition : nullptr,
+    distribution.meanEdgeLength, !prepared.pointOrder.empty(), positions, normals, report, fields, error);
+  if (piece.controller ? vtkShockParallel::AnyFailed(piece.controller, !sharpened, error) : !sharpened)
   {
+    vtkErrorMacro("Geometry sharpening failed: " << error);
     return 0;
   }
   if (report.advection.aborted || empty)
@@ -436,17 +439,17 @@ int vtkPolyDataShockSharpenFilter::RequestData(
     x *= unit; // back from the mesh unit (a power of two: exact)
   }
   // The output: the piece's own cells with the new positions and the requested arrays.
-  vtkNew<vtkPolyData> sharpened;
-  this->BuildOutput(piece.work, prepared, positions, normals, fields, report, sharpened);
-  output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(sharpened, input).GetPointer()
-                                       : sharpened.GetPointer());
+  vtkNew<vtkPolyData> result;
+  this->BuildOutput(piece.work, prepared, positions, normals, fields, report, result);
+  output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(result, input).GetPointer()
+                                       : result.GetPointer());
   return 1;
 }
 
 bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   const shock::MeshPartition* partition, double meanEdgeLength, bool localNumbering,
   std::vector<double>& positions, std::vector<double>& normals, shock::SharpeningReport& report,
-  shock::MeshFlowFields& fields)
+  shock::MeshFlowFields& fields, std::string& error)
 {
   shock::SharpeningParameters parameters;
   parameters.advection = vtkShockFilterInternals::MakeParameters(this);
@@ -464,7 +467,12 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   shock::Status status;
   if (mesh.NumberOfPoints() == 0)
   {
-    // An empty piece takes part in the distributed fit's sums and exchanges.
+    // An empty piece takes part in the distributed fit's agreement, sums and exchanges.
+    if (partition->anyStopped && partition->anyStopped(false))
+    {
+      report.advection.aborted = true;
+      return true;
+    }
     status = shock::FitPositionsToNormals(mesh, nullptr, nullptr, parameters.fit, &report.fit);
     double flipped = 0.0;
     partition->globalSum(&flipped, 1);
@@ -481,7 +489,7 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   this->FitAssemblies += report.advection.aborted || report.fit.reusedSystem ? 0 : 1;
   if (!status.Ok())
   {
-    vtkErrorMacro("Geometry sharpening failed: " << status.error);
+    error = status.error;
     return false;
   }
   this->RecordRun(report.normalsSeconds + report.advection.flowSeconds,
@@ -553,6 +561,23 @@ void vtkPolyDataShockSharpenFilter::ResetMeasurements()
   this->LastSolverResidual = this->LastMaxDisplacement = 0.0;
   this->LastFlippedTriangles = 0;
   this->LastRepeatedTriangles = this->LastDegenerateTriangles = this->LastFeatureEdges = 0;
+}
+
+std::string vtkPolyDataShockSharpenFilter::ParametersText()
+{
+  std::ostringstream text;
+  text.precision(17);
+  text << this->Superclass::ParametersText()
+       << "FeatureAngle=" << this->FeatureAngle << ";"
+       << "FitTarget=" << this->FitTarget << ";"
+       << "NormalSmoothingPasses=" << this->NormalSmoothingPasses << ";"
+       << "ScreeningWeight=" << this->ScreeningWeight << ";"
+       << "Solver=" << this->Solver << ";"
+       << "SolverIterations=" << this->SolverIterations << ";"
+       << "SolverTolerance=" << this->SolverTolerance << ";"
+       << "MergeCoincidentPoints=" << this->MergeCoincidentPoints << ";"
+       << "GenerateSharpenedNormals=" << this->GenerateSharpenedNormals << ";";
+  return text.str();
 }
 
 void vtkPolyDataShockSharpenFilter::PrintSelf(ostream& os, vtkIndent indent)

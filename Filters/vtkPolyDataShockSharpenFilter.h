@@ -63,7 +63,7 @@
  * Parallel use: a mesh split over MPI processes (e.g. by RedistributeDataSet,
  * D3 or a partitioned .pvtp file; unstructured grids of polygons are read as
  * polydata) gives the serial result. Each piece gets GhostLevels layers of
- * ghost cells (vtkGhostCellsGenerator) and global point ids; normals,
+ * ghost cells (rings built with the mesh's connectivity) and global point ids; normals,
  * potential, flow and advection run per piece, normalised by the mean edge
  * length over all pieces; the screened Poisson fit runs across the processes
  * of the Controller: area and centroid summed over the pieces, the same
@@ -279,6 +279,8 @@ public:
   ///@}
 
 protected:
+  std::string ParametersText() override;
+
   vtkPolyDataShockSharpenFilter();
   ~vtkPolyDataShockSharpenFilter() override;
 
@@ -290,10 +292,11 @@ protected:
     vtkInformationVector* outputVector) override;
   void ResetMeasurements() override;
 
-  /// Run the kernels (a piece of a distributed mesh with `partition`); false after vtkErrorMacro.
+  /// Run the kernels (a piece of a distributed mesh with `partition`); false with the kernel's `error`.
   bool Sharpen(const shock::TriangleMesh& mesh, const shock::MeshPartition* partition,
     double meanEdgeLength, bool localNumbering, std::vector<double>& positions,
-    std::vector<double>& normals, shock::SharpeningReport& report, shock::MeshFlowFields& fields);
+    std::vector<double>& normals, shock::SharpeningReport& report, shock::MeshFlowFields& fields,
+    std::string& error);
 
   /// The prepared mesh of `input` in the length unit `unit` (MeshUnit), kept between
   /// executions (the kernels' cache goes with it); renumbered for locality unless

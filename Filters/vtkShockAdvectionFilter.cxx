@@ -1,5 +1,7 @@
 #include "vtkShockAdvectionFilter.h"
 
+#include <sstream>
+
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
@@ -210,6 +212,18 @@ void vtkShockAdvectionFilter::RecordRun(double flowSeconds, double advectionSeco
     vtkWarningMacro(<< truncatedTraces
                     << " flow lines were cut at the step limit (a cycle of the discrete flow).");
   }
+}
+
+std::string vtkShockAdvectionFilter::ParametersText()
+{
+  std::ostringstream text;
+  text.precision(17);
+  text << "class=" << this->GetClassName() << ";FlowTime=" << this->FlowTime
+       << ";SmoothingPasses=" << this->SmoothingPasses << ";StepFraction=" << this->StepFraction
+       << ";FlowMode=" << this->FlowMode << ";NumberOfFlowUpdates=" << this->NumberOfFlowUpdates
+       << ";Sampling=" << this->Sampling << ";TracingMode=" << this->TracingMode
+       << ";GenerateFlowArrays=" << this->GenerateFlowArrays << ";GhostLevels=" << this->GhostLevels << ";";
+  return text.str();
 }
 
 void vtkShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)

@@ -32,6 +32,8 @@
 #define vtkShockAdvectionFilter_h
 
 #include "vtkPassInputTypeAlgorithm.h"
+
+#include <string>
 #include "vtkFiltersShockModule.h" // for export macro
 
 class vtkDataArray;
@@ -194,7 +196,7 @@ public:
    * was requested, so pieces tile the image exactly. Cell arrays are grown by
    * the same number of layers.
    * Surfaces: the piece's own cells get GhostLevels layers of their
-   * neighbours' cells from vtkGhostCellsGenerator (over the Controller), are
+   * neighbours' cells (rings fetched over the Controller, one exchange per ring), are
    * filtered with them, and the output holds each owned cell once, shared
    * points marked in vtkGhostType (DUPLICATEPOINT on all copies but the
    * owner's). Ghost cells arriving from upstream are replaced: their depth
@@ -294,6 +296,13 @@ protected:
 
   /// The array GetArrayToFilter would choose, without messages (nullptr when none).
   vtkDataArray* FindArrayToFilter(vtkInformationVector** inputVector, int& association);
+
+  /**
+   * The parameters that change the result, as "Name=value;..." (full
+   * precision; not NumberOfThreads, which does not): what the processes of a
+   * parallel execution compare before any collective step. Subclasses append theirs.
+   */
+  virtual std::string ParametersText();
 
   /// Store the measurements of a run; warns when traces were cut at the step limit.
   void RecordRun(double flowSeconds, double advectionSeconds, vtkTypeUInt64 traceSteps,

@@ -1,6 +1,7 @@
 #include "vtkShockParallel.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkAbstractArray.h"
 #include "vtkAlgorithmOutput.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
@@ -9,10 +10,10 @@
 #include "vtkCompositeDataSet.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkFieldData.h"
-#include "vtkGenerateGlobalIds.h"
-#include "vtkGhostCellsGenerator.h"
 #include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
+#include "vtkLogger.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -77,6 +78,39 @@ bool UpstreamIsComposite(vtkAlgorithm* filter)
     ? connection->GetProducer()->GetOutputDataObject(connection->GetIndex())
     : nullptr;
   return vtkCompositeDataSet::SafeDownCast(upstream) != nullptr;
+}
+
+std::string ArraysFingerprintText(vtkDataSet* piece)
+{
+  if (!piece || piece->GetNumberOfPoints() == 0)
+  {
+    return "";
+  }
+  std::string text;
+  for (vtkDataSetAttributes* data : { static_cast<vtkDataSetAttributes*>(piece->GetPointData()),
+         static_cast<vtkDataSetAttributes*>(piece->GetCellData()) })
+  {
+    const char* where = data == piece->GetPointData() ? "point" : "cell";
+    std::vector<std::string> names;
+    for (int k = 0; k < data->GetNumberOfArrays(); ++k)
+    {
+      vtkAbstractArray* array = data->GetAbstractArray(k);
+      const char* name = array && array->GetName() ? array->GetName() : "(unnamed)";
+      if (std::string(name) == vtkDataSetAttributes::GhostArrayName())
+      {
+        continue; // made and replaced by the distribution
+      }
+      names.push_back(std::string(where) + " array '" + name + "' (" + array->GetDataTypeAsString() + ", " +
+        std::to_string(array->GetNumberOfComponents()) + " component" +
+        (array->GetNumberOfComponents() == 1 ? "" : "s") + ")");
+    }
+    std::sort(names.begin(), names.end());
+    for (const std::string& name : names)
+    {
+      text += name + ";";
+    }
+  }
+  return text.empty() ? std::string("no point or cell arrays;") : text;
 }
 
 vtkMultiProcessController* PieceController(
@@ -171,15 +205,19 @@ vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
   {
     return piece;
   }
-  // The own cells, type by type (vtkPolyData numbers verts, lines, polygons, strips in turn).
+  // The own cells, kind by kind (vtkPolyData numbers verts, lines, polygons, strips in turn).
   vtkCellArray* inputCells[4] = { piece->GetVerts(), piece->GetLines(), piece->GetPolys(), piece->GetStrips() };
-  vtkNew<vtkCellArray> verts, lines, polys, strips;
-  vtkCellArray* kept[4] = { verts, lines, polys, strips };
   vtkNew<vtkIdList> keptCells;
   std::vector<vtkIdType> newId(static_cast<size_t>(piece->GetNumberOfPoints()), -1);
+  std::vector<vtkIdType> offsets[4], connectivity[4];
   vtkIdType cell = 0;
   for (int kind = 0; kind < 4; ++kind)
   {
+    offsets[kind].push_back(0);
+    if (!inputCells[kind])
+    {
+      continue;
+    }
     auto iterator = vtk::TakeSmartPointer(inputCells[kind]->NewIterator());
     for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
     {
@@ -190,7 +228,8 @@ vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
       vtkIdType size;
       const vtkIdType* points;
       iterator->GetCurrentCell(size, points);
-      kept[kind]->InsertNextCell(size, points);
+      connectivity[kind].insert(connectivity[kind].end(), points, points + size);
+      offsets[kind].push_back(static_cast<vtkIdType>(connectivity[kind].size()));
       keptCells->InsertNextId(cell);
       for (vtkIdType k = 0; k < size; ++k)
       {
@@ -208,34 +247,49 @@ vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
       keptPoints->InsertNextId(static_cast<vtkIdType>(p));
     }
   }
-  for (vtkCellArray* cells : kept)
+  auto owned = vtkSmartPointer<vtkPolyData>::New();
+  for (int kind = 0; kind < 4; ++kind)
   {
-    vtkDataArray* connectivity = cells->GetConnectivityArray();
-    for (vtkIdType k = 0; k < connectivity->GetNumberOfTuples(); ++k)
+    vtkNew<vtkIdTypeArray> offsetArray, connectivityArray;
+    offsetArray->SetNumberOfTuples(static_cast<vtkIdType>(offsets[kind].size()));
+    std::copy(offsets[kind].begin(), offsets[kind].end(), offsetArray->GetPointer(0));
+    connectivityArray->SetNumberOfTuples(static_cast<vtkIdType>(connectivity[kind].size()));
+    vtkIdType* to = connectivityArray->GetPointer(0);
+    for (vtkIdType p : connectivity[kind])
     {
-      connectivity->SetTuple1(k, static_cast<double>(newId[static_cast<size_t>(connectivity->GetTuple1(k))]));
+      *to++ = newId[static_cast<size_t>(p)];
+    }
+    vtkNew<vtkCellArray> cells;
+    cells->SetData(offsetArray, connectivityArray);
+    switch (kind)
+    {
+      case 0: owned->SetVerts(cells); break;
+      case 1: owned->SetLines(cells); break;
+      case 2: owned->SetPolys(cells); break;
+      default: owned->SetStrips(cells); break;
     }
   }
-  auto owned = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> points;
   points->SetDataType(piece->GetPoints()->GetDataType());
   piece->GetPoints()->GetPoints(keptPoints, points);
   owned->SetPoints(points);
-  owned->SetVerts(verts);
-  owned->SetLines(lines);
-  owned->SetPolys(polys);
-  owned->SetStrips(strips);
   owned->GetFieldData()->ShallowCopy(piece->GetFieldData());
-  owned->GetPointData()->CopyAllocate(piece->GetPointData(), keptPoints->GetNumberOfIds());
+  // Row lists: vtkDataSetAttributes copies each array's rows in one call (not one call per row).
+  vtkNew<vtkIdList> pointRows, cellRows;
+  pointRows->SetNumberOfIds(keptPoints->GetNumberOfIds());
   for (vtkIdType k = 0; k < keptPoints->GetNumberOfIds(); ++k)
   {
-    owned->GetPointData()->CopyData(piece->GetPointData(), keptPoints->GetId(k), k);
+    pointRows->SetId(k, k);
   }
-  owned->GetCellData()->CopyAllocate(piece->GetCellData(), keptCells->GetNumberOfIds());
+  cellRows->SetNumberOfIds(keptCells->GetNumberOfIds());
   for (vtkIdType k = 0; k < keptCells->GetNumberOfIds(); ++k)
   {
-    owned->GetCellData()->CopyData(piece->GetCellData(), keptCells->GetId(k), k);
+    cellRows->SetId(k, k);
   }
+  owned->GetPointData()->CopyAllocate(piece->GetPointData(), keptPoints->GetNumberOfIds());
+  owned->GetPointData()->CopyData(piece->GetPointData(), keptPoints, pointRows);
+  owned->GetCellData()->CopyAllocate(piece->GetCellData(), keptCells->GetNumberOfIds());
+  owned->GetCellData()->CopyData(piece->GetCellData(), keptCells, cellRows);
   owned->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName()); // no ghost cell left
   return owned;
 }
@@ -256,37 +310,6 @@ vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* inpu
     }
   }
   return owned;
-}
-
-vtkSmartPointer<vtkPolyData> WithGhostCells(
-  vtkMultiProcessController* controller, vtkPolyData* piece, int layers, std::string& error)
-{
-  vtkNew<vtkPolyData> tagged;
-  tagged->ShallowCopy(piece);
-  vtkSmartPointer<vtkDataObject> source = tagged.GetPointer();
-  vtkNew<vtkGenerateGlobalIds> ids;
-  if (!piece->GetPointData()->GetGlobalIds())
-  {
-    ids->SetController(controller);
-    ids->SetInputData(tagged);
-    ids->Update();
-    source = ids->GetOutputDataObject(0);
-  }
-  vtkNew<vtkGhostCellsGenerator> generator;
-  generator->SetController(controller);
-  generator->BuildIfRequiredOff();
-  generator->SetNumberOfGhostLayers(layers);
-  generator->SetInputData(source);
-  generator->Update();
-  auto result = vtkSmartPointer<vtkPolyData>::New();
-  result->ShallowCopy(generator->GetOutputDataObject(0));
-
-  if (result->GetNumberOfCells() < piece->GetNumberOfCells())
-  {
-    error = "the ghost cells generator lost cells of the piece";
-    return nullptr;
-  }
-  return result;
 }
 
 namespace
@@ -311,90 +334,138 @@ std::vector<vtkIdType> AllGather(vtkMultiProcessController* controller,
 }
 }
 
-void MarkPointOwners(vtkMultiProcessController* controller, vtkPolyData* piece)
+namespace
 {
-  const vtkIdType np = piece->GetNumberOfPoints();
-  vtkDataArray* ids = piece->GetPointData()->GetGlobalIds();
-  vtkUnsignedCharArray* cellGhosts = piece->GetCellGhostArray();
-  // Which points the piece's own cells use, and which its ghost cells use.
-  std::vector<char> inOwned(static_cast<size_t>(np), 0), inGhost(static_cast<size_t>(np), 0);
-  std::map<std::pair<vtkIdType, vtkIdType>, int> ownedEdges; // polygon edges of the own cells
-  vtkIdType cell = 0;
-  for (vtkCellArray* cells : { piece->GetVerts(), piece->GetLines(), piece->GetPolys(), piece->GetStrips() })
+/// `text` of process `root`, on every process (collective).
+std::string BroadcastText(vtkMultiProcessController* controller, const std::string& text, int root)
+{
+  vtkIdType length = static_cast<vtkIdType>(text.size());
+  controller->Broadcast(&length, 1, root);
+  std::vector<char> buffer(static_cast<size_t>(length) + 1, '\0');
+  if (controller->GetLocalProcessId() == root)
   {
-    auto iterator = vtk::TakeSmartPointer(cells->NewIterator());
-    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
+    std::copy(text.begin(), text.end(), buffer.begin());
+  }
+  controller->Broadcast(buffer.data(), length + 1, root);
+  return std::string(buffer.data(), static_cast<size_t>(length));
+}
+
+/// A 62-bit FNV-1a hash of `text` (non-negative, so that its negation fits).
+vtkIdType Fingerprint(const std::string& text)
+{
+  std::uint64_t hash = 1469598103934665603ull;
+  for (unsigned char c : text)
+  {
+    hash = (hash ^ c) * 1099511628211ull;
+  }
+  return static_cast<vtkIdType>(hash >> 2);
+}
+
+/// "name=value" entries of a "name=value;name=value;..." text.
+std::vector<std::string> Entries(const std::string& text)
+{
+  std::vector<std::string> entries;
+  size_t start = 0;
+  while (start < text.size())
+  {
+    const size_t end = text.find(';', start);
+    entries.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    start = end == std::string::npos ? text.size() : end + 1;
+  }
+  return entries;
+}
+
+/// The first entry that differs between `mine` and `reference`, as "mine" / "reference".
+void FirstDifference(const std::string& mine, const std::string& reference, std::string& ours, std::string& theirs)
+{
+  const std::vector<std::string> a = Entries(mine), b = Entries(reference);
+  for (size_t k = 0; k < std::max(a.size(), b.size()); ++k)
+  {
+    ours = k < a.size() ? a[k] : "(nothing)";
+    theirs = k < b.size() ? b[k] : "(nothing)";
+    if (ours != theirs)
     {
-      vtkIdType size;
-      const vtkIdType* points;
-      iterator->GetCurrentCell(size, points);
-      const bool ghost = cellGhosts && (cellGhosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL);
-      for (vtkIdType k = 0; k < size; ++k)
-      {
-        (ghost ? inGhost : inOwned)[static_cast<size_t>(points[k])] = 1;
-        if (!ghost && cells == piece->GetPolys() && size > 1)
-        {
-          const vtkIdType a = points[k], b = points[(k + 1) % size];
-          ++ownedEdges[{ std::min(a, b), std::max(a, b) }];
-        }
-      }
+      return;
     }
   }
-  // A point on the border of several pieces' own cells belongs to the lowest process among them.
-  // The border: points next to ghost cells, and ends of edges only one own polygon has
-  // (pieces may touch at corners only, where no ghost cell was made).
-  for (const auto& edge : ownedEdges)
-  {
-    if (edge.second == 1)
-    {
-      inGhost[static_cast<size_t>(edge.first.first)] = inGhost[static_cast<size_t>(edge.first.second)] = 1;
-    }
-  }
-  std::vector<vtkIdType> border;
-  for (vtkIdType p = 0; ids && p < np; ++p)
-  {
-    if (inOwned[static_cast<size_t>(p)] && inGhost[static_cast<size_t>(p)])
-    {
-      border.push_back(static_cast<vtkIdType>(ids->GetTuple1(p)));
-    }
-  }
-  std::vector<vtkIdType> counts, offsets;
-  const std::vector<vtkIdType> all = AllGather(controller, border, counts, offsets);
-  const int me = controller->GetLocalProcessId();
-  std::unordered_map<vtkIdType, int> lowest;
-  for (int r = 0; r < me; ++r)
-  {
-    for (vtkIdType k = 0; k < counts[static_cast<size_t>(r)]; ++k)
-    {
-      lowest.emplace(all[static_cast<size_t>(offsets[static_cast<size_t>(r)] + k)], r);
-    }
-  }
-  vtkNew<vtkUnsignedCharArray> marks;
-  marks->SetName(vtkDataSetAttributes::GhostArrayName());
-  marks->SetNumberOfTuples(np);
-  vtkUnsignedCharArray* old = PointGhosts(piece);
-  for (vtkIdType p = 0; p < np; ++p)
-  {
-    const bool owned = inOwned[static_cast<size_t>(p)] &&
-      !(ids && inGhost[static_cast<size_t>(p)] && lowest.count(static_cast<vtkIdType>(ids->GetTuple1(p))));
-    const unsigned char other = old ? (old->GetValue(p) & ~vtkDataSetAttributes::DUPLICATEPOINT) : 0;
-    marks->SetValue(p, static_cast<unsigned char>(other | (owned ? 0 : vtkDataSetAttributes::DUPLICATEPOINT)));
-  }
-  piece->GetPointData()->AddArray(marks); // replaces the generator's marks
+}
 }
 
 bool AnyFailed(vtkMultiProcessController* controller, bool failed, std::string& error)
 {
-  const int failures = Count(controller, failed);
-  if (failures > 0 && !failed)
+  const int processes = controller->GetNumberOfProcesses();
+  const vtkIdType mine = failed ? processes - controller->GetLocalProcessId() : 0;
+  vtkIdType lowest = 0;
+  controller->AllReduce(&mine, &lowest, 1, vtkCommunicator::MAX_OP);
+  if (lowest == 0)
   {
-    error = "another process could not filter its piece (its message says why)";
+    return false;
   }
-  return failures > 0;
+  // Every process reports the first failing process's reason.
+  const int first = static_cast<int>(processes - lowest);
+  error = "process " + std::to_string(first) + " of " + std::to_string(processes) + " cannot filter its piece: " +
+    BroadcastText(controller, error, first);
+  return true;
+}
+
+bool Agree(vtkMultiProcessController* controller, const std::string& localError,
+  const std::string& parameters, const std::string& arrays, std::string& error)
+{
+  // One reduction: the first failing process, and whether the fingerprints of
+  // the parameters and of the arrays (processes with data only) are the same everywhere.
+  const int me = controller->GetLocalProcessId();
+  const int processes = controller->GetNumberOfProcesses();
+  const vtkIdType none = std::numeric_limits<vtkIdType>::min() / 2;
+  const vtkIdType p = Fingerprint(parameters);
+  const vtkIdType a = arrays.empty() ? none : Fingerprint(arrays);
+  const vtkIdType local[5] = { localError.empty() ? 0 : processes - me, p, -p, a, a == none ? none : -a };
+  vtkIdType global[5];
+  controller->AllReduce(local, global, 5, vtkCommunicator::MAX_OP);
+  if (global[0] > 0)
+  {
+    const int first = static_cast<int>(processes - global[0]);
+    error = "process " + std::to_string(first) + " of " + std::to_string(processes) +
+      " cannot filter its piece: " + BroadcastText(controller, localError, first);
+    return false;
+  }
+  const bool sameParameters = global[1] == -global[2];
+  const bool sameArrays = global[3] == none || global[3] == -global[4];
+  if (sameParameters && sameArrays)
+  {
+    return true;
+  }
+  // Name the first process that differs from the reference (process 0's
+  // parameters; the arrays of the first process with data) and what differs.
+  const std::string& mineText = sameParameters ? arrays : parameters;
+  const vtkIdType hasData = arrays.empty() ? processes : me;
+  vtkIdType reference = 0;
+  if (!sameParameters)
+  {
+    reference = 0;
+  }
+  else
+  {
+    controller->AllReduce(&hasData, &reference, 1, vtkCommunicator::MIN_OP);
+  }
+  const std::string referenceText = BroadcastText(controller, mineText, static_cast<int>(reference));
+  const vtkIdType differs = (!mineText.empty() && mineText != referenceText) ? me : processes;
+  vtkIdType firstDiffering = processes;
+  controller->AllReduce(&differs, &firstDiffering, 1, vtkCommunicator::MIN_OP);
+  std::string ours, theirs;
+  FirstDifference(mineText, referenceText, ours, theirs);
+  const std::string detail = BroadcastText(controller,
+    "process " + std::to_string(me) + " has " + ours + " where process " + std::to_string(reference) + " has " + theirs,
+    static_cast<int>(firstDiffering));
+  error = std::string("the processes disagree on the filter's ") +
+    (sameParameters ? "arrays" : "parameters") + ": " + detail +
+    (sameParameters ? "; every piece must hold the same point and cell arrays (names, types, components) and filter the same one."
+                    : "; every process must run the filter with the same parameters.");
+  return false;
 }
 
 bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* input,
-  const std::string& localError, int layers, SurfacePiece& piece, std::string& error)
+  const std::string& localError, const std::string& parameters, const std::string& selection, int layers,
+  SurfacePiece& piece, std::string& error)
 {
   piece = SurfacePiece();
   piece.work = input;
@@ -403,10 +474,12 @@ bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* inp
   {
     return error.empty();
   }
-  if (AnyFailed(controller, !error.empty(), error))
+  const std::string arrays = ArraysFingerprintText(input);
+  if (!Agree(controller, localError, parameters, arrays.empty() ? arrays : arrays + selection, error))
   {
     return false;
   }
+  vtkLogScopeF(TRACE, "shock: distribute the surface");
   if (Replicated(controller, input))
   {
     piece.skip = controller->GetLocalProcessId() != 0;
@@ -414,13 +487,14 @@ bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* inp
   }
   piece.controller = controller;
   vtkNew<vtkPolyData> none;
-  piece.work = WithGhostCells(controller, input ? OwnedCells(input).GetPointer() : none.GetPointer(),
-    layers, error);
+  vtkSmartPointer<vtkPolyData> owned = input ? OwnedCells(input) : vtkSmartPointer<vtkPolyData>(none);
+  vtkLogStartScope(TRACE, "shock: ghost rings");
+  piece.work = WithGhostCells(controller, owned, layers, error);
+  vtkLogEndScope("shock: ghost rings");
   if (AnyFailed(controller, !piece.work, error))
   {
     return false;
   }
-  MarkPointOwners(controller, piece.work);
   return true;
 }
 

@@ -39,7 +39,7 @@ vtkMultiProcessController* PieceController(
 
 /**
  * The point ghost marks as the point data holds them now (vtkDataSet caches
- * GetPointGhostArray, which goes stale when MarkPointOwners replaces them).
+ * GetPointGhostArray, which goes stale when the owners' marks are replaced).
  */
 vtkUnsignedCharArray* PointGhosts(vtkDataSet* data);
 
@@ -75,12 +75,15 @@ vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece);
 vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* input);
 
 /**
- * `piece` (without ghost cells) with `layers` layers of its neighbours' cells
- * appended by vtkGhostCellsGenerator (marked DUPLICATECELL, their points
- * DUPLICATEPOINT; each point of the whole mesh is non-ghost on exactly one
- * process). The points first get global ids (vtkGenerateGlobalIds) unless
- * they have some: the key of the exchanges and of the owners' marks.
- * The generator may renumber the piece's own points and cells.
+ * `piece` (without ghost cells) with `layers` rings of its neighbours' cells
+ * (vtkShockGhostCells.cxx): point global ids (the input's, else made from the
+ * coordinates of the points on the pieces' borders: coincident points of
+ * different pieces are one point), each ring fetched from the processes that
+ * hold its points in one exchange. The result holds the piece's points and
+ * cells first (same order), then the ghost ones; ghost cells are marked
+ * DUPLICATECELL, and every point but those its process owns DUPLICATEPOINT
+ * (a shared point is owned by the lowest process whose own cells use it, so
+ * each point of the whole mesh is unmarked on exactly one process). Collective.
  */
 vtkSmartPointer<vtkPolyData> WithGhostCells(
   vtkMultiProcessController* controller, vtkPolyData* piece, int layers, std::string& error);
@@ -100,20 +103,46 @@ struct SurfacePiece
 };
 
 /**
- * Collective start of a surface filter's execution. All processes agree on
- * failure: when any has `localError` (e.g. an unusable input), every one
- * returns false, with its own message or one naming the process that failed.
+ * Collective start of a surface filter's execution. All processes agree
+ * (Agree): when any has `localError` (e.g. an unusable input), or their
+ * `parameters`, arrays or `selection` (the filtered array, compared with the
+ * arrays of non-empty pieces) differ, every one returns false with the same
+ * message.
  * Then a replicated input is recognised; otherwise the piece (without the
  * ghost cells it may have come with: their depth cannot be checked, as the
  * pipeline stamps DATA_NUMBER_OF_GHOST_LEVELS with the request whatever the
- * source made) gets `layers` layers of ghost cells from WithGhostCells, and
- * its points the owners' marks of MarkPointOwners.
+ * source made) gets `layers` rings of ghost cells and the owners' marks
+ * from WithGhostCells.
  */
 bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* input,
-  const std::string& localError, int layers, SurfacePiece& piece, std::string& error);
+  const std::string& localError, const std::string& parameters, const std::string& selection, int layers,
+  SurfacePiece& piece, std::string& error);
 
-/// Whether any process has `failed` (collective); `error` names another process when this one did not fail.
+/**
+ * Whether any process has `failed` (collective, one reduction; the message
+ * only when one has). On failure every process gets the same `error`: "process
+ * F of P cannot filter its piece: " and the `error` process F had, F the
+ * lowest failing process.
+ */
 bool AnyFailed(vtkMultiProcessController* controller, bool failed, std::string& error);
+
+/**
+ * The agreement before a distributed execution (collective, one reduction
+ * when all is well): false when a process has a `localError`, or when the
+ * processes' `parameters` (a "name=value;..." text of the filter's
+ * parameters and the array it filters) or `arrays` (ArraysFingerprintText of
+ * the piece; "" for an empty piece, which is not compared) differ. Every
+ * process then gets the same one-line `error`, naming the process and what
+ * is wrong or differs.
+ */
+bool Agree(vtkMultiProcessController* controller, const std::string& localError,
+  const std::string& parameters, const std::string& arrays, std::string& error);
+
+/**
+ * The point and cell arrays of a piece as a "name (type, components);..."
+ * text in name order, without the ghost marks; "" for a piece without points.
+ */
+std::string ArraysFingerprintText(vtkDataSet* piece);
 
 /**
  * Exchange of per-point values (3 doubles each) between pieces: each process

@@ -7,6 +7,7 @@
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkPointData.h"
 #include "vtkShockAdvectionFilter.h"
 #include "vtkCellArrayIterator.h"
@@ -21,6 +22,7 @@
 #include "vtkPolygon.h"
 #include "vtkShockFilterInternals.h"
 #include "vtkShockParallel.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
@@ -634,6 +636,20 @@ vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error)
   surface->SetPoints(grid->GetPoints());
   surface->GetPointData()->ShallowCopy(grid->GetPointData());
   surface->GetFieldData()->ShallowCopy(grid->GetFieldData());
+  // Polygons only (what a distributed triangle mesh is): the grid's cell array is the polygons' as it is.
+  vtkUnsignedCharArray* types = grid->GetCellTypesArray();
+  bool polygonsOnly = types && types->GetNumberOfTuples() == grid->GetNumberOfCells() && grid->GetCells();
+  for (vtkIdType c = 0; polygonsOnly && c < types->GetNumberOfTuples(); ++c)
+  {
+    const unsigned char type = types->GetValue(c);
+    polygonsOnly = type == VTK_TRIANGLE || type == VTK_QUAD || type == VTK_POLYGON;
+  }
+  if (polygonsOnly)
+  {
+    surface->SetPolys(grid->GetCells());
+    surface->GetCellData()->ShallowCopy(grid->GetCellData());
+    return surface;
+  }
   vtkNew<vtkCellArray> verts, lines, polys, strips;
   // vtkPolyData numbers verts, lines, polygons, strips in that order: cell data follows.
   std::vector<vtkIdType> order[4];
@@ -670,25 +686,97 @@ vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error)
   surface->SetPolys(polys);
   surface->SetStrips(strips);
   surface->GetCellData()->CopyAllocate(grid->GetCellData(), cells->GetNumberOfIds());
+  vtkNew<vtkIdList> rows;
+  rows->SetNumberOfIds(cells->GetNumberOfIds());
   for (vtkIdType k = 0; k < cells->GetNumberOfIds(); ++k)
   {
-    surface->GetCellData()->CopyData(grid->GetCellData(), cells->GetId(k), k);
+    rows->SetId(k, k);
   }
+  surface->GetCellData()->CopyData(grid->GetCellData(), cells, rows);
   return surface;
+}
+
+std::string ValidateSurface(vtkPolyData* surface)
+{
+  // Point ids of every kind of cell (vtkPolyData numbers verts, lines, polygons, strips in turn).
+  const vtkIdType numberOfPoints = surface->GetNumberOfPoints();
+  const char* kinds[4] = { "vertex cell", "line cell", "cell", "strip" };
+  vtkCellArray* arrays[4] = { surface->GetVerts(), surface->GetLines(), surface->GetPolys(), surface->GetStrips() };
+  vtkIdType cellId = 0;
+  std::string error;
+  for (int kind = 0; kind < 4; ++kind)
+  {
+    if (!arrays[kind])
+    {
+      continue;
+    }
+    auto iterator = vtk::TakeSmartPointer(arrays[kind]->NewIterator());
+    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cellId)
+    {
+      vtkIdType size;
+      const vtkIdType* ids;
+      iterator->GetCurrentCell(size, ids);
+      if (!IdsInRange(kinds[kind], cellId, size, ids, numberOfPoints, error))
+      {
+        return "Cannot read the mesh: " + error + ".";
+      }
+    }
+  }
+  vtkDataArray* coordinates = surface->GetPoints() ? surface->GetPoints()->GetData() : nullptr;
+  if (coordinates)
+  {
+    bool finite = true;
+    const vtkIdType values = coordinates->GetNumberOfValues();
+    if (auto* doubles = vtkDoubleArray::SafeDownCast(coordinates))
+    {
+      const double* x = doubles->GetPointer(0);
+      for (vtkIdType k = 0; k < values; ++k)
+      {
+        finite = finite && std::isfinite(x[k]);
+      }
+    }
+    else if (auto* floats = vtkFloatArray::SafeDownCast(coordinates))
+    {
+      const float* x = floats->GetPointer(0);
+      for (vtkIdType k = 0; k < values; ++k)
+      {
+        finite = finite && std::isfinite(x[k]);
+      }
+    }
+    else
+    {
+      for (vtkIdType k = 0; k < values; ++k)
+      {
+        finite = finite && std::isfinite(coordinates->GetComponent(k / 3, static_cast<int>(k % 3)));
+      }
+    }
+    if (!finite)
+    {
+      return "Cannot use the mesh: a point coordinate is not finite (NaN or infinity).";
+    }
+  }
+  return "";
 }
 
 bool BeginSurface(vtkInformationVector** inputVector, vtkMultiProcessController* controller,
   int ghostLevels, const std::function<std::string(vtkPolyData* surface)>& check,
-  vtkSmartPointer<vtkPolyData>& input, vtkShockParallel::SurfacePiece& piece, std::string& error)
+  const std::string& parameters, const std::string* selection, vtkSmartPointer<vtkPolyData>& input,
+  vtkShockParallel::SurfacePiece& piece, std::string& error)
 {
   error.clear();
   input = AsSurface(vtkDataSet::GetData(inputVector[0]), error);
-  if (input && check)
+  if (input)
+  {
+    // Ids and coordinates first: no later step (nor any collective one) reads a broken piece.
+    error = ValidateSurface(input);
+  }
+  if (input && error.empty() && check)
   {
     error = check(input);
   }
-  // In parallel: every process agrees on failure, then gets ghost cells (collective).
-  return vtkShockParallel::PrepareSurfacePiece(controller, input, error, ghostLevels, piece, error);
+  // In parallel: every process agrees (on failure, parameters and arrays), then gets ghost cells (collective).
+  return vtkShockParallel::PrepareSurfacePiece(controller, input, error, parameters,
+    selection ? *selection : std::string(), ghostLevels, piece, error);
 }
 
 bool EnsurePolyDataOutput(vtkInformationVector** inputVector, vtkInformationVector* outputVector)

@@ -145,8 +145,10 @@ vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error);
  * The first steps of a surface filter's RequestData (both surface filters):
  * the input as a surface (AsSurface), the filter's own checks on it
  * (`check` returns an error message, or "" when the surface is usable; it is
- * not called without a surface), then, with a `controller`, the agreement of
- * every process and the piece's ghost layers
+ * not called without a surface, nor when ValidateSurface refuses it), then,
+ * with a `controller`, the agreement of every process (vtkShockParallel::Agree
+ * on the error, on `parameters` and `*selection`, the filtered array as
+ * `check` chose it) and the piece's ghost layers
  * (vtkShockParallel::PrepareSurfacePiece, collective: call it on every
  * process). Returns false with a one-sentence `error` to report; on success,
  * `piece.skip` says the output stays empty (replicated data: process 0
@@ -154,7 +156,16 @@ vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error);
  */
 bool BeginSurface(vtkInformationVector** inputVector, vtkMultiProcessController* controller,
   int ghostLevels, const std::function<std::string(vtkPolyData* surface)>& check,
-  vtkSmartPointer<vtkPolyData>& input, vtkShockParallel::SurfacePiece& piece, std::string& error);
+  const std::string& parameters, const std::string* selection, vtkSmartPointer<vtkPolyData>& input,
+  vtkShockParallel::SurfacePiece& piece, std::string& error);
+
+/**
+ * The checks every surface filter makes before anything reads the mesh: the
+ * point ids of every vertex, line, polygon and strip cell lie in [0, number of
+ * points), and every coordinate is finite. "" when they hold, else the
+ * one-sentence message.
+ */
+std::string ValidateSurface(vtkPolyData* surface);
 
 /**
  * RequestDataObject of the surface filters: for a data-set input, make the

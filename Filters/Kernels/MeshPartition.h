@@ -31,6 +31,10 @@ struct MeshPartition
   /// this piece does not own but needs (the one-rings of its owned points) with
   /// the owners' values (collective).
   std::function<void(double* values)> exchangePoints;
+  /// Whether any piece stops before the fit (collective): every piece calls it
+  /// once, after its advection, with whether it stopped (aborted or failed), so
+  /// that no piece waits in the fit's sums for one that has left.
+  std::function<bool(bool stopped)> anyStopped;
 };
 
 } // namespace shock

@@ -292,12 +292,17 @@ Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& pa
 {
   const int threads = ThreadsForWork(parameters.advection.numberOfThreads, mesh.NumberOfTriangles());
   Status status = SharpenedNormalsInput(mesh, parameters, threads, cache, r);
-  if (!status.Ok())
+  if (status.Ok())
   {
-    return status;
+    status = AdvectNormals(
+      mesh, parameters, InputNormals(mesh, cache), cache.split, target, r, fields, progress, threads);
   }
-  status = AdvectNormals(
-    mesh, parameters, InputNormals(mesh, cache), cache.split, target, r, fields, progress, threads);
+  const MeshPartition* partition = parameters.fit.partition;
+  if (partition && partition->anyStopped &&
+    partition->anyStopped(!status.Ok() || r.advection.aborted) && status.Ok())
+  {
+    r.advection.aborted = true; // another piece stopped: this one stops with it
+  }
   if (!status.Ok() || r.advection.aborted)
   {
     return status;

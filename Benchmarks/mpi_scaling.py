@@ -1,0 +1,233 @@
+"""Strong and weak scaling of the three filters under MPI, as users run them.
+
+Each figure is the median of fresh processes. One process group is started
+per run (`mpirun -np N pvbatch --symmetric --mpi`, or plain `pvbatch`); inside
+it the data are read and spread (RedistributeDataSet for meshes; images are
+read by the pieces themselves) before the timed part, then the filter's
+proxy is updated between two barriers: ghost building, global ids, every
+exchange and every reduction are inside the time.
+
+  /usr/bin/python3 Benchmarks/mpi_scaling.py prepare DIR
+      Write the inputs into DIR (needs Benchmarks/get_meshes.sh's meshes):
+      dragon640k.vtp, dragon2560k.vtp (the Chinese Dragon Loop-subdivided 3
+      and 4 times, with a blurred scalar "Heat"), wavelet256.vti (256^3 float).
+  /usr/bin/python3 Benchmarks/mpi_scaling.py strong PLUGIN DIR [RUNS]
+      The strong-scaling table: every work on 1 rank x 1 thread, 2 ranks x 1
+      thread, 1 rank x 2 threads (plain pvbatch) and `mpirun -np 1` x 2 threads.
+  /usr/bin/python3 Benchmarks/mpi_scaling.py weak PLUGIN DIR [RUNS]
+      Weak scaling on 1, 2, 4, 8 ranks (oversubscribed beyond 2): per-rank
+      work, ghost fraction, bytes exchanged per CG iteration, time per owned
+      sample.
+  pvbatch [--symmetric --mpi] Benchmarks/mpi_scaling.py run PLUGIN WORK INPUT
+      One run (what the two commands above start); every rank prints one
+      "RANKRESULT {json}" line.
+
+Works: sharpen (Surface Shock Sharpen, t = 2048), advect (Surface Shock
+Advection of "Heat", t = 4096), image (Image Shock Advection of RTData,
+t = 64). Benchmarks/RESULTS.md has the figures.
+"""
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe"]
+
+
+# --- inputs ----------------------------------------------------------------
+
+def prepare(directory):
+    import numpy as np
+    sys.path.insert(0, HERE)
+    from mpi_sharpen import prepare as subdivide
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter, vtkXMLImageDataWriter
+    from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    os.makedirs(directory, exist_ok=True)
+    mesh_dir = os.environ.get("SHOCK_MESH_DIR", os.path.expanduser("~/.cache/shockfilters/meshes"))
+    for levels, name in ((3, "dragon640k.vtp"), (4, "dragon2560k.vtp")):
+        path = os.path.join(directory, name)
+        subdivide(os.path.join(mesh_dir, "ChineseDragon-10kv.off"), levels, path)
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(path)
+        reader.Update()
+        mesh = reader.GetOutput()
+        x = vtk_to_numpy(mesh.GetPoints().GetData()).astype(float)
+        size = np.ptp(x, axis=0).max()
+        heat = numpy_to_vtk(np.tanh(8.0 * (x[:, 2] + 0.3 * x[:, 0] - x[:, 2].mean()) / size), deep=1)
+        heat.SetName("Heat")
+        mesh.GetPointData().SetScalars(heat)
+        writer = vtkXMLPolyDataWriter()
+        writer.SetInputData(mesh)
+        writer.SetFileName(path)
+        writer.SetDataModeToAppended()
+        writer.EncodeAppendedDataOff()
+        writer.Write()
+    source = vtkRTAnalyticSource()
+    source.SetWholeExtent(0, 255, 0, 255, 0, 255)
+    writer = vtkXMLImageDataWriter()
+    writer.SetInputConnection(source.GetOutputPort())
+    writer.SetFileName(os.path.join(directory, "wavelet256.vti"))
+    writer.SetDataModeToAppended()
+    writer.EncodeAppendedDataOff()
+    writer.Write()
+    print("inputs in", directory)
+
+
+# --- one run -----------------------------------------------------------------
+
+def memory(field):
+    for line in open("/proc/self/status"):
+        if line.startswith(field + ":"):
+            return int(line.split()[1]) / 1024.0  # MiB
+    return 0.0
+
+
+def run(plugin, work, path):
+    # The VTK classes' Python wrapping (when built) gives the filters' phase times.
+    site = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(plugin)))),
+                        "python%d.%d" % sys.version_info[:2], "site-packages")
+    if os.path.isdir(os.path.join(site, "shockfilters")):
+        sys.path.insert(0, site)
+        import shockfilters  # noqa: F401
+    from paraview import simple
+    from vtkmodules.vtkParallelCore import vtkMultiProcessController
+    simple.LoadPlugin(plugin, ns=globals())
+    controller = vtkMultiProcessController.GetGlobalController()
+    rank = controller.GetLocalProcessId() if controller else 0
+    ranks = controller.GetNumberOfProcesses() if controller else 1
+    if work == "image":
+        source = simple.XMLImageDataReader(FileName=[path])
+        source.UpdatePipelineInformation()
+        filtered = globals()["ImageShockAdvection"](Input=source, FlowTime=64)
+    else:
+        reader = simple.XMLPolyDataReader(FileName=[path])
+        source = simple.RedistributeDataSet(Input=reader) if ranks > 1 else reader
+        source.UpdatePipeline()
+        if work == "sharpen":
+            filtered = globals()["SurfaceShockSharpen"](Input=source, FlowTime=2048)
+        else:
+            filtered = globals()["SurfaceShockAdvection"](Input=source, FlowTime=4096)
+    with open("/proc/self/clear_refs", "w") as handle:
+        handle.write("5")  # VmHWM back to the current resident set
+    before = memory("VmRSS")
+    if controller:
+        controller.Barrier()
+    start = time.perf_counter()
+    filtered.UpdatePipeline()
+    if controller:
+        controller.Barrier()
+    seconds = time.perf_counter() - start
+    peak = memory("VmHWM") - before
+    data = filtered.GetClientSideObject().GetOutputDataObject(0)
+    ghosts = data.GetPointData().GetArray("vtkGhostType") if work != "image" else None
+    points = data.GetNumberOfPoints()
+    owned = points
+    if ghosts is not None:
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        owned = int((vtk_to_numpy(ghosts) == 0).sum())
+    phases = {}
+    algorithm = filtered.GetClientSideObject()
+    for phase in ("Setup", "Flow", "Advection"):
+        getter = getattr(algorithm, "GetLast%sSeconds" % phase, None)
+        if getter:
+            phases[phase.lower()] = getter()
+    print("RANKRESULT " + json.dumps(dict(rank=rank, ranks=ranks, seconds=seconds, peak_mib=peak,
+                                          points=points, owned=owned, **phases)), flush=True)
+
+
+# --- drivers -----------------------------------------------------------------
+
+def launch(plugin, work, path, ranks, threads, mpi=True):
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads))
+    script = [os.path.abspath(__file__), "run", plugin, work, path]
+    if mpi:
+        command = MPIRUN + ["-np", str(ranks), "pvbatch", "--symmetric", "--mpi"] + script
+    else:
+        command = ["pvbatch"] + script
+    out = subprocess.run(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                         universal_newlines=True, timeout=1800)
+    # Ranks print concurrently: lines may run together.
+    results = [json.loads(m) for m in re.findall(r"RANKRESULT (\{[^}]*\})", out.stdout)]
+    if out.returncode != 0 or len(results) != ranks:
+        sys.stderr.write(out.stdout[-3000:])
+        raise SystemExit("run failed: %s" % " ".join(command))
+    return results
+
+
+def medians(plugin, work, path, ranks, threads, mpi, runs):
+    times, peaks, per_point = [], [], []
+    for _ in range(runs):
+        results = launch(plugin, work, path, ranks, threads, mpi)
+        times.append(max(r["seconds"] for r in results))
+        peaks.append(max(r["peak_mib"] for r in results))
+        per_point.append(max(1024.0 * 1024.0 * r["peak_mib"] / max(r["owned"], 1) for r in results))
+    return statistics.median(times), min(times), max(times), statistics.median(peaks), statistics.median(per_point)
+
+
+WORKS = [("sharpen", "dragon640k.vtp"), ("advect", "dragon640k.vtp"), ("sharpen", "dragon2560k.vtp"),
+         ("image", "wavelet256.vti")]
+
+
+def strong(plugin, directory, runs):
+    configs = [("1 rank x 1 thread", 1, 1, True), ("2 ranks x 1 thread", 2, 1, True),
+               ("pvbatch x 2 threads", 1, 2, False), ("mpirun -np 1 x 2 threads", 1, 2, True)]
+    print("| work | " + " | ".join(c[0] for c in configs) + " | 2 ranks / 1 rank | np 1 / pvbatch |")
+    print("|---" * (len(configs) + 3) + "|")
+    for work, name in WORKS:
+        path = os.path.join(directory, name)
+        row = {}
+        cells = []
+        # Interleaved: each run of each configuration in turn, so that a noisy period hits all.
+        samples = {c[0]: [] for c in configs}
+        for _ in range(runs):
+            for label, ranks, threads, mpi in configs:
+                samples[label].append(medians(plugin, work, path, ranks, threads, mpi, 1))
+        for label, _, _, _ in configs:
+            times = [s[0] for s in samples[label]]
+            row[label] = statistics.median(times)
+            per_point = statistics.median(s[4] for s in samples[label])
+            cells.append("%.3f s (%.3f-%.3f), %.0f B/owned point" % (row[label], min(times), max(times), per_point))
+        print("| %s %s | %s | %.2f | %.2f |" % (work, name, " | ".join(cells),
+                                                 row[configs[1][0]] / row[configs[0][0]],
+                                                 row[configs[3][0]] / row[configs[2][0]]), flush=True)
+
+
+def weak(plugin, directory, runs):
+    print("| work | ranks | time (s) | owned points per rank | local points per rank | ghost fraction | "
+          "time per owned point (us, x ranks/cores) |")
+    print("|---|---|---|---|---|---|---|")
+    for work, name in WORKS[:2] + WORKS[3:]:
+        path = os.path.join(directory, name)
+        for ranks in (1, 2, 4, 8):
+            times, results = [], None
+            for _ in range(runs):
+                results = launch(plugin, work, path, ranks, 1)
+                times.append(max(r["seconds"] for r in results))
+            seconds = statistics.median(times)
+            owned = max(r["owned"] for r in results)
+            local = max(r["points"] for r in results)
+            ghost = sum(r["points"] - r["owned"] for r in results) / max(sum(r["owned"] for r in results), 1)
+            # 2 cores: with more ranks than cores each rank gets cores/ranks of one.
+            share = min(1.0, 2.0 / ranks)
+            print("| %s %s | %d | %.3f | %d | %d | %.3f | %.3f |" % (
+                work, name, ranks, seconds, owned, local, ghost, 1e6 * seconds * share / max(owned, 1)),
+                flush=True)
+
+
+if __name__ == "__main__":
+    command = sys.argv[1]
+    if command == "prepare":
+        prepare(sys.argv[2])
+    elif command == "run":
+        run(sys.argv[2], sys.argv[3], sys.argv[4])
+    elif command == "strong":
+        strong(sys.argv[2], sys.argv[3], int(sys.argv[4]) if len(sys.argv) > 4 else 5)
+    elif command == "weak":
+        weak(sys.argv[2], sys.argv[3], int(sys.argv[4]) if len(sys.argv) > 4 else 3)
+    else:
+        raise SystemExit(__doc__)

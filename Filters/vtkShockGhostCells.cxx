@@ -1,0 +1,865 @@
+/**
+ * @file vtkShockGhostCells.cxx
+ * @brief Global point ids and ghost-cell rings of a distributed surface, grown
+ * with the piece's own connectivity, one exchange per ring.
+ *
+ * What VTK's vtkGenerateGlobalIds and vtkGhostCellsGenerator do for a
+ * surface, in the steps the shock filters need, and at the cost of the
+ * piece's boundary instead of its volume:
+ *
+ * 1. Border points. A point another piece can share lies on a border edge of
+ *    this piece's own polygons (an edge of one polygon only), or on a vertex
+ *    or line cell. Only those are exchanged (AllGatherV of their keys).
+ * 2. Keys and global ids. The key of a point is its global id when the input
+ *    has point global ids, else its coordinates (exactly coincident points of
+ *    different pieces, as sources and partitioned files repeat them on the
+ *    seams, are one point). A shared point is owned by the lowest process that
+ *    holds it; every process numbers its owned points after those of the
+ *    processes before it. Everything is computed from the gathered borders and
+ *    the point counts, the same on every process.
+ * 3. Rings. Ring 1 is every other process's cells that use a point of this
+ *    piece's own cells; ring k the cells that use a point first received in
+ *    ring k-1. Each ring: a process asks the holders of its new points (the
+ *    gathered borders name them; a point not on any border has one holder,
+ *    the process that sent it) for their own cells around those points, in
+ *    one round of requests and one of answers (the cells with their points,
+ *    point data and cell data, as vtkPolyData).
+ */
+#include "vtkShockParallel.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkLogger.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace vtkShockParallel
+{
+namespace
+{
+constexpr int RequestTag = 84661;
+constexpr int AnswerTag = 84662;
+const char* const PacketPointIds = "vtkShockGhostPointIds";
+const char* const PacketCellIds = "vtkShockGhostCellIds";
+const char* const PacketCellKinds = "vtkShockGhostCellKinds";
+
+/// The four cell arrays of a vtkPolyData, in its cell numbering order.
+struct Cells
+{
+  std::vector<unsigned char> kind;   ///< 0 vertex, 1 line, 2 polygon, 3 strip
+  std::vector<vtkIdType> offsets{ 0 }; ///< into `points`, one more than cells
+  std::vector<vtkIdType> points;     ///< local point ids
+
+  vtkIdType Size() const { return static_cast<vtkIdType>(kind.size()); }
+  void Append(unsigned char k, vtkIdType n, const vtkIdType* ids)
+  {
+    this->kind.push_back(k);
+    this->points.insert(this->points.end(), ids, ids + n);
+    this->offsets.push_back(static_cast<vtkIdType>(this->points.size()));
+  }
+};
+
+Cells ReadCells(vtkPolyData* piece)
+{
+  Cells cells;
+  vtkCellArray* arrays[4] = { piece->GetVerts(), piece->GetLines(), piece->GetPolys(), piece->GetStrips() };
+  for (unsigned char k = 0; k < 4; ++k)
+  {
+    if (!arrays[k])
+    {
+      continue;
+    }
+    auto iterator = vtk::TakeSmartPointer(arrays[k]->NewIterator());
+    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell())
+    {
+      vtkIdType n;
+      const vtkIdType* ids;
+      iterator->GetCurrentCell(n, ids);
+      cells.Append(k, n, ids);
+    }
+  }
+  return cells;
+}
+
+/// Point -> cells (CSR) of `cells` over `np` points.
+void PointLinks(const Cells& cells, vtkIdType np, std::vector<vtkIdType>& start, std::vector<vtkIdType>& list)
+{
+  start.assign(static_cast<size_t>(np) + 1, 0);
+  for (vtkIdType p : cells.points)
+  {
+    ++start[static_cast<size_t>(p) + 1];
+  }
+  for (size_t p = 0; p < static_cast<size_t>(np); ++p)
+  {
+    start[p + 1] += start[p];
+  }
+  list.resize(cells.points.size());
+  std::vector<vtkIdType> fill(start.begin(), start.end() - 1);
+  for (vtkIdType c = 0; c < cells.Size(); ++c)
+  {
+    for (vtkIdType k = cells.offsets[static_cast<size_t>(c)]; k < cells.offsets[static_cast<size_t>(c) + 1]; ++k)
+    {
+      list[static_cast<size_t>(fill[static_cast<size_t>(cells.points[static_cast<size_t>(k)])]++)] = c;
+    }
+  }
+}
+
+/**
+ * Whether point p may be shared with another piece: it is on a vertex or line
+ * cell, or on an edge that exactly one of its polygons (or strip triangles) has.
+ */
+bool OnBorder(const Cells& cells, const std::vector<vtkIdType>& start, const std::vector<vtkIdType>& list,
+  vtkIdType p, std::vector<vtkIdType>& scratch)
+{
+  scratch.clear();
+  for (vtkIdType k = start[static_cast<size_t>(p)]; k < start[static_cast<size_t>(p) + 1]; ++k)
+  {
+    const vtkIdType c = list[static_cast<size_t>(k)];
+    const vtkIdType* ids = &cells.points[static_cast<size_t>(cells.offsets[static_cast<size_t>(c)])];
+    const vtkIdType n = cells.offsets[static_cast<size_t>(c) + 1] - cells.offsets[static_cast<size_t>(c)];
+    const unsigned char kind = cells.kind[static_cast<size_t>(c)];
+    if (kind < 2 || n < 3)
+    {
+      return true;
+    }
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      if (ids[i] != p)
+      {
+        continue;
+      }
+      if (kind == 2) // polygon: the neighbours along its loop
+      {
+        scratch.push_back(ids[(i + 1) % n]);
+        scratch.push_back(ids[(i + n - 1) % n]);
+      }
+      else // strip: the edges of the triangles (j, j+1, j+2) that hold i
+      {
+        for (vtkIdType j = std::max<vtkIdType>(0, i - 2); j <= std::min(i, n - 3); ++j)
+        {
+          for (vtkIdType q = j; q < j + 3; ++q)
+          {
+            if (q != i)
+            {
+              scratch.push_back(ids[q]);
+            }
+          }
+        }
+      }
+    }
+  }
+  std::sort(scratch.begin(), scratch.end());
+  for (size_t k = 0; k < scratch.size();)
+  {
+    size_t end = k;
+    while (end < scratch.size() && scratch[end] == scratch[k])
+    {
+      ++end;
+    }
+    if (end - k == 1 && scratch[k] != p)
+    {
+      return true;
+    }
+    k = end;
+  }
+  return false;
+}
+
+/// A point key: the global id, or the coordinates' bits.
+struct Key
+{
+  std::uint64_t a = 0, b = 0, c = 0;
+  bool operator==(const Key& o) const { return a == o.a && b == o.b && c == o.c; }
+};
+struct KeyHash
+{
+  size_t operator()(const Key& k) const
+  {
+    std::uint64_t h = k.a * 0x9E3779B97F4A7C15ull;
+    h ^= (k.b + 0x632BE59BD9B4E019ull + (h << 6) + (h >> 2));
+    h ^= (k.c + 0x8CB92BA72F3D8DD7ull + (h << 6) + (h >> 2));
+    return static_cast<size_t>(h ^ (h >> 29));
+  }
+};
+
+Key CoordinateKey(const double x[3])
+{
+  Key key;
+  // +0.0 and -0.0 are the same point.
+  const double y[3] = { x[0] == 0.0 ? 0.0 : x[0], x[1] == 0.0 ? 0.0 : x[1], x[2] == 0.0 ? 0.0 : x[2] };
+  std::memcpy(&key.a, &y[0], 8);
+  std::memcpy(&key.b, &y[1], 8);
+  std::memcpy(&key.c, &y[2], 8);
+  return key;
+}
+
+/// Everyone's `mine` (`width` values per item), concatenated in process order; items per process.
+template <typename T>
+std::vector<T> GatherItems(vtkMultiProcessController* controller, const std::vector<T>& mine, int width,
+  std::vector<vtkIdType>& items)
+{
+  const int processes = controller->GetNumberOfProcesses();
+  std::vector<vtkIdType> counts(static_cast<size_t>(processes)), offsets(static_cast<size_t>(processes), 0);
+  vtkIdType count = static_cast<vtkIdType>(mine.size());
+  controller->AllGather(&count, counts.data(), 1);
+  for (int r = 1; r < processes; ++r)
+  {
+    offsets[static_cast<size_t>(r)] = offsets[static_cast<size_t>(r - 1)] + counts[static_cast<size_t>(r - 1)];
+  }
+  std::vector<T> all(static_cast<size_t>(offsets.back() + counts.back()) + 1);
+  controller->AllGatherV(mine.data(), all.data(), count, counts.data(), offsets.data());
+  all.pop_back();
+  items.resize(static_cast<size_t>(processes));
+  for (int r = 0; r < processes; ++r)
+  {
+    items[static_cast<size_t>(r)] = counts[static_cast<size_t>(r)] / width;
+  }
+  return all;
+}
+
+/// The ids 0 .. n-1.
+vtkSmartPointer<vtkIdList> Sequence(vtkIdType n)
+{
+  auto ids = vtkSmartPointer<vtkIdList>::New();
+  ids->SetNumberOfIds(n);
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    ids->SetId(k, k);
+  }
+  return ids;
+}
+
+/**
+ * `to` holds `from`'s arrays (attributes kept) with `total` tuples: rows
+ * [0, identity) are `from`'s first rows, row r >= identity comes from
+ * row(r) = (array holder, row); the other rows of `from` are placed by
+ * `fromRow(r)` >= 0. Returns false when a holder lacks an array of `from`
+ * (name, type and components).
+ */
+template <typename RowOf>
+bool ExtendAttributes(vtkDataSetAttributes* to, vtkDataSetAttributes* from, vtkIdType total, RowOf rowOf)
+{
+  to->DeepCopy(from);
+  for (int k = 0; k < from->GetNumberOfArrays(); ++k)
+  {
+    const char* name = from->GetArrayName(k);
+    vtkAbstractArray* source = from->GetAbstractArray(k);
+    vtkAbstractArray* target = name ? to->GetAbstractArray(name) : nullptr;
+    if (!target)
+    {
+      continue;
+    }
+    const vtkIdType n = source->GetNumberOfTuples();
+    target->Resize(total); // keeps the rows (SetNumberOfTuples alone may not)
+    target->SetNumberOfTuples(total);
+    for (vtkIdType r = 0; r < total; ++r)
+    {
+      vtkDataSetAttributes* holder = nullptr;
+      vtkIdType row = -1;
+      rowOf(r, holder, row);
+      if (!holder)
+      {
+        if (row != r && row >= 0 && row < n)
+        {
+          target->SetTuple(r, row, source);
+        }
+        continue;
+      }
+      vtkAbstractArray* other = holder->GetAbstractArray(name);
+      if (!other || other->GetDataType() != source->GetDataType() ||
+        other->GetNumberOfComponents() != source->GetNumberOfComponents())
+      {
+        return false;
+      }
+      target->SetTuple(r, row, other);
+    }
+  }
+  return true;
+}
+
+/// The ranks that hold a border point, lowest first (the owner).
+using Holders = std::vector<int>;
+
+/**
+ * Point-to-point messages in one global order of (sender, receiver) pairs, the
+ * same on every process, so that blocking sends and receives cannot deadlock.
+ */
+template <typename SendTo, typename ReceiveFrom>
+void InPairOrder(int me, int processes, const std::vector<vtkIdType>& matrix, SendTo send, ReceiveFrom receive)
+{
+  for (int a = 0; a < processes; ++a)
+  {
+    for (int b = 0; b < processes; ++b)
+    {
+      if (a == b || matrix[static_cast<size_t>(a * processes + b)] == 0)
+      {
+        continue;
+      }
+      if (a == me)
+      {
+        send(b);
+      }
+      else if (b == me)
+      {
+        receive(a);
+      }
+    }
+  }
+}
+}
+
+vtkSmartPointer<vtkPolyData> WithGhostCells(
+  vtkMultiProcessController* controller, vtkPolyData* piece, int layers, std::string& error)
+{
+  const int me = controller->GetLocalProcessId();
+  const int processes = controller->GetNumberOfProcesses();
+  vtkNew<vtkPolyData> emptyPiece;
+  if (!piece->GetPoints())
+  {
+    // An empty piece: no points object at all.
+    vtkNew<vtkPoints> none;
+    emptyPiece->SetPoints(none);
+    piece = emptyPiece;
+  }
+  const vtkIdType np = piece->GetNumberOfPoints();
+  const Cells own = ReadCells(piece);
+  std::vector<vtkIdType> linkStart, links;
+  PointLinks(own, np, linkStart, links);
+
+  vtkLogStartScope(TRACE, "shock: border points");
+  // 1. Border points and their keys.
+  vtkDataArray* givenIds = piece->GetPointData()->GetGlobalIds();
+  std::vector<vtkIdType> border;
+  {
+    std::vector<vtkIdType> scratch;
+    for (vtkIdType p = 0; p < np; ++p)
+    {
+      if (linkStart[static_cast<size_t>(p) + 1] > linkStart[static_cast<size_t>(p)] &&
+        OnBorder(own, linkStart, links, p, scratch))
+      {
+        border.push_back(p);
+      }
+    }
+  }
+  auto keyOf = [&](vtkIdType p) {
+    if (givenIds)
+    {
+      Key key;
+      key.a = static_cast<std::uint64_t>(static_cast<vtkIdType>(givenIds->GetTuple1(p)));
+      return key;
+    }
+    double x[3];
+    piece->GetPoint(p, x);
+    return CoordinateKey(x);
+  };
+  std::vector<std::uint64_t> mine;
+  mine.reserve(3 * border.size());
+  for (vtkIdType p : border)
+  {
+    const Key key = keyOf(p);
+    mine.insert(mine.end(), { key.a, key.b, key.c });
+  }
+  // The uint64 keys travel as doubles' bits (the controller has no uint64 gather of this form).
+  std::vector<double> mineBits(mine.size());
+  std::memcpy(mineBits.data(), mine.data(), 8 * mine.size());
+  std::vector<vtkIdType> borderCounts;
+  const std::vector<double> allBits = GatherItems(controller, mineBits, 3, borderCounts);
+  std::vector<std::uint64_t> all(allBits.size());
+  std::memcpy(all.data(), allBits.data(), 8 * allBits.size());
+  std::vector<vtkIdType> pointCounts(static_cast<size_t>(processes));
+  {
+    vtkIdType count = np;
+    controller->AllGather(&count, pointCounts.data(), 1);
+  }
+
+  vtkLogEndScope("shock: border points");
+  vtkLogStartScope(TRACE, "shock: global ids");
+  // 2. Holders, owners and global ids. A key repeated within one piece
+  // (coincident points of that piece) is shared through its first occurrence
+  // only; the others are points of their own.
+  std::unordered_map<Key, Holders, KeyHash> holders;
+  std::vector<char> shared(all.size() / 3, 0); // the piece's first occurrence of its key
+  {
+    size_t item = 0;
+    for (int r = 0; r < processes; ++r)
+    {
+      for (vtkIdType k = 0; k < borderCounts[static_cast<size_t>(r)]; ++k, ++item)
+      {
+        const Key key{ all[3 * item], all[3 * item + 1], all[3 * item + 2] };
+        Holders& h = holders[key];
+        if (h.empty() || h.back() != r)
+        {
+          h.push_back(r);
+          shared[item] = 1;
+        }
+      }
+    }
+  }
+  // Owned points per process: all but the shared ones a lower process holds.
+  std::vector<vtkIdType> firstId(static_cast<size_t>(processes) + 1, 0);
+  std::unordered_map<Key, vtkIdType, KeyHash> sharedIds; // key -> global id (coordinate keys)
+  {
+    size_t item = 0;
+    for (int r = 0; r < processes; ++r)
+    {
+      vtkIdType owned = pointCounts[static_cast<size_t>(r)];
+      vtkIdType ownedBorder = 0;
+      for (vtkIdType k = 0; k < borderCounts[static_cast<size_t>(r)]; ++k, ++item)
+      {
+        const Key key{ all[3 * item], all[3 * item + 1], all[3 * item + 2] };
+        const bool mineToOwn = !shared[item] || holders[key].front() == r;
+        if (!mineToOwn)
+        {
+          --owned;
+        }
+        else if (shared[item] && !givenIds)
+        {
+          sharedIds[key] = firstId[static_cast<size_t>(r)] + ownedBorder;
+        }
+        ownedBorder += mineToOwn ? 1 : 0;
+      }
+      firstId[static_cast<size_t>(r) + 1] = firstId[static_cast<size_t>(r)] + owned;
+    }
+  }
+  // This piece's global ids: owned border points first (in border order), then the rest.
+  std::vector<vtkIdType> gid(static_cast<size_t>(np), -1);
+  std::vector<int> ownerOf(static_cast<size_t>(np), me);
+  {
+    size_t item = 0;
+    for (int r = 0; r < me; ++r)
+    {
+      item += static_cast<size_t>(borderCounts[static_cast<size_t>(r)]);
+    }
+    vtkIdType next = firstId[static_cast<size_t>(me)];
+    std::vector<char> isBorder(static_cast<size_t>(np), 0);
+    for (size_t k = 0; k < border.size(); ++k, ++item)
+    {
+      const vtkIdType p = border[k];
+      isBorder[static_cast<size_t>(p)] = 1;
+      const Key key{ all[3 * item], all[3 * item + 1], all[3 * item + 2] };
+      const int owner = shared[item] ? holders[key].front() : me;
+      ownerOf[static_cast<size_t>(p)] = owner;
+      if (givenIds)
+      {
+        gid[static_cast<size_t>(p)] = static_cast<vtkIdType>(key.a);
+      }
+      else if (owner == me)
+      {
+        gid[static_cast<size_t>(p)] = next++;
+      }
+      else
+      {
+        gid[static_cast<size_t>(p)] = sharedIds[key];
+      }
+    }
+    for (vtkIdType p = 0; p < np; ++p)
+    {
+      if (!isBorder[static_cast<size_t>(p)])
+      {
+        gid[static_cast<size_t>(p)] =
+          givenIds ? static_cast<vtkIdType>(givenIds->GetTuple1(p)) : next++;
+      }
+    }
+  }
+  // Holders by global id, for the points that arrive in rings.
+  std::unordered_map<vtkIdType, const Holders*> holdersById;
+  {
+    size_t item = 0;
+    for (int r = 0; r < processes; ++r)
+    {
+      for (vtkIdType k = 0; k < borderCounts[static_cast<size_t>(r)]; ++k, ++item)
+      {
+        if (!shared[item])
+        {
+          continue;
+        }
+        const Key key{ all[3 * item], all[3 * item + 1], all[3 * item + 2] };
+        const Holders& h = holders[key];
+        if (h.size() > 1)
+        {
+          holdersById.emplace(givenIds ? static_cast<vtkIdType>(key.a) : sharedIds[key], &h);
+        }
+      }
+    }
+  }
+  std::unordered_map<vtkIdType, vtkIdType> local; // global id -> local point (own and ghost)
+  local.reserve(static_cast<size_t>(np));
+  bool duplicateIds = false;
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    duplicateIds = !local.emplace(gid[static_cast<size_t>(p)], p).second || duplicateIds;
+  }
+  if (AnyFailed(controller, duplicateIds, error))
+  {
+    if (duplicateIds)
+    {
+      error = "the piece's point global ids are not unique";
+    }
+    return nullptr;
+  }
+
+  vtkLogEndScope("shock: global ids");
+  vtkLogStartScope(TRACE, "shock: rings");
+  // 3. Rings.
+  std::vector<vtkIdType> firstCell(static_cast<size_t>(processes) + 1, 0);
+  {
+    std::vector<vtkIdType> cellCounts(static_cast<size_t>(processes));
+    vtkIdType count = own.Size();
+    controller->AllGather(&count, cellCounts.data(), 1);
+    for (int r = 0; r < processes; ++r)
+    {
+      firstCell[static_cast<size_t>(r) + 1] = firstCell[static_cast<size_t>(r)] + cellCounts[static_cast<size_t>(r)];
+    }
+  }
+  // Received ghost points and cells: which packet, which row.
+  std::vector<vtkSmartPointer<vtkPolyData>> packets;
+  struct Row
+  {
+    int packet;
+    vtkIdType row;
+  };
+  std::vector<Row> ghostPoints, ghostCellRows;
+  std::vector<int> ghostPointSource; // the process that sent each ghost point
+  Cells ghost;                        // ghost cells, local point ids
+  std::unordered_set<vtkIdType> heldCells;
+  // Per requester: own cells already sent.
+  std::vector<std::unordered_set<vtkIdType>> sent(static_cast<size_t>(processes));
+  std::vector<vtkIdType> frontier;
+  for (vtkIdType p : border)
+  {
+    frontier.push_back(p);
+  }
+  std::vector<vtkIdType> stamp(static_cast<size_t>(own.Size()), -1);
+  vtkIdType stampValue = 0;
+  for (int ring = 1; ring <= layers; ++ring)
+  {
+    // Requests: each frontier point to its other holders.
+    std::vector<std::vector<vtkIdType>> requests(static_cast<size_t>(processes));
+    for (vtkIdType p : frontier)
+    {
+      vtkIdType key = p < np ? gid[static_cast<size_t>(p)] : -1;
+      int source = me;
+      if (p >= np)
+      {
+        const Row& row = ghostPoints[static_cast<size_t>(p - np)];
+        key = vtkIdTypeArray::SafeDownCast(packets[static_cast<size_t>(row.packet)]->GetPointData()->GetArray(
+                PacketPointIds))->GetValue(row.row);
+        source = ghostPointSource[static_cast<size_t>(p - np)];
+      }
+      const auto found = holdersById.find(key);
+      if (found != holdersById.end())
+      {
+        for (int h : *found->second)
+        {
+          if (h != me)
+          {
+            requests[static_cast<size_t>(h)].push_back(key);
+          }
+        }
+      }
+      else if (source != me)
+      {
+        requests[static_cast<size_t>(source)].push_back(key);
+      }
+    }
+    std::vector<vtkIdType> counts(static_cast<size_t>(processes));
+    for (int r = 0; r < processes; ++r)
+    {
+      counts[static_cast<size_t>(r)] = static_cast<vtkIdType>(requests[static_cast<size_t>(r)].size());
+    }
+    std::vector<vtkIdType> matrix(static_cast<size_t>(processes * processes));
+    controller->AllGather(counts.data(), matrix.data(), processes);
+    if (std::all_of(matrix.begin(), matrix.end(), [](vtkIdType v) { return v == 0; }))
+    {
+      break; // every piece has all it can get
+    }
+    // Requests out, answers back (each a polydata of the asked process's own cells).
+    std::vector<std::vector<vtkIdType>> asked(static_cast<size_t>(processes));
+    InPairOrder(me, processes, matrix,
+      [&](int r) {
+        controller->Send(requests[static_cast<size_t>(r)].data(), counts[static_cast<size_t>(r)], r, RequestTag);
+      },
+      [&](int s) {
+        auto& list = asked[static_cast<size_t>(s)];
+        list.resize(static_cast<size_t>(matrix[static_cast<size_t>(s * processes + me)]));
+        controller->Receive(list.data(), static_cast<vtkIdType>(list.size()), s, RequestTag);
+      });
+    std::vector<vtkIdType> transposed(matrix.size());
+    for (int a = 0; a < processes; ++a)
+    {
+      for (int b = 0; b < processes; ++b)
+      {
+        transposed[static_cast<size_t>(b * processes + a)] = matrix[static_cast<size_t>(a * processes + b)];
+      }
+    }
+    std::vector<vtkSmartPointer<vtkPolyData>> answers(static_cast<size_t>(processes));
+    for (int s = 0; s < processes; ++s)
+    {
+      if (asked[static_cast<size_t>(s)].empty())
+      {
+        continue;
+      }
+      // The own cells around the asked points that s has not been sent yet.
+      ++stampValue;
+      std::vector<vtkIdType> chosen;
+      for (vtkIdType id : asked[static_cast<size_t>(s)])
+      {
+        const auto found = local.find(id);
+        if (found == local.end() || found->second >= np)
+        {
+          continue; // not an own point here (a ghost's cells come from its owner)
+        }
+        const vtkIdType p = found->second;
+        for (vtkIdType k = linkStart[static_cast<size_t>(p)]; k < linkStart[static_cast<size_t>(p) + 1]; ++k)
+        {
+          const vtkIdType c = links[static_cast<size_t>(k)];
+          if (stamp[static_cast<size_t>(c)] != stampValue && sent[static_cast<size_t>(s)].insert(c).second)
+          {
+            stamp[static_cast<size_t>(c)] = stampValue;
+            chosen.push_back(c);
+          }
+        }
+      }
+      // The packet: the chosen cells (as polygons of any size, their kinds in cell data).
+      std::unordered_map<vtkIdType, vtkIdType> row;
+      vtkNew<vtkIdList> pointRows;
+      vtkNew<vtkCellArray> polys;
+      for (vtkIdType c : chosen)
+      {
+        const vtkIdType begin = own.offsets[static_cast<size_t>(c)], end = own.offsets[static_cast<size_t>(c) + 1];
+        polys->InsertNextCell(end - begin);
+        for (vtkIdType k = begin; k < end; ++k)
+        {
+          const vtkIdType p = own.points[static_cast<size_t>(k)];
+          const auto inserted = row.emplace(p, pointRows->GetNumberOfIds());
+          if (inserted.second)
+          {
+            pointRows->InsertNextId(p);
+          }
+          polys->InsertCellPoint(inserted.first->second);
+        }
+      }
+      auto packet = vtkSmartPointer<vtkPolyData>::New();
+      vtkNew<vtkPoints> points;
+      points->SetDataType(piece->GetPoints()->GetDataType());
+      piece->GetPoints()->GetPoints(pointRows, points);
+      packet->SetPoints(points);
+      packet->SetPolys(polys);
+      packet->GetPointData()->CopyAllocate(piece->GetPointData(), pointRows->GetNumberOfIds());
+      packet->GetPointData()->CopyData(piece->GetPointData(), pointRows, Sequence(pointRows->GetNumberOfIds()));
+      vtkNew<vtkIdTypeArray> pointIds;
+      pointIds->SetName(PacketPointIds);
+      pointIds->SetNumberOfTuples(pointRows->GetNumberOfIds());
+      for (vtkIdType k = 0; k < pointRows->GetNumberOfIds(); ++k)
+      {
+        pointIds->SetValue(k, gid[static_cast<size_t>(pointRows->GetId(k))]);
+      }
+      packet->GetPointData()->AddArray(pointIds);
+      vtkNew<vtkIdList> cellRows;
+      for (vtkIdType c : chosen)
+      {
+        cellRows->InsertNextId(c);
+      }
+      packet->GetCellData()->CopyAllocate(piece->GetCellData(), cellRows->GetNumberOfIds());
+      packet->GetCellData()->CopyData(piece->GetCellData(), cellRows, Sequence(cellRows->GetNumberOfIds()));
+      vtkNew<vtkIdTypeArray> cellIds;
+      cellIds->SetName(PacketCellIds);
+      vtkNew<vtkUnsignedCharArray> kinds;
+      kinds->SetName(PacketCellKinds);
+      for (vtkIdType c : chosen)
+      {
+        cellIds->InsertNextValue(firstCell[static_cast<size_t>(me)] + c);
+        kinds->InsertNextValue(own.kind[static_cast<size_t>(c)]);
+      }
+      packet->GetCellData()->AddArray(cellIds);
+      packet->GetCellData()->AddArray(kinds);
+      answers[static_cast<size_t>(s)] = packet;
+    }
+    std::vector<int> arrived;
+    InPairOrder(me, processes, transposed,
+      [&](int r) { controller->Send(answers[static_cast<size_t>(r)], r, AnswerTag); },
+      [&](int s) {
+        packets.push_back(vtk::TakeSmartPointer(vtkPolyData::SafeDownCast(controller->ReceiveDataObject(s, AnswerTag))));
+        arrived.push_back(s);
+      });
+    // Append the new cells; their new points are the next frontier.
+    frontier.clear();
+    for (size_t a = 0; a < arrived.size(); ++a)
+    {
+      const int packetIndex = static_cast<int>(packets.size() - arrived.size() + a);
+      vtkPolyData* packet = packets[static_cast<size_t>(packetIndex)];
+      if (!packet)
+      {
+        continue;
+      }
+      auto* pointIds = vtkIdTypeArray::SafeDownCast(packet->GetPointData()->GetArray(PacketPointIds));
+      auto* cellIds = vtkIdTypeArray::SafeDownCast(packet->GetCellData()->GetArray(PacketCellIds));
+      auto* kinds = vtkUnsignedCharArray::SafeDownCast(packet->GetCellData()->GetArray(PacketCellKinds));
+      if (!pointIds || !cellIds || !kinds)
+      {
+        continue;
+      }
+      vtkCellArray* polys = packet->GetPolys();
+      auto iterator = vtk::TakeSmartPointer(polys->NewIterator());
+      vtkIdType c = 0;
+      std::vector<vtkIdType> ids;
+      for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++c)
+      {
+        if (!heldCells.insert(cellIds->GetValue(c)).second)
+        {
+          continue;
+        }
+        vtkIdType n;
+        const vtkIdType* rows;
+        iterator->GetCurrentCell(n, rows);
+        ids.resize(static_cast<size_t>(n));
+        for (vtkIdType k = 0; k < n; ++k)
+        {
+          const vtkIdType id = pointIds->GetValue(rows[k]);
+          const auto inserted = local.emplace(id, np + static_cast<vtkIdType>(ghostPoints.size()));
+          if (inserted.second)
+          {
+            ghostPoints.push_back({ packetIndex, rows[k] });
+            ghostPointSource.push_back(arrived[a]);
+            frontier.push_back(inserted.first->second);
+          }
+          ids[static_cast<size_t>(k)] = inserted.first->second;
+        }
+        ghost.Append(kinds->GetValue(c), n, ids.data());
+        ghostCellRows.push_back({ packetIndex, c });
+      }
+    }
+  }
+
+  vtkLogEndScope("shock: rings");
+  vtkLogScopeF(TRACE, "shock: assemble the piece with its rings");
+  // 4. The piece with its rings: own points then ghost points, each kind of
+  // cell with its own cells first; owners' marks and global ids.
+  const vtkIdType total = np + static_cast<vtkIdType>(ghostPoints.size());
+  auto result = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataType(piece->GetPoints()->GetDataType()); // DeepCopy would convert to float
+  points->DeepCopy(piece->GetPoints());
+  points->GetData()->Resize(total); // keeps the piece's points (SetNumberOfTuples alone may not)
+  points->GetData()->SetNumberOfTuples(total);
+  for (size_t g = 0; g < ghostPoints.size(); ++g)
+  {
+    points->SetPoint(np + static_cast<vtkIdType>(g),
+      packets[static_cast<size_t>(ghostPoints[g].packet)]->GetPoint(ghostPoints[g].row));
+  }
+  result->SetPoints(points);
+  // Point data: the piece's arrays, then the ghost points' rows of the same arrays.
+  vtkPointData* pointData = result->GetPointData();
+  bool missing = !ExtendAttributes(pointData, piece->GetPointData(), total,
+    [&](vtkIdType r, vtkDataSetAttributes*& holder, vtkIdType& row) {
+      if (r < np)
+      {
+        row = r;
+        return;
+      }
+      const Row& ghostRow = ghostPoints[static_cast<size_t>(r - np)];
+      holder = packets[static_cast<size_t>(ghostRow.packet)]->GetPointData();
+      row = ghostRow.row;
+    });
+  pointData->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+  vtkNew<vtkIdTypeArray> ids;
+  ids->SetName("GlobalPointIds");
+  ids->SetNumberOfTuples(total);
+  vtkNew<vtkUnsignedCharArray> pointGhosts;
+  pointGhosts->SetName(vtkDataSetAttributes::GhostArrayName());
+  pointGhosts->SetNumberOfTuples(total);
+  for (vtkIdType p = 0; p < total; ++p)
+  {
+    const bool owned = p < np && ownerOf[static_cast<size_t>(p)] == me &&
+      linkStart[static_cast<size_t>(p) + 1] > linkStart[static_cast<size_t>(p)];
+    ids->SetValue(p, p < np ? gid[static_cast<size_t>(p)]
+                            : vtkIdTypeArray::SafeDownCast(packets[static_cast<size_t>(ghostPoints[static_cast<size_t>(p - np)].packet)]
+                                                              ->GetPointData()->GetArray(PacketPointIds))
+                                ->GetValue(ghostPoints[static_cast<size_t>(p - np)].row));
+    pointGhosts->SetValue(p, owned ? 0 : vtkDataSetAttributes::DUPLICATEPOINT);
+  }
+  if (givenIds && givenIds->GetName())
+  {
+    pointData->RemoveArray(givenIds->GetName()); // replaced by the same ids of every point
+    ids->SetName(givenIds->GetName());
+  }
+  pointData->SetGlobalIds(ids);
+  pointData->AddArray(pointGhosts);
+
+  // Cells, kind by kind: own then ghost; the cell data in that order.
+  vtkNew<vtkCellArray> kindCells[4];
+  std::vector<std::pair<int, vtkIdType>> order; // (0 own / 1 ghost, index)
+  order.reserve(static_cast<size_t>(own.Size() + ghost.Size()));
+  for (unsigned char kind = 0; kind < 4; ++kind)
+  {
+    for (int which = 0; which < 2; ++which)
+    {
+      const Cells& cells = which == 0 ? own : ghost;
+      for (vtkIdType c = 0; c < cells.Size(); ++c)
+      {
+        if (cells.kind[static_cast<size_t>(c)] != kind)
+        {
+          continue;
+        }
+        const vtkIdType begin = cells.offsets[static_cast<size_t>(c)];
+        kindCells[kind]->InsertNextCell(cells.offsets[static_cast<size_t>(c) + 1] - begin, &cells.points[static_cast<size_t>(begin)]);
+        order.emplace_back(which, c);
+      }
+    }
+  }
+  result->SetVerts(kindCells[0]);
+  result->SetLines(kindCells[1]);
+  result->SetPolys(kindCells[2]);
+  result->SetStrips(kindCells[3]);
+  const vtkIdType cellTotal = static_cast<vtkIdType>(order.size());
+  // Own cells keep their numbers when their kinds come in order (e.g. polygons only).
+  missing = !ExtendAttributes(result->GetCellData(), piece->GetCellData(), cellTotal,
+    [&](vtkIdType c, vtkDataSetAttributes*& holder, vtkIdType& row) {
+      const auto& entry = order[static_cast<size_t>(c)];
+      if (entry.first == 0)
+      {
+        row = entry.second;
+        return;
+      }
+      const Row& ghostRow = ghostCellRows[static_cast<size_t>(entry.second)];
+      holder = packets[static_cast<size_t>(ghostRow.packet)]->GetCellData();
+      row = ghostRow.row;
+    }) || missing;
+  vtkCellData* cellData = result->GetCellData();
+  vtkNew<vtkUnsignedCharArray> cellGhosts;
+  cellGhosts->SetName(vtkDataSetAttributes::GhostArrayName());
+  cellGhosts->SetNumberOfTuples(cellTotal);
+  for (vtkIdType c = 0; c < cellTotal; ++c)
+  {
+    cellGhosts->SetValue(c, order[static_cast<size_t>(c)].first == 0 ? 0 : vtkDataSetAttributes::DUPLICATECELL);
+  }
+  cellData->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+  cellData->AddArray(cellGhosts);
+  result->GetFieldData()->ShallowCopy(piece->GetFieldData());
+  if (AnyFailed(controller, missing, error))
+  {
+    if (missing)
+    {
+      error = "the pieces' point or cell arrays differ (names, types or components)";
+    }
+    return nullptr;
+  }
+  return result;
+}
+}
