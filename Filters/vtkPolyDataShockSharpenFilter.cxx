@@ -224,10 +224,10 @@ int vtkPolyDataShockSharpenFilter::GetNumberOfMeshPreparations() const
 }
 
 const vtkShockPolyDataInternals::PreparedMesh* vtkPolyDataShockSharpenFilter::Prepare(
-  vtkPolyData* input, double unit, bool distributed, std::string& error)
+  vtkPolyData* input, double unit, std::string& error)
 {
   const vtkShockPolyDataInternals::PreparedMesh* prepared = this->PreparedMeshes->Get(input,
-    this->MergeCoincidentPoints, this->NumberOfThreads, error, &this->LastSetupSeconds, unit, !distributed);
+    this->MergeCoincidentPoints, this->NumberOfThreads, error, &this->LastSetupSeconds, unit, true);
   const int preparation = this->PreparedMeshes->GetNumberOfPreparations();
   if (!prepared || preparation != this->KernelCachePreparation)
   {
@@ -289,10 +289,14 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
   shock::MeshPartition& partition = out.partition;
   partition.ownedPoints.assign(static_cast<size_t>(np), 1);
   partition.ownedTriangles.assign(static_cast<size_t>(nt), 1);
+  // Mesh point p is the piece's point inputPoint(p) (the mesh may be renumbered for locality).
+  const auto inputPoint = [&prepared](std::int64_t p) {
+    return prepared.pointOrder.empty() ? p : static_cast<std::int64_t>(prepared.pointOrder[static_cast<size_t>(p)]);
+  };
   for (std::int64_t p = 0; pointGhosts && p < np; ++p)
   {
     partition.ownedPoints[static_cast<size_t>(p)] =
-      (pointGhosts->GetValue(p) & vtkDataSetAttributes::DUPLICATEPOINT) ? 0 : 1;
+      (pointGhosts->GetValue(inputPoint(p)) & vtkDataSetAttributes::DUPLICATEPOINT) ? 0 : 1;
   }
   double lengths[2] = { 0.0, 0.0 };
   std::vector<char> needed(static_cast<size_t>(np), 0);
@@ -324,7 +328,7 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
   std::vector<vtkIdType> globalIds(static_cast<size_t>(np), -1);
   for (std::int64_t p = 0; ids && p < np; ++p)
   {
-    globalIds[static_cast<size_t>(p)] = static_cast<vtkIdType>(ids->GetTuple1(p));
+    globalIds[static_cast<size_t>(p)] = static_cast<vtkIdType>(ids->GetTuple1(inputPoint(p)));
   }
   out.exchange.Setup(controller, globalIds.data(), partition.ownedPoints, needed);
   // What a piece costs: its ghost layers, and the traffic of one CG iteration
@@ -372,8 +376,11 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   vtkSmartPointer<vtkPolyData> input;
   vtkShockParallel::SurfacePiece piece;
   std::string error;
-  if (!vtkShockPolyDataInternals::BeginSurface(inputVector, controller,
-        std::max(1, this->GhostLevels), wholeOrPieces, this->ParametersText(), nullptr, input, piece, error))
+  vtkLogStartScope(TRACE, "shock: input, agreement and ghost rings");
+  const bool begun = vtkShockPolyDataInternals::BeginSurface(inputVector, controller,
+    std::max(1, this->GhostLevels), wholeOrPieces, this->ParametersText(), nullptr, input, piece, error);
+  vtkLogEndScope("shock: input, agreement and ghost rings");
+  if (!begun)
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -391,11 +398,13 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   }
   // The triangle mesh of the piece (with its ghost cells), in the whole mesh's
   // length unit, kept between executions.
+  vtkLogStartScope(TRACE, "shock: unit and mesh");
   const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work, this->NumberOfThreads);
   const bool empty = piece.work->GetNumberOfPoints() == 0;
   const vtkShockPolyDataInternals::PreparedMesh* kept =
-    empty ? nullptr : this->Prepare(piece.work, unit, piece.controller != nullptr, error);
+    empty ? nullptr : this->Prepare(piece.work, unit, error);
   const bool ok = empty || kept;
+  vtkLogEndScope("shock: unit and mesh");
   if (piece.controller ? vtkShockParallel::AnyFailed(piece.controller, !ok, error) : !ok)
   {
     vtkErrorMacro(<< error);
@@ -414,6 +423,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   Distribution distribution;
   if (piece.controller)
   {
+    vtkLogScopeF(TRACE, "shock: ownership and exchange set-up");
     Distribute(piece.controller, piece.work, prepared, distribution);
   }
   // Normals, potential, flow and advection on the piece; the fit across pieces.
@@ -422,8 +432,10 @@ int vtkPolyDataShockSharpenFilter::RequestData(
     this->GenerateSharpenedNormals ? static_cast<size_t>(3 * prepared.mesh.NumberOfTriangles()) : 0);
   shock::SharpeningReport report;
   shock::MeshFlowFields fields;
+  vtkLogStartScope(TRACE, "shock: sharpen the piece");
   bool sharpened = this->Sharpen(prepared.mesh, piece.controller ? &distribution.partition : nullptr,
     distribution.meanEdgeLength, !prepared.pointOrder.empty(), positions, normals, report, fields, error);
+  vtkLogEndScope("shock: sharpen the piece");
   if (piece.controller ? vtkShockParallel::AnyFailed(piece.controller, !sharpened, error) : !sharpened)
   {
     vtkErrorMacro("Geometry sharpening failed: " << error);
@@ -439,6 +451,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
     x *= unit; // back from the mesh unit (a power of two: exact)
   }
   // The output: the piece's own cells with the new positions and the requested arrays.
+  vtkLogScopeF(TRACE, "shock: output");
   vtkNew<vtkPolyData> result;
   this->BuildOutput(piece.work, prepared, positions, normals, fields, report, result);
   output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(result, input).GetPointer()

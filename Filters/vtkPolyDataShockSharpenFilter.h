@@ -299,10 +299,9 @@ protected:
     std::string& error);
 
   /// The prepared mesh of `input` in the length unit `unit` (MeshUnit), kept between
-  /// executions (the kernels' cache goes with it); renumbered for locality unless
-  /// `distributed` (a piece keeps its points' numbering for the exchanges).
-  const vtkShockPolyDataInternals::PreparedMesh* Prepare(
-    vtkPolyData* input, double unit, bool distributed, std::string& error);
+  /// executions (the kernels' cache goes with it), renumbered for locality (a
+  /// piece's exchanges map the mesh's points back to the piece's through pointOrder).
+  const vtkShockPolyDataInternals::PreparedMesh* Prepare(vtkPolyData* input, double unit, std::string& error);
 
   /// `input` with the new positions, the field data of the run and the requested arrays.
   void BuildOutput(vtkPolyData* input, const vtkShockPolyDataInternals::PreparedMesh& prepared,

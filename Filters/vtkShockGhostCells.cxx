@@ -46,6 +46,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -293,6 +294,91 @@ bool ExtendAttributes(vtkDataSetAttributes* to, vtkDataSetAttributes* from, vtkI
   return true;
 }
 
+/// The keys of gathered global ids (3 words per item, the id first).
+std::vector<Key> GivenKeys(const std::vector<std::uint64_t>& all)
+{
+  std::vector<Key> keys(all.size() / 3);
+  for (size_t k = 0; k < keys.size(); ++k)
+  {
+    keys[k] = Key{ all[3 * k], all[3 * k + 1], all[3 * k + 2] };
+  }
+  return keys;
+}
+
+/**
+ * The keys of gathered coordinates (3 doubles' bits per item): each item takes
+ * the key of the first item (in gathered order) within 1e-12 of the largest
+ * coordinate magnitude in every axis, else its own. The same on every process.
+ */
+std::vector<Key> MergedCoordinateKeys(const std::vector<std::uint64_t>& all)
+{
+  const size_t n = all.size() / 3;
+  std::vector<double> x(all.size());
+  std::memcpy(x.data(), all.data(), 8 * all.size());
+  double largest = 0.0;
+  for (double v : x)
+  {
+    largest = std::max(largest, std::abs(v));
+  }
+  const double tolerance = largest > 0.0 ? 1e-12 * largest : std::numeric_limits<double>::min();
+  // Items by grid cell of the tolerance's size: a match lies in one of the 27 cells around.
+  struct Cell
+  {
+    std::int64_t i, j, k;
+    bool operator==(const Cell& o) const { return i == o.i && j == o.j && k == o.k; }
+  };
+  struct CellHash
+  {
+    size_t operator()(const Cell& c) const
+    {
+      return static_cast<size_t>((c.i * 73856093) ^ (c.j * 19349663) ^ (c.k * 83492791));
+    }
+  };
+  std::unordered_map<Cell, std::vector<size_t>, CellHash> grid;
+  std::vector<Key> keys(n);
+  for (size_t item = 0; item < n; ++item)
+  {
+    const double* p = &x[3 * item];
+    const Cell cell{ static_cast<std::int64_t>(std::floor(p[0] / tolerance)),
+      static_cast<std::int64_t>(std::floor(p[1] / tolerance)), static_cast<std::int64_t>(std::floor(p[2] / tolerance)) };
+    size_t match = item;
+    for (std::int64_t di = -1; di <= 1 && match == item; ++di)
+    {
+      for (std::int64_t dj = -1; dj <= 1 && match == item; ++dj)
+      {
+        for (std::int64_t dk = -1; dk <= 1 && match == item; ++dk)
+        {
+          const auto found = grid.find(Cell{ cell.i + di, cell.j + dj, cell.k + dk });
+          if (found == grid.end())
+          {
+            continue;
+          }
+          for (size_t other : found->second)
+          {
+            const double* q = &x[3 * other];
+            if (std::abs(p[0] - q[0]) <= tolerance && std::abs(p[1] - q[1]) <= tolerance &&
+              std::abs(p[2] - q[2]) <= tolerance)
+            {
+              match = other;
+              break;
+            }
+          }
+        }
+      }
+    }
+    if (match == item)
+    {
+      grid[cell].push_back(item);
+      keys[item] = CoordinateKey(p);
+    }
+    else
+    {
+      keys[item] = keys[match];
+    }
+  }
+  return keys;
+}
+
 /// The ranks that hold a border point, lowest first (the owner).
 using Holders = std::vector<int>;
 
@@ -390,6 +476,11 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
 
   vtkLogEndScope("shock: border points");
   vtkLogStartScope(TRACE, "shock: global ids");
+  // The key of each gathered item: its global id, or the first gathered
+  // point within a tolerance of its coordinates (pieces a source or reader cut
+  // itself may compute their shared points to the last bit differently).
+  const std::vector<Key> keys = givenIds ? GivenKeys(all) : MergedCoordinateKeys(all);
+
   // 2. Holders, owners and global ids. A key repeated within one piece
   // (coincident points of that piece) is shared through its first occurrence
   // only; the others are points of their own.
@@ -401,7 +492,7 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
     {
       for (vtkIdType k = 0; k < borderCounts[static_cast<size_t>(r)]; ++k, ++item)
       {
-        const Key key{ all[3 * item], all[3 * item + 1], all[3 * item + 2] };
+        const Key& key = keys[item];
         Holders& h = holders[key];
         if (h.empty() || h.back() != r)
         {
@@ -422,7 +513,7 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
       vtkIdType ownedBorder = 0;
       for (vtkIdType k = 0; k < borderCounts[static_cast<size_t>(r)]; ++k, ++item)
       {
-        const Key key{ all[3 * item], all[3 * item + 1], all[3 * item + 2] };
+        const Key& key = keys[item];
         const bool mineToOwn = !shared[item] || holders[key].front() == r;
         if (!mineToOwn)
         {
@@ -452,7 +543,7 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
     {
       const vtkIdType p = border[k];
       isBorder[static_cast<size_t>(p)] = 1;
-      const Key key{ all[3 * item], all[3 * item + 1], all[3 * item + 2] };
+      const Key& key = keys[item];
       const int owner = shared[item] ? holders[key].front() : me;
       ownerOf[static_cast<size_t>(p)] = owner;
       if (givenIds)
@@ -489,7 +580,7 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
         {
           continue;
         }
-        const Key key{ all[3 * item], all[3 * item + 1], all[3 * item + 2] };
+        const Key& key = keys[item];
         const Holders& h = holders[key];
         if (h.size() > 1)
         {
@@ -786,8 +877,8 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
   pointGhosts->SetNumberOfTuples(total);
   for (vtkIdType p = 0; p < total; ++p)
   {
-    const bool owned = p < np && ownerOf[static_cast<size_t>(p)] == me &&
-      linkStart[static_cast<size_t>(p) + 1] > linkStart[static_cast<size_t>(p)];
+    // A point no cell uses stays its piece's own (it is no other piece's).
+    const bool owned = p < np && ownerOf[static_cast<size_t>(p)] == me;
     ids->SetValue(p, p < np ? gid[static_cast<size_t>(p)]
                             : vtkIdTypeArray::SafeDownCast(packets[static_cast<size_t>(ghostPoints[static_cast<size_t>(p - np)].packet)]
                                                               ->GetPointData()->GetArray(PacketPointIds))

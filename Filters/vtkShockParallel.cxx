@@ -237,11 +237,35 @@ vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
       }
     }
   }
-  // The used points keep their order; their data (with the owners' marks) comes along.
+  // The used points keep their order, with the points no cell uses (nobody
+  // else's); their data (with the owners' marks) comes along.
+  std::vector<char> usedByGhost(newId.size(), 0);
+  cell = 0;
+  for (int kind = 0; kind < 4; ++kind)
+  {
+    if (!inputCells[kind])
+    {
+      continue;
+    }
+    auto iterator = vtk::TakeSmartPointer(inputCells[kind]->NewIterator());
+    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
+    {
+      if (ghosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL)
+      {
+        vtkIdType size;
+        const vtkIdType* points;
+        iterator->GetCurrentCell(size, points);
+        for (vtkIdType k = 0; k < size; ++k)
+        {
+          usedByGhost[static_cast<size_t>(points[k])] = 1;
+        }
+      }
+    }
+  }
   vtkNew<vtkIdList> keptPoints;
   for (size_t p = 0; p < newId.size(); ++p)
   {
-    if (newId[p] == 0)
+    if (newId[p] == 0 || !usedByGhost[p])
     {
       newId[p] = keptPoints->GetNumberOfIds();
       keptPoints->InsertNextId(static_cast<vtkIdType>(p));
@@ -403,7 +427,7 @@ bool AnyFailed(vtkMultiProcessController* controller, bool failed, std::string& 
   }
   // Every process reports the first failing process's reason.
   const int first = static_cast<int>(processes - lowest);
-  error = "process " + std::to_string(first) + " of " + std::to_string(processes) + " cannot filter its piece: " +
+  error = "Process " + std::to_string(first) + " of " + std::to_string(processes) + " cannot filter its piece: " +
     BroadcastText(controller, error, first);
   return true;
 }
@@ -424,7 +448,7 @@ bool Agree(vtkMultiProcessController* controller, const std::string& localError,
   if (global[0] > 0)
   {
     const int first = static_cast<int>(processes - global[0]);
-    error = "process " + std::to_string(first) + " of " + std::to_string(processes) +
+    error = "Process " + std::to_string(first) + " of " + std::to_string(processes) +
       " cannot filter its piece: " + BroadcastText(controller, localError, first);
     return false;
   }
@@ -456,7 +480,7 @@ bool Agree(vtkMultiProcessController* controller, const std::string& localError,
   const std::string detail = BroadcastText(controller,
     "process " + std::to_string(me) + " has " + ours + " where process " + std::to_string(reference) + " has " + theirs,
     static_cast<int>(firstDiffering));
-  error = std::string("the processes disagree on the filter's ") +
+  error = std::string("The processes disagree on the filter's ") +
     (sameParameters ? "arrays" : "parameters") + ": " + detail +
     (sameParameters ? "; every piece must hold the same point and cell arrays (names, types, components) and filter the same one."
                     : "; every process must run the filter with the same parameters.");

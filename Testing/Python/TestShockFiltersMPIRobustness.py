@@ -1,0 +1,616 @@
+"""Parallel robustness of the surface shock filters: bad pieces, disagreeing ranks, aborts.
+
+Usage: mpirun -np N pvbatch --symmetric --mpi TestShockFiltersMPIRobustness.py PLUGIN_PATH OUTPUT_DIR [CASES]
+
+Every process runs this script (--symmetric). Each one builds its own piece
+with plain VTK classes and runs the project's VTK classes directly, as a VTK
+user would: filter.SetController(global controller), SetInputData(piece),
+UpdatePiece(rank, N, 0). The classes come from the Python package
+`shockfilters` of the build tree, found next to PLUGIN_PATH (or on
+PYTHONPATH); the plugin itself is not loaded. OUTPUT_DIR is created but
+nothing is written there: the records travel through the controller.
+CASES (optional) is a comma-separated list of case names or dotted prefixes
+of them to run (default: all; e.g. "abort,bad_cell_id.sharpen"), for debugging.
+
+A piece is the rank-th of N slabs of a triangulated sphere (cells sorted by
+the z of their centre), with the point scalar "Elevation" (active). Every
+case gathers one record per process (return value of UpdatePiece, the errors
+vtkOutputWindow received, output sizes) onto process 0 with the controller;
+process 0 prints a MEASURE line with what each process did and checks:
+
+- replicated: every process holds the same whole sphere: the result is the
+  serial one (the plumbing of this script; the filter works on process 0).
+- source pieces: vtkSphereSource (64 x 64) -> vtkElevationFilter -> advection,
+  the source cutting its own pieces: the points not marked in vtkGhostType
+  are exactly the serial points (matched by coordinates), with the serial
+  advected Elevation (1e-9 of its range); as many cells as serial.
+- nan coordinate: a NaN coordinate in the bad process's piece (advection and
+  sharpen): UpdatePiece returns 0 on every process, each logs exactly one
+  error, the same text everywhere, naming the bad process ("process K" or
+  "rank K") and saying NaN / not finite.
+- isolated far point: a point used by no cell at x = 1e200 appended to the
+  bad piece (advection): no crash, no hang, every process returns the same status.
+- bad cell id: a triangle, a line and a vertex (separately) with a point id
+  out of range in the bad piece (advection and sharpen): every process fails
+  with the same one-line error naming the bad process; no crash.
+- array name mismatch: the active point scalars are "Heat" on the processes
+  and "Temperature" on the bad one (advection): every process fails with the
+  same error (naming the mismatch), and no process outputs filtered values.
+- iterations mismatch: SolverIterations 25 and 30 on the bad process
+  (sharpen): every process fails with the same error about the iterations.
+- abort on process 0: a ProgressEvent observer on process 0 only sets
+  AbortExecute during a sharpening of a 200 x 200 sphere: every process
+  returns from UpdatePiece and reaches the Barrier after it.
+
+The bad process is 1; with 3 or more processes each failure case runs again
+with the last process bad. "Exactly one error" counts the filter's own
+errors: the executive's "returned failure for request" that follows any
+failed RequestData is left out, and texts are compared without their
+"ERROR: In file, line" header and object address.
+
+A hang is not detected here: the test's `timeout` ends the run (cases that
+may hang come last). Prints "FAIL: ..." per failed check and ends with
+"N passed, M failed" on process 0; the exit code is 1 on any failure (on
+every process). An exception in a case is a failure and the remaining cases
+still run; every process reaches every gather.
+"""
+import glob
+import itertools
+import os
+import pickle
+import re
+import sys
+import time
+import traceback
+
+import numpy as np
+
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.util.vtkConstants import VTK_STRING, VTK_UNSIGNED_CHAR
+from vtkmodules.vtkCommonCore import vtkIdTypeArray, vtkOutputWindow, vtkPoints, vtkUnsignedCharArray
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+from vtkmodules.vtkFiltersCore import vtkElevationFilter
+from vtkmodules.vtkFiltersSources import vtkSphereSource
+from vtkmodules.vtkParallelCore import vtkMultiProcessController
+
+PLUGIN, OUTPUT = sys.argv[1], sys.argv[2]
+SELECTED = set(sys.argv[3].split(",")) if len(sys.argv) > 3 and sys.argv[3] else None
+os.makedirs(OUTPUT, exist_ok=True)
+
+
+def find_package():
+    """Put the build tree's `shockfilters` package (the directory of vtkFiltersShock*.so)
+    on sys.path, unless it is importable already (PYTHONPATH)."""
+    try:
+        import shockfilters  # noqa: F401
+        return
+    except ImportError:
+        pass
+    directory = os.path.dirname(os.path.abspath(PLUGIN))
+    while not os.path.exists(os.path.join(directory, "CMakeCache.txt")):  # up to the build tree
+        if os.path.dirname(directory) == directory:
+            return
+        directory = os.path.dirname(directory)
+    usual = glob.glob(os.path.join(directory, "lib*", "python*", "site-packages", "shockfilters"))
+    anywhere = (root for root, dirs, files in os.walk(directory) if os.path.basename(root) == "shockfilters")
+    for package in itertools.chain(usual, anywhere):
+        if glob.glob(os.path.join(package, "vtkFiltersShock*.so")):
+            sys.path.insert(0, os.path.dirname(package))
+            return
+
+
+find_package()
+from shockfilters import vtkPolyDataShockAdvectionFilter, vtkPolyDataShockSharpenFilter  # noqa: E402
+
+controller = vtkMultiProcessController.GetGlobalController()
+RANK = controller.GetLocalProcessId() if controller else 0
+PROCESSES = controller.GetNumberOfProcesses() if controller else 1
+
+passed = 0
+failures = []
+
+
+def check(condition, message):
+    """A check, judged on process 0."""
+    global passed
+    if condition:
+        passed += 1
+    else:
+        failures.append(message)
+        print("FAIL:", message, flush=True)
+    return condition
+
+
+class Messages:
+    """Errors reaching vtkOutputWindow on this process."""
+
+    def __init__(self):
+        self.errors = []
+        vtkOutputWindow.GetInstance().AddObserver("ErrorEvent", self._error)
+
+    @calldata_type(VTK_STRING)
+    def _error(self, caller, event, text):
+        self.errors.append(text)
+
+    def take(self):
+        """The filter errors since the last take, as message texts (see message_text)."""
+        texts = [message_text(e) for e in self.errors if "returned failure for request" not in e]
+        del self.errors[:]
+        return texts
+
+
+def message_text(error):
+    """An error without its "ERROR: In file, line N" header and "Class (0x...): " prefix."""
+    lines = error.strip().splitlines()
+    if lines and lines[0].startswith("ERROR: In "):
+        lines = lines[1:]
+    return re.sub(r"^\w+ \(0x[0-9a-fA-F]+\): ", "", "\n".join(lines).strip())
+
+
+messages = Messages()
+
+
+# --- Gathering records onto process 0 -----------------------------------------------
+
+def all_gather_bytes(data):
+    """Every process's `data` (bytes), in rank order, on every process."""
+    if PROCESSES == 1:
+        return [data]
+    length = vtkIdTypeArray()
+    length.InsertNextValue(len(data))
+    lengths = vtkIdTypeArray()
+    controller.AllGather(length, lengths)
+    sizes = [int(lengths.GetValue(k)) for k in range(PROCESSES)]
+    width = max(max(sizes), 1)
+    send = numpy_to_vtk(np.frombuffer(data.ljust(width, b"\0"), np.uint8).copy(), deep=1,
+                        array_type=VTK_UNSIGNED_CHAR)
+    received = vtkUnsignedCharArray()
+    controller.AllGather(send, received)
+    flat = vtk_to_numpy(received).tobytes()
+    return [flat[k * width:k * width + sizes[k]] for k in range(PROCESSES)]
+
+
+def gather(record):
+    """Every process's record (any picklable object), in rank order, on every process."""
+    return [pickle.loads(b) for b in all_gather_bytes(pickle.dumps(record))]
+
+
+def broadcast_int(value):
+    if PROCESSES == 1:
+        return value
+    array = vtkIdTypeArray()
+    array.InsertNextValue(value)
+    controller.Broadcast(array, 0)
+    return int(array.GetValue(0))
+
+
+# --- Pieces ----------------------------------------------------------------------------
+
+def sphere(resolution):
+    source = vtkSphereSource()
+    source.SetThetaResolution(resolution)
+    source.SetPhiResolution(resolution)
+    source.SetOutputPointsPrecision(1)  # double
+    source.Update()
+    return source.GetOutput()
+
+
+def triangles(mesh):
+    polys = mesh.GetPolys()
+    return vtk_to_numpy(polys.GetConnectivityArray()).reshape(-1, 3).astype(np.int64)
+
+
+def cell_array(connectivity, size):
+    """A vtkCellArray of cells of `size` points from a flat id list (ids are not checked)."""
+    connectivity = np.ascontiguousarray(connectivity, dtype=np.int64).ravel()
+    offsets = np.arange(0, len(connectivity) + 1, size, dtype=np.int64)
+    cells = vtkCellArray()
+    cells.SetData(numpy_to_vtkIdTypeArray(offsets, deep=1), numpy_to_vtkIdTypeArray(connectivity, deep=1))
+    return cells
+
+
+def make_polydata(points, polys, scalars_name="Elevation"):
+    """Triangles over double points, with the active point scalars `scalars_name` (a blurred step)."""
+    mesh = vtkPolyData()
+    vtk_points = vtkPoints()
+    vtk_points.SetDataTypeToDouble()
+    vtk_points.SetData(numpy_to_vtk(np.ascontiguousarray(points, dtype=float), deep=1))
+    mesh.SetPoints(vtk_points)
+    mesh.SetPolys(cell_array(polys, 3))
+    finite = np.nan_to_num(points, nan=0.0, posinf=0.0, neginf=0.0)
+    values = numpy_to_vtk(np.tanh((finite[:, 2] + 0.3 * finite[:, 0]) * 6.0), deep=1)
+    values.SetName(scalars_name)
+    mesh.GetPointData().SetScalars(values)
+    return mesh
+
+
+def slab(resolution, rank=None, pieces=None, scalars_name="Elevation"):
+    """The rank-th of `pieces` slabs of a sphere (cells by the z of their centre), its
+    points compacted; the whole sphere when rank is None. Returns (points, triangles)."""
+    whole = sphere(resolution)
+    points = vtk_to_numpy(whole.GetPoints().GetData()).astype(float)
+    cells = triangles(whole)
+    if rank is not None:
+        order = np.argsort(points[cells].mean(axis=1)[:, 2], kind="stable")
+        cells = cells[np.sort(np.array_split(order, pieces)[rank])]
+        used = np.unique(cells)
+        renumber = np.full(len(points), -1, np.int64)
+        renumber[used] = np.arange(len(used))
+        points, cells = points[used], renumber[cells]
+    return points, cells
+
+
+def piece_mesh(resolution=32, scalars_name="Elevation"):
+    return make_polydata(*slab(resolution, RANK, PROCESSES), scalars_name=scalars_name)
+
+
+# --- Running a filter on this process's piece ---------------------------------------------
+
+FILTERS = {"advection": vtkPolyDataShockAdvectionFilter, "sharpen": vtkPolyDataShockSharpenFilter}
+
+
+def run(kind, piece, label, configure=None, observe=None):
+    """UpdatePiece(rank, N, 0) of a fresh filter on `piece`; this process's record."""
+    algorithm = FILTERS[kind]()
+    algorithm.SetController(controller)
+    algorithm.SetNumberOfThreads(1)
+    if configure:
+        configure(algorithm)
+    if observe:
+        algorithm.AddObserver("ProgressEvent", observe)
+    algorithm.SetInputData(piece)
+    messages.take()
+    start = time.time()
+    rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
+    seconds = time.time() - start
+    print("rank %d: %s returned %s after %.2f s" % (RANK, label, rc, seconds), flush=True)
+    output = algorithm.GetOutput()
+    record = {"rank": RANK, "rc": rc, "errors": messages.take(), "seconds": seconds,
+              "points": output.GetNumberOfPoints(), "cells": output.GetNumberOfCells()}
+    return record, algorithm
+
+
+def owned_points(mesh, array_name):
+    """(coordinates, values) of the points not marked in vtkGhostType (all without the array)."""
+    if mesh.GetNumberOfPoints() == 0:
+        return np.zeros((0, 3)), np.zeros(0)
+    coordinates = vtk_to_numpy(mesh.GetPoints().GetData()).astype(float)
+    array = mesh.GetPointData().GetArray(array_name)
+    values = vtk_to_numpy(array).astype(float) if array else np.full(len(coordinates), np.nan)
+    ghost = mesh.GetPointData().GetArray("vtkGhostType")
+    owned = vtk_to_numpy(ghost) == 0 if ghost else np.ones(len(coordinates), bool)
+    return coordinates[owned], values[owned]
+
+
+def describe(records):
+    """One line: what each process did."""
+    parts = []
+    for r in records:
+        if "exception" in r:
+            parts.append("rank %d: exception %s" % (r["rank"], r["exception"].strip().splitlines()[-1]))
+            continue
+        errors = "; ".join(e.replace("\n", " | ")[:220] for e in r["errors"])
+        parts.append("rank %d: rc=%s %.2fs out=%dp/%dc errors(%d)=[%s]" % (
+            r["rank"], r["rc"], r["seconds"], r["points"], r["cells"], len(r["errors"]), errors))
+    return " || ".join(parts)
+
+
+def names_rank(text, rank):
+    return re.search(r"\b(process|rank)\s+%d\b" % rank, text, re.IGNORECASE) is not None
+
+
+def check_agreed_failure(label, records, about, about_what, bad=None, one_line=False):
+    """Every process failed (UpdatePiece 0) with exactly one error, the same text on all,
+    matching `about` (a function of the text); naming process `bad` when given."""
+    if not check(all("exception" not in r for r in records),
+                 "%s: exception on a process:\n%s" % (label, "".join(r.get("exception", "") for r in records))):
+        return
+    check(all(r["rc"] == 0 for r in records),
+          "%s: UpdatePiece returned %s (rank order), expected 0 everywhere" % (label, [r["rc"] for r in records]))
+    counts = [len(r["errors"]) for r in records]
+    if not check(counts == [1] * len(records), "%s: errors per process %s, expected exactly 1 each" % (label, counts)):
+        if min(counts) == 0:
+            return
+    texts = [r["errors"][0] for r in records]
+    check(len(set(texts)) == 1, "%s: the error differs between processes: %s" % (label, texts))
+    text = texts[0]
+    if bad is not None:
+        check(names_rank(text, bad), "%s: the error does not name process %d: %r" % (label, bad, text))
+    check(about(text), "%s: the error does not say %s: %r" % (label, about_what, text))
+    if one_line:
+        check("\n" not in text, "%s: the error is not one line: %r" % (label, text))
+
+
+def bad_ranks():
+    """The process with the bad piece: 1, and the last one too when there are more than 2."""
+    return [1] + ([PROCESSES - 1] if PROCESSES > 2 else [])
+
+
+# --- The cases -----------------------------------------------------------------------------------
+#
+# Each case is a pair: local() runs on every process and returns its record;
+# judge(records) runs on process 0 with the records of all processes.
+
+def compare_with_serial(label, records, serial, array_name):
+    """The union of the processes' unmarked points against the serial output."""
+    serial_points = vtk_to_numpy(serial.GetPoints().GetData()).astype(float)
+    serial_values = vtk_to_numpy(serial.GetPointData().GetArray(array_name)).astype(float)
+    points = np.concatenate([r["owned"][0] for r in records])
+    values = np.concatenate([r["owned"][1] for r in records])
+    cells = sum(r["cells"] for r in records)
+    check(cells == serial.GetNumberOfCells(),
+          "%s: %d cells over the processes, serial has %d" % (label, cells, serial.GetNumberOfCells()))
+    check(len(points) == len(serial_points),
+          "%s: %d unmarked points over the processes, serial has %d" % (label, len(points), len(serial_points)))
+    # Match by exact coordinates, then the nearest point within 1e-12.
+    index = {tuple(p): k for k, p in enumerate(points)}
+    matched = np.full(len(serial_points), -1, np.int64)
+    for k, p in enumerate(serial_points):
+        matched[k] = index.get(tuple(p), -1)
+    for k in np.flatnonzero(matched < 0):
+        if len(points):
+            distance = np.linalg.norm(points - serial_points[k], axis=1)
+            if distance.min() <= 1e-12:
+                matched[k] = int(distance.argmin())
+    missing = int((matched < 0).sum())
+    repeated = len(matched[matched >= 0]) - len(np.unique(matched[matched >= 0]))
+    # Unmarked parallel points that match no serial point (e.g. a second copy of one).
+    extra = np.setdiff1d(np.arange(len(points)), matched[matched >= 0])
+    nearest = max((np.linalg.norm(serial_points - points[k], axis=1).min() for k in extra), default=0.0)
+    scale = max(np.ptp(serial_values), 1e-300)
+    found = matched >= 0
+    difference = np.abs(values[matched[found]] - serial_values[found]) / scale if found.any() else np.zeros(1)
+    worst = np.nanmax(difference) if len(difference) and not np.isnan(difference).all() else np.nan
+    print("MEASURE %-40s cells %d (serial %d), unmarked points %d (serial %d), %d serial points unmatched, "
+          "%d matched twice, %d unmarked points left over (at most %.3g from a serial point), "
+          "max |%s - serial|/range = %.3g" % (
+              label, cells, serial.GetNumberOfCells(), len(points), len(serial_points), missing, repeated,
+              len(extra), nearest, array_name, worst), flush=True)
+    check(missing == 0, "%s: %d serial points have no unmarked parallel point" % (label, missing))
+    check(repeated == 0, "%s: %d serial points match several unmarked points" % (label, repeated))
+    check(np.all(difference <= 1e-9),
+          "%s: %d points differ from serial by more than 1e-9 of the range (max %.3g)" % (
+              label, int((~(difference <= 1e-9)).sum()), worst))
+
+
+def replicated_case():
+    label = "replicated np=%d" % PROCESSES
+
+    def local():
+        record, algorithm = run("advection", make_polydata(*slab(48)), label)
+        record["owned"] = owned_points(algorithm.GetOutput(), "Elevation")
+        return record
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        check(all(r.get("rc") == 1 and not r.get("errors") for r in records),
+              "%s: every process succeeds without error" % label)
+        algorithm = vtkPolyDataShockAdvectionFilter()
+        algorithm.SetController(None)
+        algorithm.SetNumberOfThreads(1)
+        algorithm.SetInputData(make_polydata(*slab(48)))
+        algorithm.UpdatePiece(0, 1, 0)
+        compare_with_serial(label, records, algorithm.GetOutput(), "Elevation")
+
+    return local, judge
+
+
+def source_pieces_case():
+    label = "source pieces np=%d" % PROCESSES
+
+    def pipeline():
+        source = vtkSphereSource()
+        source.SetThetaResolution(64)
+        source.SetPhiResolution(64)
+        elevation = vtkElevationFilter()  # "Elevation", the active point scalars
+        elevation.SetInputConnection(source.GetOutputPort())
+        algorithm = vtkPolyDataShockAdvectionFilter()
+        algorithm.SetNumberOfThreads(1)
+        algorithm.SetInputConnection(elevation.GetOutputPort())
+        return algorithm, [source, elevation]
+
+    def local():
+        algorithm, keep = pipeline()
+        algorithm.SetController(controller)
+        messages.take()
+        start = time.time()
+        rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
+        print("rank %d: %s returned %s after %.2f s" % (RANK, label, rc, time.time() - start), flush=True)
+        output = algorithm.GetOutput()
+        return {"rank": RANK, "rc": rc, "errors": messages.take(), "seconds": time.time() - start,
+                "points": output.GetNumberOfPoints(), "cells": output.GetNumberOfCells(),
+                "owned": owned_points(output, "Elevation")}
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        check(all(r.get("rc") == 1 and not r.get("errors") for r in records),
+              "%s: every process succeeds without error" % label)
+        algorithm, keep = pipeline()
+        algorithm.SetController(None)
+        algorithm.UpdatePiece(0, 1, 0)
+        compare_with_serial(label, records, algorithm.GetOutput(), "Elevation")
+
+    return local, judge
+
+
+def nan_coordinate_case(kind, bad):
+    label = "nan coordinate %s bad=%d np=%d" % (kind, bad, PROCESSES)
+
+    def local():
+        points, cells = slab(32, RANK, PROCESSES)
+        if RANK == bad:
+            points[cells[len(cells) // 2, 0], 0] = np.nan  # a point of a triangle
+        return run(kind, make_polydata(points, cells), label)[0]
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        check_agreed_failure(label, records, lambda t: re.search(r"\bnan\b|not finite|non-finite", t, re.I),
+                             "NaN / not finite", bad=bad)
+
+    return local, judge
+
+
+def isolated_far_point_case(bad):
+    label = "isolated point x=1e200 bad=%d np=%d" % (bad, PROCESSES)
+
+    def local():
+        points, cells = slab(32, RANK, PROCESSES)
+        if RANK == bad:
+            points = np.vstack([points, [1e200, 0.0, 0.0]])  # used by no cell
+        return run("advection", make_polydata(points, cells), label)[0]
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        if check(all("exception" not in r for r in records), "%s: exception on a process" % label):
+            statuses = [r["rc"] for r in records]
+            check(len(set(statuses)) == 1, "%s: the processes disagree on the status: %s" % (label, statuses))
+
+    return local, judge
+
+
+def bad_cell_id_case(kind, cell, bad):
+    label = "bad %s id %s bad=%d np=%d" % (cell, kind, bad, PROCESSES)
+
+    def local():
+        points, cells = slab(32, RANK, PROCESSES)
+        mesh = make_polydata(points, cells)
+        if RANK == bad:
+            wrong = len(points) + 5
+            if cell == "triangle":
+                mesh.SetPolys(cell_array(np.vstack([cells, [[0, 1, wrong]]]), 3))
+            elif cell == "line":
+                mesh.SetLines(cell_array([0, wrong], 2))
+            else:
+                mesh.SetVerts(cell_array([wrong], 1))
+        return run(kind, mesh, label)[0]
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        check_agreed_failure(label, records, lambda t: True, "", bad=bad, one_line=True)
+
+    return local, judge
+
+
+def array_name_case(bad):
+    label = "array name mismatch bad=%d np=%d" % (bad, PROCESSES)
+
+    def local():
+        name = "Temperature" if RANK == bad else "Heat"
+        piece = piece_mesh(scalars_name=name)
+        low, high = piece.GetPointData().GetScalars().GetRange()
+        record, algorithm = run("advection", piece, label)
+        record["input_range"] = (low, high)
+        output = algorithm.GetOutput()
+        array = output.GetPointData().GetArray(name)
+        record["values"] = vtk_to_numpy(array).astype(float) if array and output.GetNumberOfPoints() else None
+        return record
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        mismatch = (lambda t: ("Heat" in t and "Temperature" in t)
+                    or re.search(r"differ|mismatch|not the same|inconsistent", t, re.I))
+        check_agreed_failure(label, records, mismatch, "which arrays differ")
+        for r in records:
+            if "exception" in r or r["values"] is None:
+                continue
+            low = min(q["input_range"][0] for q in records if "input_range" in q)
+            high = max(q["input_range"][1] for q in records if "input_range" in q)
+            garbage = ~np.isfinite(r["values"]) | (r["values"] < low) | (r["values"] > high)
+            check(not garbage.any(), "%s: rank %d outputs %d values outside the input range [%g, %g]"
+                  % (label, r["rank"], int(garbage.sum()), low, high))
+            check(r["rc"] == 1, "%s: rank %d failed but still outputs %d filtered values"
+                  % (label, r["rank"], len(r["values"])))
+
+    return local, judge
+
+
+def iterations_case(bad):
+    label = "SolverIterations mismatch bad=%d np=%d" % (bad, PROCESSES)
+
+    def local():
+        iterations = 30 if RANK == bad else 25
+        return run("sharpen", piece_mesh(), label, configure=lambda a: a.SetSolverIterations(iterations))[0]
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        check_agreed_failure(label, records, lambda t: re.search(r"iteration", t, re.I), "SolverIterations")
+
+    return local, judge
+
+
+def abort_case():
+    label = "abort on rank 0 np=%d" % PROCESSES
+
+    def local():
+        requested = []
+
+        def abort(caller, event):
+            # Progress 0 comes before RequestData: abort at the first report from within it.
+            progress = caller.GetProgress()
+            if not requested and 0.0 < progress < 1.0:
+                requested.append(progress)
+                caller.SetAbortExecute(1)
+
+        record, algorithm = run("sharpen", piece_mesh(resolution=200), label,
+                                observe=abort if RANK == 0 else None)
+        controller.Barrier()
+        record["returned"] = True
+        record["abort_at"] = requested[0] if requested else None
+        return record
+
+    def judge(records):
+        print("MEASURE %-40s %s; abort requested at progress %s" % (
+            label, describe(records), records[0].get("abort_at")), flush=True)
+        check(all(r.get("returned") for r in records), "%s: every process returned and reached the Barrier" % label)
+        check(records[0].get("abort_at") is not None, "%s: no progress report on rank 0 to abort at" % label)
+
+    return local, judge
+
+
+def all_cases():
+    """(name, case) pairs; a name is dotted (e.g. bad_cell_id.sharpen.line.bad1)."""
+    cases = [("replicated", replicated_case()), ("source_pieces", source_pieces_case())]
+    for bad in bad_ranks():
+        for kind in ("advection", "sharpen"):
+            cases.append(("nan_coordinate.%s.bad%d" % (kind, bad), nan_coordinate_case(kind, bad)))
+        cases.append(("isolated_far_point.bad%d" % bad, isolated_far_point_case(bad)))
+        for kind in ("advection", "sharpen"):
+            for cell in ("triangle", "line", "vertex"):
+                cases.append(("bad_cell_id.%s.%s.bad%d" % (kind, cell, bad), bad_cell_id_case(kind, cell, bad)))
+        cases.append(("array_name.bad%d" % bad, array_name_case(bad)))
+    # Those that may hang today last: a hang ends the whole run.
+    for bad in bad_ranks():
+        cases.append(("iterations.bad%d" % bad, iterations_case(bad)))
+    cases.append(("abort", abort_case()))
+    return cases
+
+
+def selected(name):
+    """Whether the optional CASES argument selects `name` (a whole name or a dotted prefix of one)."""
+    return not SELECTED or any(name == s or name.startswith(s + ".") for s in SELECTED)
+
+
+if RANK == 0:
+    check(PROCESSES >= 2, "run with at least 2 MPI processes (got %d)" % PROCESSES)
+for name, (local, judge) in all_cases():
+    if not selected(name):
+        continue
+    try:
+        record = local()
+    except Exception:  # report and go on: every process must reach the gather
+        record = {"rank": RANK, "exception": traceback.format_exc()}
+    records = gather(record)
+    if RANK == 0:
+        try:
+            judge(records)
+        except Exception:
+            check(False, "exception in the checks of %s:\n%s" % (name, traceback.format_exc()))
+
+failed = broadcast_int(len(failures))
+if RANK == 0:
+    print("%d passed, %d failed" % (passed, failed), flush=True)
+# On success the script just ends, so that pvbatch finalizes MPI (sys.exit(0)
+# would skip that and mpirun would report an improper exit).
+if failed:
+    sys.exit(1)
