@@ -131,7 +131,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     return 0;
   }
   vtkLogScopeF(TRACE, "shock: output of the owned cells");
-  output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(filtered, input).GetPointer()
+  output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(filtered, piece.owned, input).GetPointer()
                                        : filtered.GetPointer());
   return 1;
 }

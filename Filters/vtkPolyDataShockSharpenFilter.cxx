@@ -454,7 +454,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   vtkLogScopeF(TRACE, "shock: output");
   vtkNew<vtkPolyData> result;
   this->BuildOutput(piece.work, prepared, positions, normals, fields, report, result);
-  output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(result, input).GetPointer()
+  output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(result, piece.owned, input).GetPointer()
                                        : result.GetPointer());
   return 1;
 }

@@ -30,6 +30,8 @@
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
+#include "vtkCharArray.h"
+#include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkFieldData.h"
@@ -782,13 +784,41 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
       packet->GetCellData()->AddArray(kinds);
       answers[static_cast<size_t>(s)] = packet;
     }
+    // Every process marshals its answers before the exchange and reads what it
+    // received after it, so that no process waits for another's marshalling.
+    std::vector<vtkSmartPointer<vtkCharArray>> sendBuffers(static_cast<size_t>(processes));
+    for (int r = 0; r < processes; ++r)
+    {
+      if (answers[static_cast<size_t>(r)])
+      {
+        sendBuffers[static_cast<size_t>(r)] = vtkSmartPointer<vtkCharArray>::New();
+        vtkCommunicator::MarshalDataObject(answers[static_cast<size_t>(r)], sendBuffers[static_cast<size_t>(r)]);
+      }
+    }
     std::vector<int> arrived;
+    std::vector<vtkSmartPointer<vtkCharArray>> receiveBuffers;
     InPairOrder(me, processes, transposed,
-      [&](int r) { controller->Send(answers[static_cast<size_t>(r)], r, AnswerTag); },
+      [&](int r) {
+        vtkCharArray* buffer = sendBuffers[static_cast<size_t>(r)];
+        vtkIdType size = buffer->GetNumberOfValues();
+        controller->Send(&size, 1, r, AnswerTag);
+        controller->Send(buffer->GetPointer(0), size, r, AnswerTag + 1);
+      },
       [&](int s) {
-        packets.push_back(vtk::TakeSmartPointer(vtkPolyData::SafeDownCast(controller->ReceiveDataObject(s, AnswerTag))));
+        vtkIdType size = 0;
+        controller->Receive(&size, 1, s, AnswerTag);
+        auto buffer = vtkSmartPointer<vtkCharArray>::New();
+        buffer->SetNumberOfValues(size);
+        controller->Receive(buffer->GetPointer(0), size, s, AnswerTag + 1);
+        receiveBuffers.push_back(buffer);
         arrived.push_back(s);
       });
+    for (const auto& buffer : receiveBuffers)
+    {
+      auto packet = vtkSmartPointer<vtkPolyData>::New();
+      vtkCommunicator::UnMarshalDataObject(buffer, packet);
+      packets.push_back(packet);
+    }
     // Append the new cells; their new points are the next frontier.
     frontier.clear();
     for (size_t a = 0; a < arrived.size(); ++a)

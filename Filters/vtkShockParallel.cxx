@@ -318,14 +318,83 @@ vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
   return owned;
 }
 
-vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* input)
+namespace
 {
-  vtkSmartPointer<vtkPolyData> owned = OwnedCells(filtered);
-  for (vtkDataSetAttributes* attributes :
-    { static_cast<vtkDataSetAttributes*>(owned->GetPointData()), static_cast<vtkDataSetAttributes*>(owned->GetCellData()) })
+/// `array`'s rows `rows` (all of its first `count` rows when `rows` is null) as a new array.
+vtkSmartPointer<vtkAbstractArray> Rows(vtkAbstractArray* array, vtkIdType count, vtkIdList* rows)
+{
+  auto picked = vtk::TakeSmartPointer(array->NewInstance());
+  picked->SetName(array->GetName());
+  picked->SetNumberOfComponents(array->GetNumberOfComponents());
+  picked->CopyComponentNames(array);
+  if (rows)
+  {
+    picked->SetNumberOfTuples(rows->GetNumberOfIds());
+    vtkNew<vtkIdList> to;
+    to->SetNumberOfIds(rows->GetNumberOfIds());
+    for (vtkIdType k = 0; k < rows->GetNumberOfIds(); ++k)
+    {
+      to->SetId(k, k);
+    }
+    picked->InsertTuples(to, rows, array);
+  }
+  else
+  {
+    picked->SetNumberOfTuples(count);
+    picked->InsertTuples(0, count, 0, array);
+  }
+  return picked;
+}
+
+/// Replace every array of `attributes` (taken from `from`) by its rows, attributes kept.
+void KeepRows(vtkDataSetAttributes* attributes, vtkDataSetAttributes* from, vtkIdType count, vtkIdList* rows)
+{
+  attributes->ShallowCopy(from);
+  for (int k = 0; k < from->GetNumberOfArrays(); ++k)
+  {
+    vtkAbstractArray* array = from->GetAbstractArray(k);
+    if (array && array->GetName())
+    {
+      attributes->AddArray(Rows(array, count, rows)); // same name: replaced at its index
+    }
+  }
+}
+}
+
+vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* owned, vtkPolyData* input)
+{
+  // WithGhostCells put the piece's own points first, in their order, and each
+  // kind's own cells before its ghost cells: the owned piece is those rows.
+  auto result = vtkSmartPointer<vtkPolyData>::New();
+  result->ShallowCopy(owned); // its cells
+  const vtkIdType np = owned->GetNumberOfPoints();
+  if (filtered->GetPoints() && filtered->GetPoints() != owned->GetPoints())
+  {
+    vtkNew<vtkPoints> points;
+    points->SetData(vtkDataArray::SafeDownCast(Rows(filtered->GetPoints()->GetData(), np, nullptr)));
+    result->SetPoints(points);
+  }
+  KeepRows(result->GetPointData(), filtered->GetPointData(), np, nullptr);
+  vtkCellArray* ownCells[4] = { owned->GetVerts(), owned->GetLines(), owned->GetPolys(), owned->GetStrips() };
+  vtkCellArray* allCells[4] = { filtered->GetVerts(), filtered->GetLines(), filtered->GetPolys(), filtered->GetStrips() };
+  vtkNew<vtkIdList> cellRows;
+  vtkIdType first = 0;
+  for (int kind = 0; kind < 4; ++kind)
+  {
+    const vtkIdType own = ownCells[kind] ? ownCells[kind]->GetNumberOfCells() : 0;
+    for (vtkIdType c = 0; c < own; ++c)
+    {
+      cellRows->InsertNextId(first + c);
+    }
+    first += allCells[kind] ? allCells[kind]->GetNumberOfCells() : 0;
+  }
+  KeepRows(result->GetCellData(), filtered->GetCellData(), cellRows->GetNumberOfIds(), cellRows);
+  result->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName()); // no ghost cell left
+  for (vtkDataSetAttributes* attributes : { static_cast<vtkDataSetAttributes*>(result->GetPointData()),
+         static_cast<vtkDataSetAttributes*>(result->GetCellData()) })
   {
     vtkDataArray* made = attributes->GetGlobalIds();
-    vtkDataSetAttributes* given = attributes == owned->GetPointData()
+    vtkDataSetAttributes* given = attributes == result->GetPointData()
       ? static_cast<vtkDataSetAttributes*>(input->GetPointData())
       : static_cast<vtkDataSetAttributes*>(input->GetCellData());
     if (made && made->GetName() && !given->GetGlobalIds())
@@ -333,7 +402,7 @@ vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* inpu
       attributes->RemoveArray(made->GetName());
     }
   }
-  return owned;
+  return result;
 }
 
 namespace
@@ -511,9 +580,9 @@ bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* inp
   }
   piece.controller = controller;
   vtkNew<vtkPolyData> none;
-  vtkSmartPointer<vtkPolyData> owned = input ? OwnedCells(input) : vtkSmartPointer<vtkPolyData>(none);
+  piece.owned = input ? OwnedCells(input) : vtkSmartPointer<vtkPolyData>(none);
   vtkLogStartScope(TRACE, "shock: ghost rings");
-  piece.work = WithGhostCells(controller, owned, layers, error);
+  piece.work = WithGhostCells(controller, piece.owned, layers, error);
   vtkLogEndScope("shock: ghost rings");
   if (AnyFailed(controller, !piece.work, error))
   {

@@ -69,10 +69,13 @@ bool Replicated(vtkMultiProcessController* controller, vtkDataSet* input);
 vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece);
 
 /**
- * The output of a surface filter's piece: OwnedCells of the filtered piece,
- * without the global ids made for it (those `input` did not have).
+ * The output of a surface filter's piece: the rows of `owned` (the piece
+ * WithGhostCells was given) in `filtered` (its result with ghost cells: own
+ * points first, each kind's own cells before its ghost cells), with the
+ * filtered points and arrays, without the ghost cells' marks and the global
+ * ids made for it (those `input` did not have).
  */
-vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* input);
+vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* owned, vtkPolyData* input);
 
 /**
  * `piece` (without ghost cells) with `layers` rings of its neighbours' cells
@@ -100,6 +103,8 @@ struct SurfacePiece
   bool skip = false;
   /// What to filter: `input`, or the owned piece with ghost cells appended.
   vtkSmartPointer<vtkPolyData> work;
+  /// The piece's own cells (OwnedCells of the input) that `work` starts with.
+  vtkSmartPointer<vtkPolyData> owned;
 };
 
 /**
