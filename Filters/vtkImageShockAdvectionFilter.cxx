@@ -10,6 +10,8 @@
 #include "vtkInformation.h"
 #include "vtkInformationIntegerRequestKey.h"
 #include "vtkInformationVector.h"
+#include "vtkLogger.h"
+#include "vtkMultiProcessController.h"
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -22,11 +24,41 @@
 #include <sstream>
 #include <cmath>
 #include <cstring>
+#include <string>
 
 vtkStandardNewMacro(vtkImageShockAdvectionFilter);
 
 namespace
 {
+shock::GridShape SampleGrid(vtkImageData* image, bool cellData);
+bool CropByRows(vtkImageData* image, const int target[6]);
+
+/// "" when `array` (of `association`) can be filtered on `image`, else the message.
+std::string CheckImageArray(vtkImageData* image, vtkDataArray* array, int association)
+{
+  const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  const shock::GridShape grid = SampleGrid(image, cellData);
+  std::ostringstream error;
+  if (array->GetNumberOfTuples() != grid.NumberOfSamples())
+  {
+    error << "Array '" << (array->GetName() ? array->GetName() : "(unnamed)") << "' has "
+          << array->GetNumberOfTuples() << " tuples, the image has " << grid.NumberOfSamples()
+          << (cellData ? " cells." : " points.");
+    return error.str();
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (grid.dimensions[a] > 1 && !(grid.spacing[a] > 0.0 && std::isfinite(grid.spacing[a])))
+    {
+      error << "The image spacing must be finite and non-zero along every axis with more "
+               "than one sample; axis "
+            << a << " has spacing " << image->GetSpacing()[a] << ".";
+      return error.str();
+    }
+  }
+  return "";
+}
+
 /// The grid of the processed samples: points, or cell centres for cell data.
 shock::GridShape SampleGrid(vtkImageData* image, bool cellData)
 {
@@ -155,8 +187,13 @@ int vtkImageShockAdvectionFilter::RequestData(
   bool unknown = false;
   vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);
   this->ParallelValueScale = this->GlobalValueScale(controller, inputVector);
-  // Filter the piece with its ghost layers, then hand back what was asked for.
-  const int done = this->FilterImage(inputVector, outputVector, controller || unknown);
+  if (controller)
+  {
+    // A piece of a distributed image: its halo comes from the other processes.
+    return this->FilterPieceWithHalo(controller, inputVector, outputVector);
+  }
+  // Filter the image (a piece of one with its ghost layers), then hand back what was asked for.
+  const int done = this->FilterImage(inputVector, outputVector, unknown);
   if (done)
   {
     this->CropToUpdateExtent(outputVector);
@@ -194,25 +231,20 @@ int vtkImageShockAdvectionFilter::FilterImage(
   {
     return 0;
   }
-  const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
-  const shock::GridShape grid = SampleGrid(input, cellData);
-  if (array->GetNumberOfTuples() != grid.NumberOfSamples())
+  const std::string error = CheckImageArray(input, array, association);
+  if (!error.empty())
   {
-    vtkErrorMacro("Array '" << (array->GetName() ? array->GetName() : "(unnamed)") << "' has "
-                            << array->GetNumberOfTuples() << " tuples, the image has "
-                            << grid.NumberOfSamples() << (cellData ? " cells." : " points."));
+    vtkErrorMacro(<< error);
     return 0;
   }
-  for (int a = 0; a < 3; ++a)
-  {
-    if (grid.dimensions[a] > 1 && !(grid.spacing[a] > 0.0 && std::isfinite(grid.spacing[a])))
-    {
-      vtkErrorMacro("The image spacing must be finite and non-zero along every axis with more "
-                    "than one sample; axis " << a << " has spacing " << input->GetSpacing()[a] << ".");
-      return 0;
-    }
-  }
+  return this->FilterImageArray(input, array, association, output);
+}
 
+int vtkImageShockAdvectionFilter::FilterImageArray(
+  vtkImageData* input, vtkDataArray* array, int association, vtkImageData* output)
+{
+  const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  const shock::GridShape grid = SampleGrid(input, cellData);
   // Everything checked: the output starts as the input, arrays shared. The
   // kernel reads the array in place when it is float or double, and writes its
   // results straight into a new array of the input's type.
@@ -237,6 +269,114 @@ int vtkImageShockAdvectionFilter::FilterImage(
   if (this->GenerateFlowArrays)
   {
     AttachFlowArrays(output, cellData, grid, fields);
+  }
+  return 1;
+}
+
+int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController* controller,
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorMacro("Input and output must be vtkImageData."); // the same on every process
+    return 0;
+  }
+  // Checks first, then every process agrees (before the exchange, a collective step).
+  const bool ok = this->BeginExecution();
+  const bool empty = input->GetNumberOfPoints() == 0;
+  int association = -1;
+  vtkDataArray* array = ok && !empty ? this->GetArrayToFilter(inputVector, association) : nullptr;
+  std::string error = !ok ? "the execution could not start" : (!empty && !array ? "no array to filter (see the message above)" : "");
+  std::string selection;
+  if (array)
+  {
+    error = CheckImageArray(input, array, association);
+    selection = std::string("filtered ") + (association == vtkDataObject::FIELD_ASSOCIATION_CELLS ? "cell" : "point") +
+      " array '" + (array->GetName() ? array->GetName() : "(unnamed)") + "';";
+  }
+  const std::string arrays = vtkShockParallel::ArraysFingerprintText(input);
+  if (!vtkShockParallel::Agree(controller, error, this->ParametersText(), arrays.empty() ? arrays : arrays + selection, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  // The piece's samples and the whole image's, as sample extents (cells: one fewer on spanned axes).
+  const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  int extent[6], whole[6];
+  input->GetExtent(extent);
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  }
+  else
+  {
+    std::copy(extent, extent + 6, whole);
+  }
+  for (int a = 0; a < 3 && cellData; ++a)
+  {
+    extent[2 * a + 1] -= extent[2 * a + 1] > extent[2 * a] ? 1 : 0;
+    whole[2 * a + 1] -= whole[2 * a + 1] > whole[2 * a] ? 1 : 0;
+  }
+  int grown[6];
+  vtkLogStartScope(TRACE, "shock: image halo exchange");
+  vtkSmartPointer<vtkDataArray> grownArray =
+    vtkShockParallel::GrowImageSamples(controller, array, extent, whole, this->GhostLevels, grown);
+  vtkLogEndScope("shock: image halo exchange");
+  if (empty || !grownArray)
+  {
+    output->ShallowCopy(input); // an empty piece of a parallel run is normal
+    return 1;
+  }
+  // The piece with its halo as an image of its own (the filtered array only), filtered as a whole.
+  vtkNew<vtkImageData> withHalo;
+  int pointExtent[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    const bool spans = input->GetExtent()[2 * a + 1] > input->GetExtent()[2 * a];
+    pointExtent[2 * a] = grown[2 * a];
+    pointExtent[2 * a + 1] = grown[2 * a + 1] + (cellData && spans ? 1 : 0);
+  }
+  withHalo->SetExtent(pointExtent);
+  withHalo->SetOrigin(input->GetOrigin());
+  withHalo->SetSpacing(input->GetSpacing());
+  withHalo->SetDirectionMatrix(input->GetDirectionMatrix());
+  vtkDataSetAttributes* samples = cellData ? static_cast<vtkDataSetAttributes*>(withHalo->GetCellData())
+                                           : static_cast<vtkDataSetAttributes*>(withHalo->GetPointData());
+  samples->SetScalars(grownArray);
+  vtkNew<vtkImageData> filtered;
+  if (!this->FilterImageArray(withHalo, grownArray, association, filtered))
+  {
+    return 0;
+  }
+  // Back to the piece: its rows of the filtered array and of the flow arrays.
+  int crop[6];
+  input->GetExtent(crop);
+  if (!CropByRows(filtered, crop))
+  {
+    filtered->Crop(crop);
+  }
+  output->ShallowCopy(input);
+  for (int which = 0; which < 2; ++which)
+  {
+    vtkDataSetAttributes* from = which == 0 ? static_cast<vtkDataSetAttributes*>(filtered->GetPointData())
+                                            : static_cast<vtkDataSetAttributes*>(filtered->GetCellData());
+    vtkDataSetAttributes* to = which == 0 ? static_cast<vtkDataSetAttributes*>(output->GetPointData())
+                                          : static_cast<vtkDataSetAttributes*>(output->GetCellData());
+    for (int k = 0; k < from->GetNumberOfArrays(); ++k)
+    {
+      vtkAbstractArray* result = from->GetAbstractArray(k);
+      if (result == from->GetScalars() && result != nullptr)
+      {
+        vtkShockFilterInternals::ReplaceArray(to, array, vtkDataArray::SafeDownCast(result));
+      }
+      else if (result)
+      {
+        to->AddArray(result);
+      }
+    }
   }
   return 1;
 }
@@ -467,9 +607,15 @@ int vtkImageShockAdvectionFilter::RequestUpdateExtent(
   {
     return 1; // composite input: each block as it comes (no ghost layers, no crop)
   }
+  bool unknown = false;
+  if (UpdatePieces(outInfo) > 1 && this->PieceController(outputVector, unknown))
+  {
+    return 1; // a piece of a distributed image: the halo comes from the other processes
+  }
   if (UpdatePieces(outInfo) > 1)
   {
-    // The source adds the layers to the piece it cuts (and marks them as ghosts).
+    // No controller to exchange a halo (serial streaming): the source adds the
+    // layers to the piece it cuts (and marks them as ghosts), cropped afterwards.
     inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), UpdateGhostLevels(outInfo) + this->GhostLevels);
   }
   else if (outInfo->Has(SDDP::UPDATE_EXTENT()) && inInfo->Has(SDDP::WHOLE_EXTENT()))

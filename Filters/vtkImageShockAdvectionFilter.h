@@ -68,7 +68,9 @@
 #include "vtkShockAdvectionFilter.h"
 #include "vtkFiltersShockModule.h" // for export macro
 
+class vtkDataArray;
 class vtkImageData;
+class vtkMultiProcessController;
 namespace shock
 {
 struct GridShape;
@@ -163,7 +165,9 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
-  /// Ask for the output's UPDATE_EXTENT grown by GhostLevels (and as many ghost levels).
+  /// A piece of a distributed image asks for what is asked of it (the halo comes from the
+  /// other processes); otherwise the output's UPDATE_EXTENT grown by GhostLevels (and as
+  /// many ghost levels).
   int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
@@ -176,6 +180,18 @@ protected:
 
   /// Filter the input image (with its ghost layers) into the output; `piece`: one of several.
   int FilterImage(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool piece);
+
+  /// Filter `array` (checked, of `association`) of `input` into `output` (which starts as `input`).
+  int FilterImageArray(vtkImageData* input, vtkDataArray* array, int association, vtkImageData* output);
+
+  /**
+   * A piece of a distributed image (collective on `controller`): every process
+   * checks its piece and they agree, the piece gets GhostLevels samples of halo
+   * from the processes that hold them (vtkShockParallel::GrowImageSamples),
+   * is filtered with it, and the output is the piece with the filtered rows.
+   */
+  int FilterPieceWithHalo(vtkMultiProcessController* controller, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector);
 
   void ResetMeasurements() override;
 

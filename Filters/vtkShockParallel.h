@@ -18,6 +18,7 @@
 #include <vector>
 
 class vtkAlgorithm;
+class vtkDataArray;
 class vtkDataSet;
 class vtkInformation;
 class vtkMultiProcessController;
@@ -42,6 +43,19 @@ vtkMultiProcessController* PieceController(
  * GetPointGhostArray, which goes stale when the owners' marks are replaced).
  */
 vtkUnsignedCharArray* PointGhosts(vtkDataSet* data);
+
+/**
+ * The halo exchange of an image piece (vtkShockImageHalo.cxx, collective):
+ * `array` holds the samples of `extent` (a sample extent: points, or cells);
+ * the result holds those of `grown`, `extent` with `layers` more samples on
+ * every axis `whole` (the whole sample extent) spans, clamped to it, the
+ * samples outside `extent` received from the processes whose pieces hold
+ * them, point to point. When the pieces do not cover a process's grown
+ * extent, that process keeps its own (the same decision everywhere). An empty
+ * piece (null `array`) takes part and gets nullptr.
+ */
+vtkSmartPointer<vtkDataArray> GrowImageSamples(vtkMultiProcessController* controller, vtkDataArray* array,
+  const int extent[6], const int whole[6], int layers, int grown[6]);
 
 /// Whether the filter's upstream produces composite data (the pipeline then runs it block by block).
 bool UpstreamIsComposite(vtkAlgorithm* filter);

@@ -5,8 +5,9 @@ Each mutant in mutants.py is (file, exact original snippet, replacement): a
 small semantic bug of one of the paper's steps. For every mutant the script
 copies the source tree (the working tree, tracked files only) into
 WORK/src once, applies the mutant there, rebuilds with ccache into WORK/build,
-runs the kernel test programs and, if they all pass, the kernel, filter and
-command-line tests through CTest (labels), with a time limit per mutant, and
+runs the kernel test programs and, if they all pass, the kernel, filter,
+command-line, io, robustness and mpi tests through CTest (labels: every label
+whose tests run the mutated code), with a time limit per mutant, and
 restores the file. A mutant is
 
   killed    a test failed (or the run exceeded the time limit),
@@ -38,8 +39,9 @@ KERNEL_TARGETS = ["TestShockKernels", "TestShockFit"]
 STEP_TESTS = "GridSteps.*:GridFlows.*:MeshSteps.*:FitOperators.*"
 # Stage 2, for a mutant that survives stage 1: everything the filter and
 # command-line tests run, through CTest.
-ALL_TARGETS = KERNEL_TARGETS + ["TestShockFilters", "TestShockPolyDataFilters",
-                                "TestShockSharpenFilter", "shockfilter", "ShockCliTestMeshes"]
+# ("all": the io and robustness tests' programs, the plugin and the Python
+# package that the mpi tests load.)
+ALL_TARGETS = ["all"]
 
 
 def run(command, cwd, timeout=None, log=None):
@@ -72,7 +74,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--work", default=os.path.join(ROOT, "build-mutation"))
     parser.add_argument("--only", default="", help="comma-separated mutant ids")
-    parser.add_argument("--labels", default="kernels|filters|cli")
+    parser.add_argument("--labels", default="kernels|filters|cli|io|robustness|mpi")
     parser.add_argument("--timeout", type=float, default=900.0, help="seconds per mutant's tests")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--list", action="store_true", help="list the mutants and exit")

@@ -1,0 +1,218 @@
+/**
+ * @file vtkShockImageHalo.cxx
+ * @brief The halo of an image piece: the samples around it that other
+ * processes hold, exchanged point to point (vtkShockParallel::GrowImageSamples).
+ */
+#include "vtkShockParallel.h"
+
+#include "vtkDataArray.h"
+#include "vtkMultiProcessController.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <vector>
+
+namespace vtkShockParallel
+{
+namespace
+{
+constexpr int HaloTag = 84671;
+
+using Box = std::array<int, 6>;
+
+bool Empty(const Box& box)
+{
+  return box[0] > box[1] || box[2] > box[3] || box[4] > box[5];
+}
+
+Box Intersect(const Box& a, const Box& b)
+{
+  return { std::max(a[0], b[0]), std::min(a[1], b[1]), std::max(a[2], b[2]), std::min(a[3], b[3]),
+    std::max(a[4], b[4]), std::min(a[5], b[5]) };
+}
+
+vtkIdType Samples(const Box& box)
+{
+  return Empty(box) ? 0
+                    : static_cast<vtkIdType>(box[1] - box[0] + 1) * (box[3] - box[2] + 1) * (box[5] - box[4] + 1);
+}
+
+bool Inside(const Box& box, const int ijk[3])
+{
+  return box[0] <= ijk[0] && ijk[0] <= box[1] && box[2] <= ijk[1] && ijk[1] <= box[3] && box[4] <= ijk[2] &&
+    ijk[2] <= box[5];
+}
+
+/**
+ * Whether the boxes cover `target`: every cell of the grid their faces make
+ * inside `target` lies in one of them (exact, and cheap for the few boxes
+ * that touch a piece's halo).
+ */
+bool Covered(const Box& target, const std::vector<Box>& boxes)
+{
+  std::vector<Box> touching;
+  for (const Box& box : boxes)
+  {
+    if (!Empty(Intersect(box, target)))
+    {
+      touching.push_back(Intersect(box, target));
+    }
+  }
+  std::array<std::vector<int>, 3> cuts;
+  for (int a = 0; a < 3; ++a)
+  {
+    cuts[a] = { target[2 * a], target[2 * a + 1] + 1 };
+    for (const Box& box : touching)
+    {
+      cuts[a].push_back(box[2 * a]);
+      cuts[a].push_back(box[2 * a + 1] + 1);
+    }
+    std::sort(cuts[a].begin(), cuts[a].end());
+    cuts[a].erase(std::unique(cuts[a].begin(), cuts[a].end()), cuts[a].end());
+  }
+  for (size_t i = 0; i + 1 < cuts[0].size(); ++i)
+  {
+    for (size_t j = 0; j + 1 < cuts[1].size(); ++j)
+    {
+      for (size_t k = 0; k + 1 < cuts[2].size(); ++k)
+      {
+        const int corner[3] = { cuts[0][i], cuts[1][j], cuts[2][k] };
+        if (!std::any_of(touching.begin(), touching.end(), [&](const Box& box) { return Inside(box, corner); }))
+        {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+/// Copy the samples of `part` between two boxes' row-major buffers (x fastest).
+void CopyBox(const char* from, const Box& fromBox, char* to, const Box& toBox, const Box& part, size_t tupleBytes)
+{
+  const vtkIdType fromX = fromBox[1] - fromBox[0] + 1, fromY = fromBox[3] - fromBox[2] + 1;
+  const vtkIdType toX = toBox[1] - toBox[0] + 1, toY = toBox[3] - toBox[2] + 1;
+  const size_t rowBytes = static_cast<size_t>(part[1] - part[0] + 1) * tupleBytes;
+  for (int z = part[4]; z <= part[5]; ++z)
+  {
+    for (int y = part[2]; y <= part[3]; ++y)
+    {
+      const vtkIdType source = ((z - fromBox[4]) * fromY + (y - fromBox[2])) * fromX + (part[0] - fromBox[0]);
+      const vtkIdType target = ((z - toBox[4]) * toY + (y - toBox[2])) * toX + (part[0] - toBox[0]);
+      std::memcpy(to + static_cast<size_t>(target) * tupleBytes, from + static_cast<size_t>(source) * tupleBytes,
+        rowBytes);
+    }
+  }
+}
+}
+
+vtkSmartPointer<vtkDataArray> GrowImageSamples(vtkMultiProcessController* controller, vtkDataArray* array,
+  const int extent[6], const int whole[6], int layers, int grown[6])
+{
+  const int me = controller->GetLocalProcessId();
+  const int processes = controller->GetNumberOfProcesses();
+  // Every piece's sample extent (empty pieces: none).
+  const bool has = array && array->GetNumberOfTuples() > 0;
+  vtkIdType mine[6];
+  for (int k = 0; k < 6; ++k)
+  {
+    mine[k] = has ? extent[k] : (k % 2 == 0 ? 1 : 0);
+  }
+  std::vector<vtkIdType> all(static_cast<size_t>(6 * processes));
+  controller->AllGather(mine, all.data(), 6);
+  std::vector<Box> pieces(static_cast<size_t>(processes));
+  for (int r = 0; r < processes; ++r)
+  {
+    for (int k = 0; k < 6; ++k)
+    {
+      pieces[static_cast<size_t>(r)][static_cast<size_t>(k)] = static_cast<int>(all[static_cast<size_t>(6 * r + k)]);
+    }
+  }
+  // Every piece's grown extent: `layers` more on the axes the whole image spans,
+  // unless the pieces do not cover it (then no halo for that piece: the same
+  // decision on every process, from the same extents).
+  std::vector<Box> halos(static_cast<size_t>(processes));
+  for (int r = 0; r < processes; ++r)
+  {
+    Box& halo = halos[static_cast<size_t>(r)];
+    halo = pieces[static_cast<size_t>(r)];
+    if (Empty(halo))
+    {
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      if (whole[2 * a + 1] > whole[2 * a])
+      {
+        halo[2 * a] = std::max(whole[2 * a], halo[2 * a] - layers);
+        halo[2 * a + 1] = std::min(whole[2 * a + 1], halo[2 * a + 1] + layers);
+      }
+    }
+    if (!Covered(halo, pieces))
+    {
+      halo = pieces[static_cast<size_t>(r)];
+    }
+  }
+  const Box& own = pieces[static_cast<size_t>(me)];
+  const Box& target = halos[static_cast<size_t>(me)];
+  std::copy(target.begin(), target.end(), grown);
+  // Who sends what to whom: the part of the sender's piece in the receiver's
+  // halo that the receiver's own piece lacks (all of it when not contained).
+  auto part = [&](int sender, int receiver) {
+    const Box shared = Intersect(pieces[static_cast<size_t>(sender)], halos[static_cast<size_t>(receiver)]);
+    const Box inside = Intersect(shared, pieces[static_cast<size_t>(receiver)]);
+    return sender == receiver || Empty(shared) || inside == shared ? Box{ 1, 0, 1, 0, 1, 0 } : shared;
+  };
+  if (!has)
+  {
+    // Nothing to grow; still take part in the exchange as a sender of nothing.
+    return nullptr;
+  }
+  const int components = array->GetNumberOfComponents();
+  const size_t tupleBytes = static_cast<size_t>(array->GetDataTypeSize()) * static_cast<size_t>(components);
+  vtkSmartPointer<vtkDataArray> source = array;
+  if (!array->HasStandardMemoryLayout())
+  {
+    source = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(array->GetDataType()));
+    source->DeepCopy(array); // an array of structures, as the rows are copied
+  }
+  auto result = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(array->GetDataType()));
+  result->SetName(array->GetName());
+  result->SetNumberOfComponents(components);
+  result->CopyComponentNames(array);
+  result->SetNumberOfTuples(Samples(target));
+  char* grownBytes = static_cast<char*>(result->GetVoidPointer(0));
+  CopyBox(static_cast<const char*>(source->GetVoidPointer(0)), own, grownBytes, target, own, tupleBytes);
+  // Point to point, in one global order of (sender, receiver) pairs: no deadlock.
+  std::vector<char> buffer;
+  for (int a = 0; a < processes; ++a)
+  {
+    for (int b = 0; b < processes; ++b)
+    {
+      if (a == b || (a != me && b != me))
+      {
+        continue;
+      }
+      const Box box = part(a, b);
+      const vtkIdType count = Samples(box);
+      if (count == 0 || Empty(pieces[static_cast<size_t>(a)]) || Empty(pieces[static_cast<size_t>(b)]))
+      {
+        continue;
+      }
+      buffer.resize(static_cast<size_t>(count) * tupleBytes);
+      if (a == me)
+      {
+        CopyBox(static_cast<const char*>(source->GetVoidPointer(0)), own, buffer.data(), box, box, tupleBytes);
+        controller->Send(buffer.data(), static_cast<vtkIdType>(buffer.size()), b, HaloTag);
+      }
+      else
+      {
+        controller->Receive(buffer.data(), static_cast<vtkIdType>(buffer.size()), a, HaloTag);
+        CopyBox(buffer.data(), box, grownBytes, target, box, tupleBytes);
+      }
+    }
+  }
+  return result;
+}
+}
