@@ -1,6 +1,8 @@
 #include "ShockTypes.h"
 
 #include <omp.h>
+#include <sched.h>
+#include <unistd.h>
 
 #ifdef __linux__
 #include <dirent.h>
@@ -104,9 +106,71 @@ Status CheckAdvectionParameters(const AdvectionParameters& parameters)
   return {};
 }
 
+namespace
+{
+/// The processes an MPI launcher started on this node, or 0 when none says.
+int LocalProcesses()
+{
+  for (const char* name : { "OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS", "MV2_COMM_WORLD_LOCAL_SIZE" })
+  {
+    if (const char* value = std::getenv(name))
+    {
+      return std::atoi(value);
+    }
+  }
+  return 0;
+}
+}
+
+bool UseTheWholeNodeWhenAlone()
+{
+  // Open MPI binds each process to one core when it starts two or fewer, so
+  // `mpirun -np 1` would run every thread on one core. A process alone on its
+  // node takes the node's cores back, once, for itself and its OpenMP threads
+  // (SHOCK_KEEP_BINDING=1 keeps the launcher's binding).
+  static const bool widened = []() {
+    const char* keep = std::getenv("SHOCK_KEEP_BINDING");
+    if ((keep && std::strcmp(keep, "1") == 0) || LocalProcesses() != 1)
+    {
+      return false;
+    }
+    cpu_set_t current;
+    CPU_ZERO(&current);
+    if (sched_getaffinity(0, sizeof(current), &current) != 0 ||
+      CPU_COUNT(&current) >= sysconf(_SC_NPROCESSORS_ONLN))
+    {
+      return false;
+    }
+    cpu_set_t all;
+    CPU_ZERO(&all);
+    for (long cpu = 0; cpu < sysconf(_SC_NPROCESSORS_ONLN) && cpu < CPU_SETSIZE; ++cpu)
+    {
+      CPU_SET(cpu, &all);
+    }
+    if (sched_setaffinity(0, sizeof(all), &all) != 0)
+    {
+      return false;
+    }
+    // OpenMP threads made before keep the mask they were made with: widen theirs too.
+    const int cores = std::max(1, omp_get_num_procs());
+#pragma omp parallel num_threads(cores)
+    {
+      sched_setaffinity(0, sizeof(all), &all);
+    }
+    return true;
+  }();
+  return widened;
+}
+
 int ResolveThreadCount(int requested)
 {
-  return requested > 0 ? requested : std::max(1, omp_get_num_procs());
+  UseTheWholeNodeWhenAlone();
+  if (requested > 0)
+  {
+    return requested;
+  }
+  // OMP_NUM_THREADS when the user set it (OpenMP's own default), else every core available.
+  return std::max(1, std::getenv("OMP_NUM_THREADS") ? omp_get_max_threads() : omp_get_num_procs());
 }
 
 int ThreadsForWork(int requested, std::int64_t work)

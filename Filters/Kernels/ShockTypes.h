@@ -111,8 +111,21 @@ struct Status
   bool Ok() const { return this->error.empty(); }
 };
 
-/// Resolve a thread-count parameter: values <= 0 mean all available cores.
+/**
+ * Resolve a thread-count parameter: values <= 0 mean OMP_NUM_THREADS when it
+ * is set, else all available cores (those of the process's affinity mask; see
+ * UseTheWholeNodeWhenAlone).
+ */
 int ResolveThreadCount(int requested);
+
+/**
+ * When an MPI launcher says this is the only process on its node and bound it
+ * to fewer cores than the node has (Open MPI binds to one core when it starts
+ * two or fewer processes), widen the affinity of the process's threads to the
+ * whole node, once; SHOCK_KEEP_BINDING=1 keeps the binding. Called by
+ * ResolveThreadCount; returns whether it widened.
+ */
+bool UseTheWholeNodeWhenAlone();
 
 /// Work units (samples, vertices, faces, trace starts) below which a second thread
 /// costs more to start and synchronise than it saves (measured in Benchmarks/RESULTS.md).
