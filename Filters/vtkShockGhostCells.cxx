@@ -36,6 +36,7 @@
 #include "vtkDataSetAttributes.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
+#include "vtkIntArray.h"
 #include "vtkLogger.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -61,6 +62,7 @@ constexpr int AnswerTag = 84662;
 const char* const PacketPointIds = "vtkShockGhostPointIds";
 const char* const PacketCellIds = "vtkShockGhostCellIds";
 const char* const PacketCellKinds = "vtkShockGhostCellKinds";
+const char* const PacketBudgets = "vtkShockGhostBudgets";
 
 /// The four cell arrays of a vtkPolyData, in its cell numbering order.
 struct Cells
@@ -426,9 +428,11 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
     piece = emptyPiece;
   }
   const vtkIdType np = piece->GetNumberOfPoints();
+  vtkLogStartScope(TRACE, "shock: cells and links");
   const Cells own = ReadCells(piece);
   std::vector<vtkIdType> linkStart, links;
   PointLinks(own, np, linkStart, links);
+  vtkLogEndScope("shock: cells and links");
 
   vtkLogStartScope(TRACE, "shock: border points");
   // 1. Border points and their keys.
@@ -609,7 +613,15 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
 
   vtkLogEndScope("shock: global ids");
   vtkLogStartScope(TRACE, "shock: rings");
-  // 3. Rings.
+  // 3. Rings, as a breadth-first search over all pieces' cells from the own
+  // ones: a point at ring distance k from them has a budget of layers - k,
+  // and a cell is a ghost cell when one of its points has a budget >= 1. A
+  // process asks the holders of a point for their own cells within its
+  // budget; each searches its own piece from all the points it was asked
+  // about at once and answers with the cells and their points' budgets. A
+  // point whose budget grows is asked of its other holders, until nothing
+  // grows: one round for most pieces (a piece's neighbours' cells within
+  // `layers` rings), more where the rings cross a third piece.
   std::vector<vtkIdType> firstCell(static_cast<size_t>(processes) + 1, 0);
   {
     std::vector<vtkIdType> cellCounts(static_cast<size_t>(processes));
@@ -629,48 +641,54 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
   };
   std::vector<Row> ghostPoints, ghostCellRows;
   std::vector<int> ghostPointSource; // the process that sent each ghost point
+  std::vector<vtkIdType> ghostPointIds; // their global ids
   Cells ghost;                        // ghost cells, local point ids
   std::unordered_set<vtkIdType> heldCells;
-  // Per requester: own cells already sent.
-  std::vector<std::unordered_set<vtkIdType>> sent(static_cast<size_t>(processes));
-  std::vector<vtkIdType> frontier;
+  std::vector<int> budget(static_cast<size_t>(np), layers); // per local point (own: all)
+  // The points whose budget grew, with the process whose answer made it grow (me: the own points).
+  std::vector<std::pair<vtkIdType, int>> grown;
   for (vtkIdType p : border)
   {
-    frontier.push_back(p);
+    grown.emplace_back(p, me);
   }
-  std::vector<vtkIdType> stamp(static_cast<size_t>(own.Size()), -1);
-  vtkIdType stampValue = 0;
-  for (int ring = 1; ring <= layers; ++ring)
+  // The responder's search, reused across requesters (reset through the touched lists).
+  std::vector<int> best(static_cast<size_t>(np), -1);
+  std::vector<int> cellTaken(static_cast<size_t>(own.Size()), 0);
+  const int maxRounds = layers * processes + 2; // budgets only grow: a bound, never reached
+  for (int round = 0; round < maxRounds && layers > 0; ++round)
   {
-    // Requests: each frontier point to its other holders.
+    // Requests: (global id, budget) of each grown point to its other holders.
     std::vector<std::vector<vtkIdType>> requests(static_cast<size_t>(processes));
-    for (vtkIdType p : frontier)
+    for (const auto& entry : grown)
     {
-      vtkIdType key = p < np ? gid[static_cast<size_t>(p)] : -1;
-      int source = me;
-      if (p >= np)
+      const vtkIdType p = entry.first;
+      const int b = budget[static_cast<size_t>(p)];
+      if (b <= 0)
       {
-        const Row& row = ghostPoints[static_cast<size_t>(p - np)];
-        key = vtkIdTypeArray::SafeDownCast(packets[static_cast<size_t>(row.packet)]->GetPointData()->GetArray(
-                PacketPointIds))->GetValue(row.row);
-        source = ghostPointSource[static_cast<size_t>(p - np)];
+        continue;
       }
+      const vtkIdType key = p < np ? gid[static_cast<size_t>(p)] : ghostPointIds[static_cast<size_t>(p - np)];
+      const int source = p < np ? me : ghostPointSource[static_cast<size_t>(p - np)];
       const auto found = holdersById.find(key);
+      auto ask = [&](int h) {
+        if (h != me && h != entry.second)
+        {
+          requests[static_cast<size_t>(h)].insert(requests[static_cast<size_t>(h)].end(), { key, b });
+        }
+      };
       if (found != holdersById.end())
       {
         for (int h : *found->second)
         {
-          if (h != me)
-          {
-            requests[static_cast<size_t>(h)].push_back(key);
-          }
+          ask(h);
         }
       }
-      else if (source != me)
+      else
       {
-        requests[static_cast<size_t>(source)].push_back(key);
+        ask(source);
       }
     }
+    grown.clear();
     std::vector<vtkIdType> counts(static_cast<size_t>(processes));
     for (int r = 0; r < processes; ++r)
     {
@@ -680,9 +698,8 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
     controller->AllGather(counts.data(), matrix.data(), processes);
     if (std::all_of(matrix.begin(), matrix.end(), [](vtkIdType v) { return v == 0; }))
     {
-      break; // every piece has all it can get
+      break; // every piece has all its rings
     }
-    // Requests out, answers back (each a polydata of the asked process's own cells).
     std::vector<std::vector<vtkIdType>> asked(static_cast<size_t>(processes));
     InPairOrder(me, processes, matrix,
       [&](int r) {
@@ -708,28 +725,61 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
       {
         continue;
       }
-      // The own cells around the asked points that s has not been sent yet.
-      ++stampValue;
-      std::vector<vtkIdType> chosen;
-      for (vtkIdType id : asked[static_cast<size_t>(s)])
+      // Breadth-first from the asked points, the largest budgets first (a bucket per budget).
+      std::vector<std::vector<vtkIdType>> buckets(static_cast<size_t>(layers) + 1);
+      std::vector<vtkIdType> touched, chosen;
+      const auto& list = asked[static_cast<size_t>(s)];
+      for (size_t k = 0; k + 1 < list.size(); k += 2)
       {
-        const auto found = local.find(id);
-        if (found == local.end() || found->second >= np)
+        const auto found = local.find(list[k]);
+        const int b = static_cast<int>(std::min<vtkIdType>(list[k + 1], layers));
+        if (found == local.end() || found->second >= np || b <= best[static_cast<size_t>(found->second)])
         {
-          continue; // not an own point here (a ghost's cells come from its owner)
+          continue; // not an own point here (a ghost's cells come from its owner), or no gain
         }
-        const vtkIdType p = found->second;
-        for (vtkIdType k = linkStart[static_cast<size_t>(p)]; k < linkStart[static_cast<size_t>(p) + 1]; ++k)
+        if (best[static_cast<size_t>(found->second)] < 0)
         {
-          const vtkIdType c = links[static_cast<size_t>(k)];
-          if (stamp[static_cast<size_t>(c)] != stampValue && sent[static_cast<size_t>(s)].insert(c).second)
+          touched.push_back(found->second);
+        }
+        best[static_cast<size_t>(found->second)] = b;
+        buckets[static_cast<size_t>(b)].push_back(found->second);
+      }
+      for (int b = layers; b >= 1; --b)
+      {
+        for (size_t k = 0; k < buckets[static_cast<size_t>(b)].size(); ++k)
+        {
+          const vtkIdType p = buckets[static_cast<size_t>(b)][k];
+          if (best[static_cast<size_t>(p)] != b)
           {
-            stamp[static_cast<size_t>(c)] = stampValue;
+            continue; // reached again with a larger budget
+          }
+          for (vtkIdType l = linkStart[static_cast<size_t>(p)]; l < linkStart[static_cast<size_t>(p) + 1]; ++l)
+          {
+            const vtkIdType c = links[static_cast<size_t>(l)];
+            if (cellTaken[static_cast<size_t>(c)])
+            {
+              continue; // taken with a budget at least b
+            }
+            cellTaken[static_cast<size_t>(c)] = 1;
             chosen.push_back(c);
+            for (vtkIdType i = own.offsets[static_cast<size_t>(c)]; i < own.offsets[static_cast<size_t>(c) + 1]; ++i)
+            {
+              const vtkIdType q = own.points[static_cast<size_t>(i)];
+              if (best[static_cast<size_t>(q)] < b - 1)
+              {
+                if (best[static_cast<size_t>(q)] < 0)
+                {
+                  touched.push_back(q);
+                }
+                best[static_cast<size_t>(q)] = b - 1;
+                buckets[static_cast<size_t>(b - 1)].push_back(q);
+              }
+            }
           }
         }
       }
-      // The packet: the chosen cells (as polygons of any size, their kinds in cell data).
+      // The packet: the chosen cells (as polygons of any size, their kinds in cell data)
+      // and their points with their budgets.
       std::unordered_map<vtkIdType, vtkIdType> row;
       vtkNew<vtkIdList> pointRows;
       vtkNew<vtkCellArray> polys;
@@ -759,11 +809,16 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
       vtkNew<vtkIdTypeArray> pointIds;
       pointIds->SetName(PacketPointIds);
       pointIds->SetNumberOfTuples(pointRows->GetNumberOfIds());
+      vtkNew<vtkIntArray> budgets;
+      budgets->SetName(PacketBudgets);
+      budgets->SetNumberOfTuples(pointRows->GetNumberOfIds());
       for (vtkIdType k = 0; k < pointRows->GetNumberOfIds(); ++k)
       {
         pointIds->SetValue(k, gid[static_cast<size_t>(pointRows->GetId(k))]);
+        budgets->SetValue(k, std::max(0, best[static_cast<size_t>(pointRows->GetId(k))]));
       }
       packet->GetPointData()->AddArray(pointIds);
+      packet->GetPointData()->AddArray(budgets);
       vtkNew<vtkIdList> cellRows;
       for (vtkIdType c : chosen)
       {
@@ -779,6 +834,11 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
       {
         cellIds->InsertNextValue(firstCell[static_cast<size_t>(me)] + c);
         kinds->InsertNextValue(own.kind[static_cast<size_t>(c)]);
+        cellTaken[static_cast<size_t>(c)] = 0;
+      }
+      for (vtkIdType p : touched)
+      {
+        best[static_cast<size_t>(p)] = -1;
       }
       packet->GetCellData()->AddArray(cellIds);
       packet->GetCellData()->AddArray(kinds);
@@ -813,28 +873,41 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
         receiveBuffers.push_back(buffer);
         arrived.push_back(s);
       });
-    for (const auto& buffer : receiveBuffers)
-    {
-      auto packet = vtkSmartPointer<vtkPolyData>::New();
-      vtkCommunicator::UnMarshalDataObject(buffer, packet);
-      packets.push_back(packet);
-    }
-    // Append the new cells; their new points are the next frontier.
-    frontier.clear();
+    // Append the new cells; the points whose budget grew are asked of their other holders next.
     for (size_t a = 0; a < arrived.size(); ++a)
     {
-      const int packetIndex = static_cast<int>(packets.size() - arrived.size() + a);
-      vtkPolyData* packet = packets[static_cast<size_t>(packetIndex)];
-      if (!packet)
+      auto packet = vtkSmartPointer<vtkPolyData>::New();
+      vtkCommunicator::UnMarshalDataObject(receiveBuffers[a], packet);
+      const int packetIndex = static_cast<int>(packets.size());
+      packets.push_back(packet);
+      auto* pointIds = vtkIdTypeArray::SafeDownCast(packet->GetPointData()->GetArray(PacketPointIds));
+      auto* budgets = vtkIntArray::SafeDownCast(packet->GetPointData()->GetArray(PacketBudgets));
+      auto* cellIds = vtkIdTypeArray::SafeDownCast(packet->GetCellData()->GetArray(PacketCellIds));
+      auto* kinds = vtkUnsignedCharArray::SafeDownCast(packet->GetCellData()->GetArray(PacketCellKinds));
+      if (!pointIds || !budgets || !cellIds || !kinds)
       {
         continue;
       }
-      auto* pointIds = vtkIdTypeArray::SafeDownCast(packet->GetPointData()->GetArray(PacketPointIds));
-      auto* cellIds = vtkIdTypeArray::SafeDownCast(packet->GetCellData()->GetArray(PacketCellIds));
-      auto* kinds = vtkUnsignedCharArray::SafeDownCast(packet->GetCellData()->GetArray(PacketCellKinds));
-      if (!pointIds || !cellIds || !kinds)
+      // Points: new ones join, and every budget is the largest known.
+      std::vector<vtkIdType> localOf(static_cast<size_t>(pointIds->GetNumberOfTuples()));
+      for (vtkIdType k = 0; k < pointIds->GetNumberOfTuples(); ++k)
       {
-        continue;
+        const vtkIdType id = pointIds->GetValue(k);
+        const auto inserted = local.emplace(id, np + static_cast<vtkIdType>(ghostPoints.size()));
+        const vtkIdType p = inserted.first->second;
+        if (inserted.second)
+        {
+          ghostPoints.push_back({ packetIndex, k });
+          ghostPointSource.push_back(arrived[a]);
+          ghostPointIds.push_back(id);
+          budget.push_back(-1);
+        }
+        localOf[static_cast<size_t>(k)] = p;
+        if (budgets->GetValue(k) > budget[static_cast<size_t>(p)])
+        {
+          budget[static_cast<size_t>(p)] = budgets->GetValue(k);
+          grown.emplace_back(p, arrived[a]);
+        }
       }
       vtkCellArray* polys = packet->GetPolys();
       auto iterator = vtk::TakeSmartPointer(polys->NewIterator());
@@ -852,22 +925,13 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
         ids.resize(static_cast<size_t>(n));
         for (vtkIdType k = 0; k < n; ++k)
         {
-          const vtkIdType id = pointIds->GetValue(rows[k]);
-          const auto inserted = local.emplace(id, np + static_cast<vtkIdType>(ghostPoints.size()));
-          if (inserted.second)
-          {
-            ghostPoints.push_back({ packetIndex, rows[k] });
-            ghostPointSource.push_back(arrived[a]);
-            frontier.push_back(inserted.first->second);
-          }
-          ids[static_cast<size_t>(k)] = inserted.first->second;
+          ids[static_cast<size_t>(k)] = localOf[static_cast<size_t>(rows[k])];
         }
         ghost.Append(kinds->GetValue(c), n, ids.data());
         ghostCellRows.push_back({ packetIndex, c });
       }
     }
   }
-
   vtkLogEndScope("shock: rings");
   vtkLogScopeF(TRACE, "shock: assemble the piece with its rings");
   // 4. The piece with its rings: own points then ghost points, each kind of
