@@ -1,6 +1,8 @@
 #include "vtkPolyDataShockAdvectionFilter.h"
 
 #include "MeshShockAdvection.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
@@ -136,6 +138,52 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   return 1;
 }
 
+namespace
+{
+/**
+ * The sums of GlobalMeanEdgeLength, read straight from the cells when every
+ * polygon is a triangle and there are no strips (the same triangles, in the
+ * same order, as ExtractTriangles gives: the same sums); false otherwise.
+ */
+bool TriangleEdgeSums(vtkPolyData* piece, double sums[2])
+{
+  vtkCellArray* polys = piece->GetPolys();
+  if (!polys || (piece->GetStrips() && piece->GetStrips()->GetNumberOfCells() > 0) ||
+    polys->GetNumberOfConnectivityIds() != 3 * polys->GetNumberOfCells())
+  {
+    return false;
+  }
+  vtkUnsignedCharArray* ghosts = piece->GetCellGhostArray();
+  const vtkIdType first = piece->GetNumberOfVerts() + piece->GetNumberOfLines(); // polygons' cell ids start here
+  auto iterator = vtk::TakeSmartPointer(polys->NewIterator());
+  double corners[9];
+  std::int64_t ids[3] = { 0, 1, 2 };
+  vtkIdType cell = first;
+  for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
+  {
+    if (ghosts && (ghosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL))
+    {
+      continue;
+    }
+    vtkIdType size;
+    const vtkIdType* points;
+    iterator->GetCurrentCell(size, points);
+    if (size != 3)
+    {
+      sums[0] = sums[1] = 0.0; // polygons of other sizes: ExtractTriangles's way
+      return false;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      piece->GetPoint(points[k], corners + 3 * k);
+    }
+    sums[0] += shock::TrianglePerimeter(corners, ids);
+    sums[1] += 3.0;
+  }
+  return true;
+}
+}
+
 double vtkPolyDataShockAdvectionFilter::GlobalMeanEdgeLength(
   vtkMultiProcessController* controller, vtkPolyData* piece)
 {
@@ -144,6 +192,11 @@ double vtkPolyDataShockAdvectionFilter::GlobalMeanEdgeLength(
     return 0.0;
   }
   double sums[2] = { 0.0, 0.0 }; // edge lengths, edges
+  if (piece && TriangleEdgeSums(piece, sums))
+  {
+    vtkShockParallel::Sum(controller, sums, 2);
+    return sums[1] > 0.0 && sums[0] > 0.0 ? sums[0] / sums[1] : 0.0;
+  }
   vtkShockPolyDataInternals::Triangles triangles;
   std::string error;
   if (piece && vtkShockPolyDataInternals::ExtractTriangles(piece, triangles, error))

@@ -454,6 +454,14 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
     {
       Key key;
       key.a = static_cast<std::uint64_t>(static_cast<vtkIdType>(givenIds->GetTuple1(p)));
+      // With the point's coordinates, rounded to float, to check that the ids mean the same points.
+      double x[3];
+      piece->GetPoint(p, x);
+      const float rounded[3] = { static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2]) };
+      std::uint32_t bits[3];
+      std::memcpy(bits, rounded, sizeof(bits));
+      key.b = (static_cast<std::uint64_t>(bits[0]) << 32) | bits[1];
+      key.c = bits[2];
       return key;
     }
     double x[3];
@@ -486,6 +494,22 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
   // point within a tolerance of its coordinates (pieces a source or reader cut
   // itself may compute their shared points to the last bit differently).
   const std::vector<Key> keys = givenIds ? GivenKeys(all) : MergedCoordinateKeys(all);
+  if (givenIds)
+  {
+    // One global id, one point: every process sees the same gathered borders, so all decide alike.
+    std::unordered_map<std::uint64_t, const Key*> pointOf;
+    for (const Key& key : keys)
+    {
+      const auto inserted = pointOf.emplace(key.a, &key);
+      if (!inserted.second && !(*inserted.first->second == key))
+      {
+        error = "the pieces' point global ids disagree: global id " +
+          std::to_string(static_cast<vtkIdType>(key.a)) +
+          " names points at different coordinates on different pieces (remove the point global ids to have them made)";
+        return nullptr;
+      }
+    }
+  }
 
   // 2. Holders, owners and global ids. A key repeated within one piece
   // (coincident points of that piece) is shared through its first occurrence
