@@ -169,7 +169,21 @@ bool OnBorder(const Cells& cells, const std::vector<vtkIdType>& start, const std
       }
     }
   }
-  std::sort(scratch.begin(), scratch.end());
+  // Few entries (two per polygon around p): an insertion sort beats std::sort here.
+  if (scratch.size() > 64)
+  {
+    std::sort(scratch.begin(), scratch.end());
+  }
+  for (size_t i = 1; i < scratch.size(); ++i)
+  {
+    const vtkIdType value = scratch[i];
+    size_t j = i;
+    for (; j > 0 && scratch[j - 1] > value; --j)
+    {
+      scratch[j] = scratch[j - 1];
+    }
+    scratch[j] = value;
+  }
   for (size_t k = 0; k < scratch.size();)
   {
     size_t end = k;
@@ -1011,26 +1025,51 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
   pointData->SetGlobalIds(ids);
   pointData->AddArray(pointGhosts);
 
-  // Cells, kind by kind: own then ghost; the cell data in that order.
-  vtkNew<vtkCellArray> kindCells[4];
+  // Cells, kind by kind: own then ghost; the cell data in that order. The
+  // cell arrays are filled as offsets and connectivity (one call per cell
+  // would cost a second on a million-cell piece).
   std::vector<std::pair<int, vtkIdType>> order; // (0 own / 1 ghost, index)
   order.reserve(static_cast<size_t>(own.Size() + ghost.Size()));
+  vtkSmartPointer<vtkCellArray> kindCells[4];
   for (unsigned char kind = 0; kind < 4; ++kind)
   {
+    vtkIdType cells = 0, ids = 0;
+    for (const Cells* from : { static_cast<const Cells*>(&own), static_cast<const Cells*>(&ghost) })
+    {
+      for (vtkIdType c = 0; c < from->Size(); ++c)
+      {
+        if (from->kind[static_cast<size_t>(c)] == kind)
+        {
+          ++cells;
+          ids += from->offsets[static_cast<size_t>(c) + 1] - from->offsets[static_cast<size_t>(c)];
+        }
+      }
+    }
+    vtkNew<vtkIdTypeArray> offsets, connectivity;
+    offsets->SetNumberOfTuples(cells + 1);
+    connectivity->SetNumberOfTuples(ids);
+    vtkIdType* offset = offsets->GetPointer(0);
+    vtkIdType* to = connectivity->GetPointer(0);
+    *offset = 0;
     for (int which = 0; which < 2; ++which)
     {
-      const Cells& cells = which == 0 ? own : ghost;
-      for (vtkIdType c = 0; c < cells.Size(); ++c)
+      const Cells& from = which == 0 ? own : ghost;
+      for (vtkIdType c = 0; c < from.Size(); ++c)
       {
-        if (cells.kind[static_cast<size_t>(c)] != kind)
+        if (from.kind[static_cast<size_t>(c)] != kind)
         {
           continue;
         }
-        const vtkIdType begin = cells.offsets[static_cast<size_t>(c)];
-        kindCells[kind]->InsertNextCell(cells.offsets[static_cast<size_t>(c) + 1] - begin, &cells.points[static_cast<size_t>(begin)]);
+        const vtkIdType* begin = &from.points[static_cast<size_t>(from.offsets[static_cast<size_t>(c)])];
+        const vtkIdType* end = from.points.data() + from.offsets[static_cast<size_t>(c) + 1];
+        to = std::copy(begin, end, to);
+        offset[1] = offset[0] + (end - begin);
+        ++offset;
         order.emplace_back(which, c);
       }
     }
+    kindCells[kind] = vtkSmartPointer<vtkCellArray>::New();
+    kindCells[kind]->SetData(offsets, connectivity);
   }
   result->SetVerts(kindCells[0]);
   result->SetLines(kindCells[1]);

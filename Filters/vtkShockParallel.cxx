@@ -610,13 +610,31 @@ void PointExchange::Setup(vtkMultiProcessController* controller, const vtkIdType
   std::vector<vtkIdType> counts, offsets;
   const std::vector<vtkIdType> all = AllGather(controller, neededGlobal, counts, offsets);
 
-  // Answer the needs this process owns: which local points, at which slots of the asker's list.
-  std::unordered_map<vtkIdType, vtkIdType> ownedByGlobal;
-  for (size_t p = 0; p < owned.size(); ++p)
+  // Answer the needs this process owns: which local points, at which slots of
+  // the asker's list. The asked ids go into a table (a halo's worth), which the
+  // owned points are looked up in (not the other way round: a piece's worth).
+  std::unordered_map<vtkIdType, std::vector<std::pair<int, vtkIdType>>> wanted; // id -> (asker, slot)
+  for (int r = 0; r < processes; ++r)
   {
-    if (owned[p])
+    for (vtkIdType k = 0; r != me && k < counts[static_cast<size_t>(r)]; ++k)
     {
-      ownedByGlobal.emplace(globalIds[p], static_cast<vtkIdType>(p));
+      wanted[all[static_cast<size_t>(offsets[static_cast<size_t>(r)] + k)]].emplace_back(r, k);
+    }
+  }
+  std::vector<std::vector<std::pair<vtkIdType, vtkIdType>>> answers(static_cast<size_t>(processes)); // (slot, point)
+  for (size_t p = 0; p < owned.size() && !wanted.empty(); ++p)
+  {
+    if (!owned[p])
+    {
+      continue;
+    }
+    const auto found = wanted.find(globalIds[p]);
+    if (found != wanted.end())
+    {
+      for (const auto& asker : found->second)
+      {
+        answers[static_cast<size_t>(asker.first)].emplace_back(asker.second, static_cast<vtkIdType>(p));
+      }
     }
   }
   this->SendPoints.assign(static_cast<size_t>(processes), {});
@@ -625,20 +643,14 @@ void PointExchange::Setup(vtkMultiProcessController* controller, const vtkIdType
   std::vector<vtkIdType> sendCounts(static_cast<size_t>(processes), 0);
   for (int r = 0; r < processes; ++r)
   {
-    if (r == me)
+    auto& list = answers[static_cast<size_t>(r)];
+    std::sort(list.begin(), list.end()); // in the asker's order
+    for (const auto& answer : list)
     {
-      continue;
+      slots[static_cast<size_t>(r)].push_back(answer.first);
+      this->SendPoints[static_cast<size_t>(r)].push_back(answer.second);
     }
-    for (vtkIdType k = 0; k < counts[static_cast<size_t>(r)]; ++k)
-    {
-      const auto found = ownedByGlobal.find(all[static_cast<size_t>(offsets[static_cast<size_t>(r)] + k)]);
-      if (found != ownedByGlobal.end())
-      {
-        this->SendPoints[static_cast<size_t>(r)].push_back(found->second);
-        slots[static_cast<size_t>(r)].push_back(k);
-      }
-    }
-    sendCounts[static_cast<size_t>(r)] = static_cast<vtkIdType>(slots[static_cast<size_t>(r)].size());
+    sendCounts[static_cast<size_t>(r)] = static_cast<vtkIdType>(list.size());
   }
   // Who sends how much to whom, then the slots themselves.
   std::vector<vtkIdType> matrix(static_cast<size_t>(processes * processes));
