@@ -151,8 +151,9 @@ bool UseTheWholeNodeWhenAlone()
     {
       return false;
     }
-    // OpenMP threads made before keep the mask they were made with: widen theirs too.
-    const int cores = std::max(1, omp_get_num_procs());
+    // OpenMP threads made before keep the mask they were made with: widen theirs too
+    // (as many as any later team may use).
+    const int cores = std::max({ 1, CPU_COUNT(&all), omp_get_max_threads(), omp_get_num_procs() });
 #pragma omp parallel num_threads(cores)
     {
       sched_setaffinity(0, sizeof(all), &all);
