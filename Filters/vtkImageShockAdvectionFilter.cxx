@@ -302,28 +302,18 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
     vtkErrorMacro(<< error);
     return 0;
   }
-  // The piece's samples and the whole image's, as sample extents (cells: one fewer on spanned axes).
+  // The piece's samples as a sample extent (cells: one fewer on the axes it spans).
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
-  int extent[6], whole[6];
+  int extent[6];
   input->GetExtent(extent);
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-  {
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  }
-  else
-  {
-    std::copy(extent, extent + 6, whole);
-  }
   for (int a = 0; a < 3 && cellData; ++a)
   {
     extent[2 * a + 1] -= extent[2 * a + 1] > extent[2 * a] ? 1 : 0;
-    whole[2 * a + 1] -= whole[2 * a + 1] > whole[2 * a] ? 1 : 0;
   }
   int grown[6];
   vtkLogStartScope(TRACE, "shock: image halo exchange");
   vtkSmartPointer<vtkDataArray> grownArray =
-    vtkShockParallel::GrowImageSamples(controller, array, extent, whole, this->GhostLevels, grown);
+    vtkShockParallel::GrowImageSamples(controller, array, extent, this->GhostLevels, grown);
   vtkLogEndScope("shock: image halo exchange");
   if (empty || !grownArray)
   {

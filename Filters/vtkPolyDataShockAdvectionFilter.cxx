@@ -69,9 +69,12 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  if (!output || !this->BeginExecution())
+  bool unknown = false;
+  vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);
+  const bool started = output && this->BeginExecution();
+  if (!started && !controller)
   {
-    return 0;
+    return 0; // in parallel the other processes learn of it in the agreement below
   }
   // The surface (an unstructured grid of polygons is read as polydata) and the
   // array to filter; in parallel, every process agrees, then gets ghost cells.
@@ -79,6 +82,10 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   vtkDataArray* array = nullptr;
   std::string selection; // the filtered array, which every piece must agree on
   auto findArray = [&](vtkPolyData* surface) -> std::string {
+    if (!started)
+    {
+      return "the filter's parameters are invalid (see the message above)";
+    }
     array = surface->GetNumberOfPoints() > 0 ? this->GetArrayToFilter(inputVector, association) : nullptr;
     if (array)
     {
@@ -88,14 +95,12 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     }
     return array || surface->GetNumberOfPoints() == 0 ? "" : "no array to filter (see the message above)";
   };
-  bool unknown = false;
   vtkSmartPointer<vtkPolyData> input;
   vtkShockParallel::SurfacePiece piece;
   std::string error;
   vtkLogStartScope(TRACE, "shock: input, agreement and ghost rings");
-  const bool begun = vtkShockPolyDataInternals::BeginSurface(inputVector,
-    this->PieceController(outputVector, unknown), this->GhostLevels, findArray, this->ParametersText(),
-    &selection, input, piece, error);
+  const bool begun = vtkShockPolyDataInternals::BeginSurface(inputVector, controller, this->GhostLevels,
+    findArray, this->ParametersText(), &selection, input, piece, error);
   vtkLogEndScope("shock: input, agreement and ghost rings");
   if (!begun)
   {

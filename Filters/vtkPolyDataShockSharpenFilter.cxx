@@ -358,21 +358,26 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  if (!output || !this->BeginExecution())
+  bool unknown = false;
+  vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);
+  const bool started = output && this->BeginExecution();
+  if (!started && !controller)
   {
-    return 0;
+    return 0; // in parallel the other processes learn of it in the agreement below
   }
   // The surface (an unstructured grid of polygons is read as polydata); in
   // parallel, all agree, replicated data is recognised, pieces get ghost layers
   // (collective; at least one: the fit's rows need the one-rings of their points).
-  bool unknown = false;
-  auto wholeOrPieces = [&unknown](vtkPolyData* surface) -> std::string {
+  auto wholeOrPieces = [&unknown, started](vtkPolyData* surface) -> std::string {
+    if (!started)
+    {
+      return "the filter's parameters are invalid (see the message above)";
+    }
     return unknown && surface->GetNumberOfPoints() > 0
       ? "This is one of several pieces of the mesh, and no MPI controller with as many "
         "processes is available to fit them together; give the whole mesh to one process."
       : "";
   };
-  vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);
   vtkSmartPointer<vtkPolyData> input;
   vtkShockParallel::SurfacePiece piece;
   std::string error;

@@ -349,7 +349,8 @@ std::vector<Key> MergedCoordinateKeys(const std::vector<std::uint64_t>& all)
   {
     size_t operator()(const Cell& c) const
     {
-      return static_cast<size_t>((c.i * 73856093) ^ (c.j * 19349663) ^ (c.k * 83492791));
+      return static_cast<size_t>((static_cast<std::uint64_t>(c.i) * 73856093u) ^
+        (static_cast<std::uint64_t>(c.j) * 19349663u) ^ (static_cast<std::uint64_t>(c.k) * 83492791u));
     }
   };
   std::unordered_map<Cell, std::vector<size_t>, CellHash> grid;
@@ -450,7 +451,19 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
 
   vtkLogStartScope(TRACE, "shock: border points");
   // 1. Border points and their keys.
-  vtkDataArray* givenIds = piece->GetPointData()->GetGlobalIds();
+  // Point global ids count when every piece with points has them (one
+  // reduction: some with and some without is an error on every process).
+  vtkDataArray* givenIds = np > 0 ? piece->GetPointData()->GetGlobalIds() : nullptr;
+  {
+    const int local[2] = { np > 0 && givenIds ? 1 : 0, np > 0 && !givenIds ? 1 : 0 };
+    int global[2] = { 0, 0 };
+    controller->AllReduce(local, global, 2, vtkCommunicator::MAX_OP);
+    if (global[0] && global[1])
+    {
+      error = "some pieces have point global ids and others do not: give every piece its ids, or none";
+      return nullptr; // the same decision on every process
+    }
+  }
   std::vector<vtkIdType> border;
   {
     std::vector<vtkIdType> scratch;
@@ -471,7 +484,11 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
       // With the point's coordinates, rounded to float, to check that the ids mean the same points.
       double x[3];
       piece->GetPoint(p, x);
-      const float rounded[3] = { static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2]) };
+      float rounded[3] = { static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2]) };
+      for (float& v : rounded)
+      {
+        v = v == 0.0f ? 0.0f : v; // -0 is +0
+      }
       std::uint32_t bits[3];
       std::memcpy(bits, rounded, sizeof(bits));
       key.b = (static_cast<std::uint64_t>(bits[0]) << 32) | bits[1];
@@ -640,12 +657,12 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
   {
     duplicateIds = !local.emplace(gid[static_cast<size_t>(p)], p).second || duplicateIds;
   }
+  if (duplicateIds)
+  {
+    error = "the piece's point global ids are not unique";
+  }
   if (AnyFailed(controller, duplicateIds, error))
   {
-    if (duplicateIds)
-    {
-      error = "the piece's point global ids are not unique";
-    }
     return nullptr;
   }
 
@@ -842,6 +859,7 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
       piece->GetPoints()->GetPoints(pointRows, points);
       packet->SetPoints(points);
       packet->SetPolys(polys);
+      packet->GetPointData()->CopyGlobalIdsOn(); // CopyAllocate leaves them out otherwise
       packet->GetPointData()->CopyAllocate(piece->GetPointData(), pointRows->GetNumberOfIds());
       packet->GetPointData()->CopyData(piece->GetPointData(), pointRows, Sequence(pointRows->GetNumberOfIds()));
       vtkNew<vtkIdTypeArray> pointIds;
@@ -862,6 +880,7 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
       {
         cellRows->InsertNextId(c);
       }
+      packet->GetCellData()->CopyGlobalIdsOn();
       packet->GetCellData()->CopyAllocate(piece->GetCellData(), cellRows->GetNumberOfIds());
       packet->GetCellData()->CopyData(piece->GetCellData(), cellRows, Sequence(cellRows->GetNumberOfIds()));
       vtkNew<vtkIdTypeArray> cellIds;
@@ -1002,7 +1021,7 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
     });
   pointData->RemoveArray(vtkDataSetAttributes::GhostArrayName());
   vtkNew<vtkIdTypeArray> ids;
-  ids->SetName("GlobalPointIds");
+  ids->SetName("vtkShockGlobalPointIds"); // a name no user array is likely to have
   ids->SetNumberOfTuples(total);
   vtkNew<vtkUnsignedCharArray> pointGhosts;
   pointGhosts->SetName(vtkDataSetAttributes::GhostArrayName());
@@ -1100,12 +1119,12 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
   cellData->RemoveArray(vtkDataSetAttributes::GhostArrayName());
   cellData->AddArray(cellGhosts);
   result->GetFieldData()->ShallowCopy(piece->GetFieldData());
+  if (missing)
+  {
+    error = "the pieces' point or cell arrays differ (names, types or components)";
+  }
   if (AnyFailed(controller, missing, error))
   {
-    if (missing)
-    {
-      error = "the pieces' point or cell arrays differ (names, types or components)";
-    }
     return nullptr;
   }
   return result;

@@ -107,8 +107,8 @@ void CopyBox(const char* from, const Box& fromBox, char* to, const Box& toBox, c
 }
 }
 
-vtkSmartPointer<vtkDataArray> GrowImageSamples(vtkMultiProcessController* controller, vtkDataArray* array,
-  const int extent[6], const int whole[6], int layers, int grown[6])
+vtkSmartPointer<vtkDataArray> GrowImageSamples(
+  vtkMultiProcessController* controller, vtkDataArray* array, const int extent[6], int layers, int grown[6])
 {
   const int me = controller->GetLocalProcessId();
   const int processes = controller->GetNumberOfProcesses();
@@ -128,6 +128,23 @@ vtkSmartPointer<vtkDataArray> GrowImageSamples(vtkMultiProcessController* contro
     {
       pieces[static_cast<size_t>(r)][static_cast<size_t>(k)] = static_cast<int>(all[static_cast<size_t>(6 * r + k)]);
     }
+  }
+  // The whole image's samples: the box around every piece (the same on every
+  // process, whatever each one's pipeline says of the whole extent).
+  Box whole{ 1, 0, 1, 0, 1, 0 };
+  bool first = true;
+  for (const Box& piece : pieces)
+  {
+    if (Empty(piece))
+    {
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      whole[2 * a] = first ? piece[2 * a] : std::min(whole[2 * a], piece[2 * a]);
+      whole[2 * a + 1] = first ? piece[2 * a + 1] : std::max(whole[2 * a + 1], piece[2 * a + 1]);
+    }
+    first = false;
   }
   // Every piece's grown extent: `layers` more on the axes the whole image spans,
   // unless the pieces do not cover it (then no halo for that piece: the same

@@ -165,11 +165,31 @@ bool Replicated(vtkMultiProcessController* controller, vtkDataSet* input)
 {
   // A fingerprint: sizes, and sums of the coordinates weighted two ways (so
   // that a permutation or a different piece shows).
-  double print[6] = { 0, 0, 0, 0, 0, 0 };
+  double print[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
   if (input)
   {
     print[0] = static_cast<double>(input->GetNumberOfPoints());
     print[1] = static_cast<double>(input->GetNumberOfCells());
+    // The cells too, weighted by position (same points, other cells: not replicated).
+    if (auto* polyData = vtkPolyData::SafeDownCast(input))
+    {
+      vtkIdType position = 0;
+      for (vtkCellArray* cells : { polyData->GetVerts(), polyData->GetLines(), polyData->GetPolys(), polyData->GetStrips() })
+      {
+        auto iterator = vtk::TakeSmartPointer(cells->NewIterator());
+        for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell())
+        {
+          vtkIdType size;
+          const vtkIdType* ids;
+          iterator->GetCurrentCell(size, ids);
+          for (vtkIdType k = 0; k < size; ++k, ++position)
+          {
+            print[6] += static_cast<double>(ids[k]);
+            print[7] += static_cast<double>(ids[k]) * (1.0 + static_cast<double>(position % 7919) / 7919.0);
+          }
+        }
+      }
+    }
     for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
     {
       double x[3];
@@ -181,14 +201,14 @@ bool Replicated(vtkMultiProcessController* controller, vtkDataSet* input)
       print[5] += w * x[2];
     }
   }
-  double low[6], high[6], negated[6];
-  for (int k = 0; k < 6; ++k)
+  double low[8], high[8], negated[8];
+  for (int k = 0; k < 8; ++k)
   {
     negated[k] = -print[k];
   }
-  controller->AllReduce(print, high, 6, vtkCommunicator::MAX_OP);
-  controller->AllReduce(negated, low, 6, vtkCommunicator::MAX_OP);
-  for (int k = 0; k < 6; ++k)
+  controller->AllReduce(print, high, 8, vtkCommunicator::MAX_OP);
+  controller->AllReduce(negated, low, 8, vtkCommunicator::MAX_OP);
+  for (int k = 0; k < 8; ++k)
   {
     if (high[k] != -low[k])
     {
@@ -201,7 +221,7 @@ bool Replicated(vtkMultiProcessController* controller, vtkDataSet* input)
 vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
 {
   vtkUnsignedCharArray* ghosts = piece->GetCellGhostArray();
-  if (!ghosts)
+  if (!ghosts || !piece->GetPoints() || ghosts->GetNumberOfTuples() < piece->GetNumberOfCells())
   {
     return piece;
   }
@@ -310,6 +330,8 @@ vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
   {
     cellRows->SetId(k, k);
   }
+  owned->GetPointData()->CopyGlobalIdsOn(); // CopyAllocate leaves them out otherwise
+  owned->GetCellData()->CopyGlobalIdsOn();
   owned->GetPointData()->CopyAllocate(piece->GetPointData(), keptPoints->GetNumberOfIds());
   owned->GetPointData()->CopyData(piece->GetPointData(), keptPoints, pointRows);
   owned->GetCellData()->CopyAllocate(piece->GetCellData(), keptCells->GetNumberOfIds());
@@ -540,10 +562,12 @@ bool Agree(vtkMultiProcessController* controller, const std::string& localError,
   {
     controller->AllReduce(&hasData, &reference, 1, vtkCommunicator::MIN_OP);
   }
+  reference = std::min<vtkIdType>(reference, processes - 1);
   const std::string referenceText = BroadcastText(controller, mineText, static_cast<int>(reference));
   const vtkIdType differs = (!mineText.empty() && mineText != referenceText) ? me : processes;
   vtkIdType firstDiffering = processes;
   controller->AllReduce(&differs, &firstDiffering, 1, vtkCommunicator::MIN_OP);
+  firstDiffering = std::min<vtkIdType>(firstDiffering, processes - 1);
   std::string ours, theirs;
   FirstDifference(mineText, referenceText, ours, theirs);
   const std::string detail = BroadcastText(controller,
@@ -568,7 +592,12 @@ bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* inp
     return error.empty();
   }
   const std::string arrays = ArraysFingerprintText(input);
-  if (!Agree(controller, localError, parameters, arrays.empty() ? arrays : arrays + selection, error))
+  std::string local = localError;
+  if (local.empty() && arrays.find("'(unnamed)'") != std::string::npos)
+  {
+    local = "a point or cell array has no name: name it (the pieces exchange their arrays by name)";
+  }
+  if (!Agree(controller, local, parameters, arrays.empty() ? arrays : arrays + selection, error))
   {
     return false;
   }
@@ -584,11 +613,7 @@ bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* inp
   vtkLogStartScope(TRACE, "shock: ghost rings");
   piece.work = WithGhostCells(controller, piece.owned, layers, error);
   vtkLogEndScope("shock: ghost rings");
-  if (AnyFailed(controller, !piece.work, error))
-  {
-    return false;
-  }
-  return true;
+  return piece.work != nullptr; // its failures are agreed by every process already
 }
 
 void PointExchange::Setup(vtkMultiProcessController* controller, const vtkIdType* globalIds,

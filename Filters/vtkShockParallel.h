@@ -48,14 +48,15 @@ vtkUnsignedCharArray* PointGhosts(vtkDataSet* data);
  * The halo exchange of an image piece (vtkShockImageHalo.cxx, collective):
  * `array` holds the samples of `extent` (a sample extent: points, or cells);
  * the result holds those of `grown`, `extent` with `layers` more samples on
- * every axis `whole` (the whole sample extent) spans, clamped to it, the
- * samples outside `extent` received from the processes whose pieces hold
- * them, point to point. When the pieces do not cover a process's grown
- * extent, that process keeps its own (the same decision everywhere). An empty
- * piece (null `array`) takes part and gets nullptr.
+ * every axis the pieces together span, clamped to the box around all pieces
+ * (the same on every process, whatever each pipeline says of the whole
+ * extent), the samples outside `extent` received point to point from the
+ * processes whose pieces hold them. When the pieces do not cover a process's
+ * grown extent, that process keeps its own (the same decision everywhere). An
+ * empty piece (null `array`) takes part and gets nullptr.
  */
-vtkSmartPointer<vtkDataArray> GrowImageSamples(vtkMultiProcessController* controller, vtkDataArray* array,
-  const int extent[6], const int whole[6], int layers, int grown[6]);
+vtkSmartPointer<vtkDataArray> GrowImageSamples(
+  vtkMultiProcessController* controller, vtkDataArray* array, const int extent[6], int layers, int grown[6]);
 
 /// Whether the filter's upstream produces composite data (the pipeline then runs it block by block).
 bool UpstreamIsComposite(vtkAlgorithm* filter);

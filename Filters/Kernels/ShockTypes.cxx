@@ -1,8 +1,10 @@
 #include "ShockTypes.h"
 
 #include <omp.h>
+#ifdef __linux__
 #include <sched.h>
 #include <unistd.h>
+#endif
 
 #ifdef __linux__
 #include <dirent.h>
@@ -128,6 +130,9 @@ bool UseTheWholeNodeWhenAlone()
   // `mpirun -np 1` would run every thread on one core. A process alone on its
   // node takes the node's cores back, once, for itself and its OpenMP threads
   // (SHOCK_KEEP_BINDING=1 keeps the launcher's binding).
+#ifndef __linux__
+  return false; // the affinity calls below are Linux's
+#else
   static const bool widened = []() {
     const char* keep = std::getenv("SHOCK_KEEP_BINDING");
     if ((keep && std::strcmp(keep, "1") == 0) || LocalProcesses() != 1)
@@ -161,6 +166,7 @@ bool UseTheWholeNodeWhenAlone()
     return true;
   }();
   return widened;
+#endif
 }
 
 int ResolveThreadCount(int requested)

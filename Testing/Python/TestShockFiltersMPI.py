@@ -340,6 +340,11 @@ def split_input(how, whole_path, split_path):
         reader = XMLPolyDataReader(FileName=[whole_path])
         split = RedistributeDataSet(Input=reader)
         return [reader, split, GhostCellsGenerator(Input=split)]
+    if how == "global ids":
+        # Point and cell global ids made upstream: the filters use the given point ids.
+        reader = XMLPolyDataReader(FileName=[whole_path])
+        split = RedistributeDataSet(Input=reader)
+        return [reader, split, GenerateGlobalIds(Input=split)]
     return [XMLPartitionedPolydataReader(FileName=[split_path])]
 
 
@@ -444,7 +449,7 @@ def surface_cases():
     compare("serial renumbered (summation order)", serial_filter("SurfaceShockSharpen", producer, FlowTime=256),
             references["sharpen"], positions, FIXED_CG_BOUND, "position")
     ways = [("redistribute", partitioned_file(mesh, PROCESSES)), ("pvtp", partitioned_file(mesh, PROCESSES)),
-            ("ghost cells generator", None)]
+            ("ghost cells generator", None), ("global ids", None)]
     if PROCESSES > 2:
         ways.append(("pvtp of 2 pieces (an empty process)", partitioned_file(mesh, 2)))
     for how, split_path in ways:
