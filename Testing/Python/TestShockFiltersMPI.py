@@ -253,8 +253,9 @@ def whole_mesh(resolution=96):
     return path, mesh
 
 
-def partitioned_file(mesh, pieces):
-    """mesh cut into `pieces` slabs along z (cells by centroid), as a .pvtp of .vtp pieces."""
+def partitioned_file(mesh, pieces, fractions=None, tag=""):
+    """mesh cut into `pieces` slabs along z (cells by centroid; equal counts, or
+    the given fractions of the cells), as a .pvtp of .vtp pieces."""
     from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
     from vtkmodules.vtkFiltersCore import vtkCleanPolyData
     from vtkmodules.vtkFiltersCore import vtkCellCenters
@@ -265,7 +266,8 @@ def partitioned_file(mesh, pieces):
     z = vtk_to_numpy(centres.GetOutput().GetPoints().GetData())[:, 2]
     order = np.argsort(z, kind="stable")
     names = []
-    for k, chunk in enumerate(np.array_split(order, pieces)):
+    cuts = (np.cumsum(fractions)[:-1] * len(order)).astype(int) if fractions else pieces
+    for k, chunk in enumerate(np.array_split(order, cuts)):
         polys = vtkCellArray()
         for c in sorted(chunk):
             polys.InsertNextCell(mesh.GetCell(int(c)).GetPointIds())
@@ -276,13 +278,13 @@ def partitioned_file(mesh, pieces):
         clean = vtkCleanPolyData()  # drop the points the piece does not use, merge nothing
         clean.PointMergingOff()
         clean.SetInputData(piece)
-        name = "split%d_%d.vtp" % (pieces, k)
+        name = "split%d%s_%d.vtp" % (pieces, tag, k)
         writer = vtkXMLPolyDataWriter()
         writer.SetInputConnection(clean.GetOutputPort())
         writer.SetFileName(os.path.join(OUTPUT, name))
         writer.Write()
         names.append(name)
-    path = os.path.join(OUTPUT, "split%d.pvtp" % pieces)
+    path = os.path.join(OUTPUT, "split%d%s.pvtp" % (pieces, tag))
     with open(path, "w") as handle:
         handle.write('<?xml version="1.0"?>\n<VTKFile type="PPolyData" version="0.1" byte_order="LittleEndian">\n'
                      '<PPolyData GhostLevel="0">\n<PPointData Scalars="Heat">\n'
@@ -452,6 +454,10 @@ def surface_cases():
             ("ghost cells generator", None), ("global ids", None)]
     if PROCESSES > 2:
         ways.append(("pvtp of 2 pieces (an empty process)", partitioned_file(mesh, 2)))
+        # A middle piece 2 rows of triangles thick: the outer pieces' 16 rings
+        # cross it into the far piece (rings through a third piece).
+        ways.append(("pvtp with a thin middle piece",
+                     partitioned_file(mesh, 3, [0.45, 0.02, 0.53], tag="thin")))
     for how, split_path in ways:
         surface_split_case(how, whole_path, split_path, references)
     replicated_case(whole_path, references["sharpen"])
