@@ -325,10 +325,11 @@ std::vector<Key> GivenKeys(const std::vector<std::uint64_t>& all)
 
 /**
  * The keys of gathered coordinates (3 doubles' bits per item): each item takes
- * the key of the first item (in gathered order) within 1e-12 of the largest
- * coordinate magnitude in every axis, else its own. The same on every process.
+ * the key of the first item (in gathered order) within `relativeTolerance` of
+ * the largest coordinate magnitude in every axis, else its own. The same on
+ * every process.
  */
-std::vector<Key> MergedCoordinateKeys(const std::vector<std::uint64_t>& all)
+std::vector<Key> MergedCoordinateKeys(const std::vector<std::uint64_t>& all, double relativeTolerance)
 {
   const size_t n = all.size() / 3;
   std::vector<double> x(all.size());
@@ -338,7 +339,7 @@ std::vector<Key> MergedCoordinateKeys(const std::vector<std::uint64_t>& all)
   {
     largest = std::max(largest, std::abs(v));
   }
-  const double tolerance = largest > 0.0 ? 1e-12 * largest : std::numeric_limits<double>::min();
+  const double tolerance = largest > 0.0 ? relativeTolerance * largest : std::numeric_limits<double>::min();
   // Items by grid cell of the tolerance's size: a match lies in one of the 27 cells around.
   struct Cell
   {
@@ -524,7 +525,16 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
   // The key of each gathered item: its global id, or the first gathered
   // point within a tolerance of its coordinates (pieces a source or reader cut
   // itself may compute their shared points to the last bit differently).
-  const std::vector<Key> keys = givenIds ? GivenKeys(all) : MergedCoordinateKeys(all);
+  // The tolerance: 1e-12 of the largest coordinate magnitude, or 4 units in the
+  // last place of a float when any piece holds float points (they round there).
+  int floatPoints = piece->GetPoints()->GetDataType() == VTK_FLOAT && np > 0 ? 1 : 0;
+  {
+    int any = 0;
+    controller->AllReduce(&floatPoints, &any, 1, vtkCommunicator::MAX_OP);
+    floatPoints = any;
+  }
+  const std::vector<Key> keys =
+    givenIds ? GivenKeys(all) : MergedCoordinateKeys(all, floatPoints ? 4.0 * 0x1p-23 : 1e-12);
   if (givenIds)
   {
     // One global id, one point: every process sees the same gathered borders, so all decide alike.
