@@ -488,8 +488,7 @@ int UpdateGhostLevels(vtkInformation* info)
 /**
  * Crop `image` to `target` (within its extent) as vtkImageData::Crop does, but
  * a row at a time: each point and cell array is copied with memcpy instead of
- * one vtkDataSetAttributes::CopyData call per tuple (which took a third of a
- * 2-process run on a 256^3 volume). Returns false, changing nothing, when an
+ * one vtkDataSetAttributes::CopyData call per tuple. Returns false, changing nothing, when an
  * array is not a plain named vtkDataArray or an axis the image spans would be
  * left with a single point (vtkImageData::Crop then does it).
  */

@@ -1055,8 +1055,7 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
   pointData->AddArray(pointGhosts);
 
   // Cells, kind by kind: own then ghost; the cell data in that order. The
-  // cell arrays are filled as offsets and connectivity (one call per cell
-  // would cost a second on a million-cell piece).
+  // cell arrays are filled as offsets and connectivity, not a call per cell.
   std::vector<std::pair<int, vtkIdType>> order; // (0 own / 1 ghost, index)
   order.reserve(static_cast<size_t>(own.Size() + ghost.Size()));
   vtkSmartPointer<vtkCellArray> kindCells[4];

@@ -636,8 +636,8 @@ void PointExchange::Setup(vtkMultiProcessController* controller, const vtkIdType
   const std::vector<vtkIdType> all = AllGather(controller, neededGlobal, counts, offsets);
 
   // Answer the needs this process owns: which local points, at which slots of
-  // the asker's list. The asked ids go into a table (a halo's worth), which the
-  // owned points are looked up in (not the other way round: a piece's worth).
+  // the asker's list. The asked ids (a halo) go into a table, which the owned
+  // points are looked up in (a table of every owned point would be a piece).
   std::unordered_map<vtkIdType, std::vector<std::pair<int, vtkIdType>>> wanted; // id -> (asker, slot)
   for (int r = 0; r < processes; ++r)
   {
