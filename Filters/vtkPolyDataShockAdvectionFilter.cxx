@@ -21,7 +21,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <vector>
 
 vtkStandardNewMacro(vtkPolyDataShockAdvectionFilter);
 
@@ -153,36 +155,57 @@ namespace
 bool TriangleEdgeSums(vtkPolyData* piece, double sums[2])
 {
   vtkCellArray* polys = piece->GetPolys();
-  if (!polys || (piece->GetStrips() && piece->GetStrips()->GetNumberOfCells() > 0) ||
+  if (!polys || !piece->GetPoints() || (piece->GetStrips() && piece->GetStrips()->GetNumberOfCells() > 0) ||
     polys->GetNumberOfConnectivityIds() != 3 * polys->GetNumberOfCells())
   {
     return false;
   }
+  // Every polygon has three points (offsets 0, 3, 6, ...): the connectivity is the triangles' corners in turn.
+  const vtkIdType nt = polys->GetNumberOfCells();
+  for (vtkIdType f = 0; f <= nt; ++f)
+  {
+    const vtkIdType offset = polys->IsStorage64Bit()
+      ? static_cast<vtkIdType>(polys->GetOffsetsArray64()->GetValue(f))
+      : static_cast<vtkIdType>(polys->GetOffsetsArray32()->GetValue(f));
+    if (offset != 3 * f)
+    {
+      return false; // polygons of other sizes: ExtractTriangles's way
+    }
+  }
+  std::vector<std::int64_t> corners(static_cast<size_t>(3 * nt));
+  if (polys->IsStorage64Bit())
+  {
+    const vtkTypeInt64* ids = polys->GetConnectivityArray64()->GetPointer(0);
+    std::copy(ids, ids + 3 * nt, corners.begin());
+  }
+  else
+  {
+    const vtkTypeInt32* ids = polys->GetConnectivityArray32()->GetPointer(0);
+    std::copy(ids, ids + 3 * nt, corners.begin());
+  }
+  // The coordinates as doubles (one copy when they are doubles in one block).
+  vtkDataArray* coordinates = piece->GetPoints()->GetData();
+  std::vector<double> points(static_cast<size_t>(3 * piece->GetNumberOfPoints()));
+  if (coordinates->GetDataType() == VTK_DOUBLE && coordinates->HasStandardMemoryLayout())
+  {
+    coordinates->ExportToVoidPointer(points.data());
+  }
+  else
+  {
+    for (vtkIdType p = 0; p < piece->GetNumberOfPoints(); ++p)
+    {
+      coordinates->GetTuple(p, points.data() + 3 * p);
+    }
+  }
   vtkUnsignedCharArray* ghosts = piece->GetCellGhostArray();
   const vtkIdType first = piece->GetNumberOfVerts() + piece->GetNumberOfLines(); // polygons' cell ids start here
-  auto iterator = vtk::TakeSmartPointer(polys->NewIterator());
-  double corners[9];
-  std::int64_t ids[3] = { 0, 1, 2 };
-  vtkIdType cell = first;
-  for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
+  for (vtkIdType f = 0; f < nt; ++f)
   {
-    if (ghosts && (ghosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL))
+    if (ghosts && (ghosts->GetValue(first + f) & vtkDataSetAttributes::DUPLICATECELL))
     {
       continue;
     }
-    vtkIdType size;
-    const vtkIdType* points;
-    iterator->GetCurrentCell(size, points);
-    if (size != 3)
-    {
-      sums[0] = sums[1] = 0.0; // polygons of other sizes: ExtractTriangles's way
-      return false;
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      piece->GetPoint(points[k], corners + 3 * k);
-    }
-    sums[0] += shock::TrianglePerimeter(corners, ids);
+    sums[0] += shock::TrianglePerimeter(points.data(), corners.data() + 3 * f);
     sums[1] += 3.0;
   }
   return true;

@@ -80,23 +80,50 @@ struct Cells
   }
 };
 
+/// The offsets and connectivity of `cells` appended to `to` as cells of kind `k`.
+template <typename Offset>
+void AppendKind(unsigned char k, vtkIdType n, const Offset* offsets, const Offset* connectivity, Cells& to)
+{
+  const vtkIdType base = static_cast<vtkIdType>(to.points.size());
+  to.kind.insert(to.kind.end(), static_cast<size_t>(n), k);
+  for (vtkIdType c = 1; c <= n; ++c)
+  {
+    to.offsets.push_back(base + static_cast<vtkIdType>(offsets[c]));
+  }
+  to.points.insert(to.points.end(), connectivity, connectivity + offsets[n]);
+}
+
 Cells ReadCells(vtkPolyData* piece)
 {
   Cells cells;
   vtkCellArray* arrays[4] = { piece->GetVerts(), piece->GetLines(), piece->GetPolys(), piece->GetStrips() };
+  size_t size = 0, count = 0;
+  for (vtkCellArray* array : arrays)
+  {
+    size += array ? static_cast<size_t>(array->GetNumberOfConnectivityIds()) : 0;
+    count += array ? static_cast<size_t>(array->GetNumberOfCells()) : 0;
+  }
+  cells.kind.reserve(count);
+  cells.offsets.reserve(count + 1);
+  cells.points.reserve(size);
   for (unsigned char k = 0; k < 4; ++k)
   {
-    if (!arrays[k])
+    vtkCellArray* array = arrays[k];
+    const vtkIdType n = array ? array->GetNumberOfCells() : 0;
+    if (n == 0)
     {
       continue;
     }
-    auto iterator = vtk::TakeSmartPointer(arrays[k]->NewIterator());
-    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell())
+    // The cell array's own offsets and connectivity, read in place.
+    if (array->IsStorage64Bit())
     {
-      vtkIdType n;
-      const vtkIdType* ids;
-      iterator->GetCurrentCell(n, ids);
-      cells.Append(k, n, ids);
+      AppendKind(k, n, array->GetOffsetsArray64()->GetPointer(0), array->GetConnectivityArray64()->GetPointer(0),
+        cells);
+    }
+    else
+    {
+      AppendKind(k, n, array->GetOffsetsArray32()->GetPointer(0), array->GetConnectivityArray32()->GetPointer(0),
+        cells);
     }
   }
   return cells;
@@ -151,8 +178,8 @@ bool OnBorder(const Cells& cells, const std::vector<vtkIdType>& start, const std
       }
       if (kind == 2) // polygon: the neighbours along its loop
       {
-        scratch.push_back(ids[(i + 1) % n]);
-        scratch.push_back(ids[(i + n - 1) % n]);
+        scratch.push_back(ids[i + 1 == n ? 0 : i + 1]);
+        scratch.push_back(ids[i == 0 ? n - 1 : i - 1]);
       }
       else // strip: the edges of the triangles (j, j+1, j+2) that hold i
       {
@@ -228,6 +255,68 @@ Key CoordinateKey(const double x[3])
   return key;
 }
 
+/**
+ * Global id -> local point of one piece: its own points (through a table over
+ * the ids this process made, or a hash of the given ids) and the ghost points
+ * received in the rings.
+ */
+class LocalPoints
+{
+public:
+  /// The piece's points by `gid`; made ids in [first, end) are this process's
+  /// (a table), any other id is hashed. False when two points share an id.
+  bool Build(const std::vector<vtkIdType>& gid, bool madeIds, vtkIdType first, vtkIdType end)
+  {
+    this->First = madeIds ? first : 0;
+    this->Table.assign(madeIds ? static_cast<size_t>(end - first) : 0, -1);
+    bool unique = true;
+    for (size_t p = 0; p < gid.size(); ++p)
+    {
+      const vtkIdType id = gid[p];
+      if (madeIds && id >= first && id < end)
+      {
+        vtkIdType& slot = this->Table[static_cast<size_t>(id - first)];
+        unique = unique && slot < 0;
+        slot = static_cast<vtkIdType>(p);
+      }
+      else
+      {
+        unique = this->Others.emplace(id, static_cast<vtkIdType>(p)).second && unique;
+      }
+    }
+    return unique;
+  }
+  /// The own point with global id `id`, or -1.
+  vtkIdType Own(vtkIdType id) const
+  {
+    const vtkIdType k = id - this->First;
+    if (k >= 0 && k < static_cast<vtkIdType>(this->Table.size()))
+    {
+      return this->Table[static_cast<size_t>(k)];
+    }
+    const auto found = this->Others.find(id);
+    return found == this->Others.end() ? -1 : found->second;
+  }
+  /// The local point of `id`: an own point, a ghost point, or `next` as a new ghost point (`added`).
+  vtkIdType Find(vtkIdType id, vtkIdType next, bool& added)
+  {
+    added = false;
+    const vtkIdType own = this->Own(id);
+    if (own >= 0)
+    {
+      return own;
+    }
+    const auto inserted = this->Ghosts.emplace(id, next);
+    added = inserted.second;
+    return inserted.first->second;
+  }
+
+private:
+  vtkIdType First = 0;
+  std::vector<vtkIdType> Table;
+  std::unordered_map<vtkIdType, vtkIdType> Others, Ghosts;
+};
+
 /// Everyone's `mine` (`width` values per item), concatenated in process order; items per process.
 template <typename T>
 std::vector<T> GatherItems(vtkMultiProcessController* controller, const std::vector<T>& mine, int width,
@@ -264,50 +353,79 @@ vtkSmartPointer<vtkIdList> Sequence(vtkIdType n)
   return ids;
 }
 
+/// `from`'s first `count` rows into `to`'s first rows: one copy when both hold their values contiguously.
+void CopyLeadingRows(vtkAbstractArray* to, vtkAbstractArray* from, vtkIdType count)
+{
+  auto* target = vtkDataArray::SafeDownCast(to);
+  auto* source = vtkDataArray::SafeDownCast(from);
+  if (count <= 0)
+  {
+    return;
+  }
+  if (target && source && target->HasStandardMemoryLayout() && source->HasStandardMemoryLayout() &&
+    target->GetDataType() == source->GetDataType() &&
+    target->GetNumberOfComponents() == source->GetNumberOfComponents())
+  {
+    std::memcpy(target->GetVoidPointer(0), source->GetVoidPointer(0),
+      static_cast<size_t>(count) * static_cast<size_t>(source->GetNumberOfComponents()) *
+        static_cast<size_t>(source->GetDataTypeSize()));
+    return;
+  }
+  to->InsertTuples(0, count, 0, from);
+}
+
 /**
  * `to` holds `from`'s arrays (attributes kept) with `total` tuples: rows
- * [0, identity) are `from`'s first rows, row r >= identity comes from
- * row(r) = (array holder, row); the other rows of `from` are placed by
- * `fromRow(r)` >= 0. Returns false when a holder lacks an array of `from`
- * (name, type and components).
+ * [0, leading) are `from`'s first rows; any other row r comes from
+ * rowOf(r) = (array holder, row), or `from`'s row when the holder is null.
+ * Returns false when a holder lacks an array of `from` (name, type and
+ * components).
  */
 template <typename RowOf>
-bool ExtendAttributes(vtkDataSetAttributes* to, vtkDataSetAttributes* from, vtkIdType total, RowOf rowOf)
+bool ExtendAttributes(vtkDataSetAttributes* to, vtkDataSetAttributes* from, vtkIdType total, vtkIdType leading,
+  RowOf rowOf)
 {
-  to->DeepCopy(from);
+  to->ShallowCopy(from); // the attribute roles; each named array is replaced below
   for (int k = 0; k < from->GetNumberOfArrays(); ++k)
   {
     const char* name = from->GetArrayName(k);
     vtkAbstractArray* source = from->GetAbstractArray(k);
-    vtkAbstractArray* target = name ? to->GetAbstractArray(name) : nullptr;
-    if (!target)
+    if (!name || !source)
     {
-      continue;
+      continue; // unnamed arrays are refused before the rings are built
     }
-    const vtkIdType n = source->GetNumberOfTuples();
-    target->Resize(total); // keeps the rows (SetNumberOfTuples alone may not)
+    auto target = vtk::TakeSmartPointer(source->NewInstance());
+    target->SetName(name);
+    target->SetNumberOfComponents(source->GetNumberOfComponents());
+    target->CopyComponentNames(source);
+    target->CopyInformation(source->GetInformation(), 1);
     target->SetNumberOfTuples(total);
-    for (vtkIdType r = 0; r < total; ++r)
+    CopyLeadingRows(target, source, std::min(leading, source->GetNumberOfTuples()));
+    vtkDataSetAttributes* lastHolder = nullptr; // rows come packet by packet: one lookup per packet
+    vtkAbstractArray* other = nullptr;
+    for (vtkIdType r = leading; r < total; ++r)
     {
       vtkDataSetAttributes* holder = nullptr;
       vtkIdType row = -1;
       rowOf(r, holder, row);
       if (!holder)
       {
-        if (row != r && row >= 0 && row < n)
-        {
-          target->SetTuple(r, row, source);
-        }
+        target->SetTuple(r, row, source);
         continue;
       }
-      vtkAbstractArray* other = holder->GetAbstractArray(name);
-      if (!other || other->GetDataType() != source->GetDataType() ||
-        other->GetNumberOfComponents() != source->GetNumberOfComponents())
+      if (holder != lastHolder)
       {
-        return false;
+        lastHolder = holder;
+        other = holder->GetAbstractArray(name);
+        if (!other || other->GetDataType() != source->GetDataType() ||
+          other->GetNumberOfComponents() != source->GetNumberOfComponents())
+        {
+          return false;
+        }
       }
       target->SetTuple(r, row, other);
     }
+    to->AddArray(target); // same name: replaced at its index, its attribute role kept
   }
   return true;
 }
@@ -660,13 +778,9 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
       }
     }
   }
-  std::unordered_map<vtkIdType, vtkIdType> local; // global id -> local point (own and ghost)
-  local.reserve(static_cast<size_t>(np));
-  bool duplicateIds = false;
-  for (vtkIdType p = 0; p < np; ++p)
-  {
-    duplicateIds = !local.emplace(gid[static_cast<size_t>(p)], p).second || duplicateIds;
-  }
+  LocalPoints local; // global id -> local point (own and ghost)
+  const bool duplicateIds =
+    !local.Build(gid, !givenIds, firstId[static_cast<size_t>(me)], firstId[static_cast<size_t>(me) + 1]);
   if (duplicateIds)
   {
     error = "the piece's point global ids are not unique";
@@ -796,18 +910,18 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
       const auto& list = asked[static_cast<size_t>(s)];
       for (size_t k = 0; k + 1 < list.size(); k += 2)
       {
-        const auto found = local.find(list[k]);
+        const vtkIdType p = local.Own(list[k]);
         const int b = static_cast<int>(std::min<vtkIdType>(list[k + 1], layers));
-        if (found == local.end() || found->second >= np || b <= best[static_cast<size_t>(found->second)])
+        if (p < 0 || b <= best[static_cast<size_t>(p)])
         {
           continue; // not an own point here (a ghost's cells come from its owner), or no gain
         }
-        if (best[static_cast<size_t>(found->second)] < 0)
+        if (best[static_cast<size_t>(p)] < 0)
         {
-          touched.push_back(found->second);
+          touched.push_back(p);
         }
-        best[static_cast<size_t>(found->second)] = b;
-        buckets[static_cast<size_t>(b)].push_back(found->second);
+        best[static_cast<size_t>(p)] = b;
+        buckets[static_cast<size_t>(b)].push_back(p);
       }
       for (int b = layers; b >= 1; --b)
       {
@@ -960,9 +1074,9 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
       for (vtkIdType k = 0; k < pointIds->GetNumberOfTuples(); ++k)
       {
         const vtkIdType id = pointIds->GetValue(k);
-        const auto inserted = local.emplace(id, np + static_cast<vtkIdType>(ghostPoints.size()));
-        const vtkIdType p = inserted.first->second;
-        if (inserted.second)
+        bool added = false;
+        const vtkIdType p = local.Find(id, np + static_cast<vtkIdType>(ghostPoints.size()), added);
+        if (added)
         {
           ghostPoints.push_back({ packetIndex, k });
           ghostPointSource.push_back(arrived[a]);
@@ -1006,25 +1120,19 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
   const vtkIdType total = np + static_cast<vtkIdType>(ghostPoints.size());
   auto result = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> points;
-  points->SetDataType(piece->GetPoints()->GetDataType()); // DeepCopy would convert to float
-  points->DeepCopy(piece->GetPoints());
-  points->GetData()->Resize(total); // keeps the piece's points (SetNumberOfTuples alone may not)
-  points->GetData()->SetNumberOfTuples(total);
+  points->SetDataType(piece->GetPoints()->GetDataType());
+  points->SetNumberOfPoints(total);
+  CopyLeadingRows(points->GetData(), piece->GetPoints()->GetData(), np);
   for (size_t g = 0; g < ghostPoints.size(); ++g)
   {
-    points->SetPoint(np + static_cast<vtkIdType>(g),
-      packets[static_cast<size_t>(ghostPoints[g].packet)]->GetPoint(ghostPoints[g].row));
+    points->GetData()->SetTuple(np + static_cast<vtkIdType>(g), ghostPoints[g].row,
+      packets[static_cast<size_t>(ghostPoints[g].packet)]->GetPoints()->GetData());
   }
   result->SetPoints(points);
   // Point data: the piece's arrays, then the ghost points' rows of the same arrays.
   vtkPointData* pointData = result->GetPointData();
-  bool missing = !ExtendAttributes(pointData, piece->GetPointData(), total,
+  bool missing = !ExtendAttributes(pointData, piece->GetPointData(), total, np,
     [&](vtkIdType r, vtkDataSetAttributes*& holder, vtkIdType& row) {
-      if (r < np)
-      {
-        row = r;
-        return;
-      }
       const Row& ghostRow = ghostPoints[static_cast<size_t>(r - np)];
       holder = packets[static_cast<size_t>(ghostRow.packet)]->GetPointData();
       row = ghostRow.row;
@@ -1040,10 +1148,7 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
   {
     // A point no cell uses stays its piece's own (it is no other piece's).
     const bool owned = p < np && ownerOf[static_cast<size_t>(p)] == me;
-    ids->SetValue(p, p < np ? gid[static_cast<size_t>(p)]
-                            : vtkIdTypeArray::SafeDownCast(packets[static_cast<size_t>(ghostPoints[static_cast<size_t>(p - np)].packet)]
-                                                              ->GetPointData()->GetArray(PacketPointIds))
-                                ->GetValue(ghostPoints[static_cast<size_t>(p - np)].row));
+    ids->SetValue(p, p < np ? gid[static_cast<size_t>(p)] : ghostPointIds[static_cast<size_t>(p - np)]);
     pointGhosts->SetValue(p, owned ? 0 : vtkDataSetAttributes::DUPLICATEPOINT);
   }
   if (givenIds && givenIds->GetName())
@@ -1105,7 +1210,13 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
   result->SetStrips(kindCells[3]);
   const vtkIdType cellTotal = static_cast<vtkIdType>(order.size());
   // Own cells keep their numbers when their kinds come in order (e.g. polygons only).
-  missing = !ExtendAttributes(result->GetCellData(), piece->GetCellData(), cellTotal,
+  vtkIdType leadingCells = 0; // own cells that keep their numbers
+  while (leadingCells < cellTotal && order[static_cast<size_t>(leadingCells)].first == 0 &&
+    order[static_cast<size_t>(leadingCells)].second == leadingCells)
+  {
+    ++leadingCells;
+  }
+  missing = !ExtendAttributes(result->GetCellData(), piece->GetCellData(), cellTotal, leadingCells,
     [&](vtkIdType c, vtkDataSetAttributes*& holder, vtkIdType& row) {
       const auto& entry = order[static_cast<size_t>(c)];
       if (entry.first == 0)
