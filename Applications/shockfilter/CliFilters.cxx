@@ -41,8 +41,9 @@ const std::vector<Choice>& SamplingChoices()
 
 const std::vector<Choice>& TracingChoices()
 {
-  static const std::vector<Choice> choices = { { "exact", vtkShockAdvectionFilter::FACE_CROSSING },
-    { "stepped", vtkShockAdvectionFilter::STEPPED } };
+  static const std::vector<Choice> choices = { { "face-crossing", vtkShockAdvectionFilter::FACE_CROSSING },
+    { "stepped", vtkShockAdvectionFilter::STEPPED },
+    { "exact", vtkShockAdvectionFilter::FACE_CROSSING } }; // an earlier spelling, still accepted
   return choices;
 }
 
@@ -71,7 +72,7 @@ std::vector<OptionSpec> ShockOptionSpecs(
       d->GetNumberOfFlowUpdates()));
     specs.push_back(ChoiceOptionSpec(
       "--sampling", "MODE", "linear|nearest", target.sampling, SamplingChoices(), d->GetSampling()));
-    specs.push_back(ChoiceOptionSpec("--tracing", "MODE", "exact (face crossing)|stepped",
+    specs.push_back(ChoiceOptionSpec("--tracing", "MODE", "face-crossing|stepped",
       target.tracingMode, TracingChoices(), d->GetTracingMode()));
     specs.push_back(RangeOptionSpec("--step-fraction", "F", "step of stepped tracing (edges)",
       target.stepFraction, d->GetStepFractionMinValue(), d->GetStepFractionMaxValue(),

@@ -1,5 +1,6 @@
 #include "CliOptions.h"
 
+#include <algorithm>
 #include <iomanip>
 #include <sstream>
 
@@ -21,6 +22,52 @@ bool IsHelpRequest(const std::vector<std::string>& args)
     }
   }
   return false;
+}
+
+/// The number of single-character edits (insert, delete, replace, swap two
+/// neighbours) between `a` and `b` (the optimal string alignment distance).
+std::size_t EditDistance(const std::string& a, const std::string& b)
+{
+  const std::size_t width = b.size() + 1;
+  std::vector<std::size_t> d((a.size() + 1) * width);
+  for (std::size_t i = 0; i <= a.size(); ++i)
+  {
+    for (std::size_t j = 0; j <= b.size(); ++j)
+    {
+      std::size_t& here = d[i * width + j];
+      if (i == 0 || j == 0)
+      {
+        here = i + j;
+        continue;
+      }
+      here = std::min({ d[(i - 1) * width + j] + 1, d[i * width + j - 1] + 1,
+        d[(i - 1) * width + j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1) });
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+      {
+        here = std::min(here, d[(i - 2) * width + j - 2] + 1);
+      }
+    }
+  }
+  return d.back();
+}
+
+std::string Suggestion(const std::string& typed, const std::vector<std::string>& known)
+{
+  std::string best;
+  std::size_t bestDistance = 0;
+  for (const std::string& name : known)
+  {
+    // A prefix of one name (e.g. "--tim" for "--time") or a few typing slips.
+    const bool prefix = typed.size() >= 3 && name.compare(0, typed.size(), typed) == 0;
+    const std::size_t distance = prefix ? 0 : EditDistance(typed, name);
+    if ((prefix || distance <= std::max<std::size_t>(1, name.size() / 4)) &&
+      (best.empty() || distance < bestDistance))
+    {
+      best = name;
+      bestDistance = distance;
+    }
+  }
+  return best.empty() ? "" : " (did you mean '" + best + "'?)";
 }
 
 const OptionSpec* FindOption(const std::vector<OptionSpec>& options, const std::string& name)
@@ -63,8 +110,14 @@ std::vector<std::string> ParseArguments(
     const OptionSpec* option = FindOption(options, name);
     if (!option)
     {
-      throw CliError(command + ": unknown option '" + name + "' (see '" + ProgramName + " " +
-        command + " --help')");
+      std::vector<std::string> names;
+      for (const OptionSpec& known : options)
+      {
+        names.push_back(known.name);
+      }
+      const std::string hint = Suggestion(name, names);
+      throw CliError(command + ": unknown option '" + name + "'" +
+        (hint.empty() ? std::string(" (see '") + ProgramName + " " + command + " --help')" : hint));
     }
     if (option->valueName.empty())
     {
@@ -114,20 +167,47 @@ std::vector<std::string> ParseCommandLine(const std::string& command, const std:
   return positionals;
 }
 
-/// Returns the value of the choice named 'text' (case-insensitive); throws on an unknown name.
+/// A choice name as compared: lower case, without spaces, hyphens or underscores
+/// ("Face Crossing", "face-crossing" and "FACE_CROSSING" are one name).
+std::string ChoiceKey(const std::string& text)
+{
+  std::string key;
+  for (char c : ToLower(text))
+  {
+    if (c != ' ' && c != '-' && c != '_')
+    {
+      key += c;
+    }
+  }
+  return key;
+}
+
+/**
+ * Returns the value of the choice named 'text' (the ParaView names, in any case,
+ * with spaces, hyphens or underscores); throws on an unknown name, suggesting the
+ * closest one. Choices after the first with the same value are older spellings,
+ * accepted but not listed.
+ */
 int ParseChoice(const std::string& option, const std::string& text, const std::vector<Choice>& choices)
 {
-  const std::string wanted = ToLower(text);
+  const std::string wanted = ChoiceKey(text);
   std::string names;
+  std::vector<std::string> listed;
   for (const Choice& choice : choices)
   {
-    if (wanted == choice.first)
+    if (wanted == ChoiceKey(choice.first))
     {
       return choice.second;
     }
-    names += (names.empty() ? "" : "|") + std::string(choice.first);
+    if (ChoiceName(choice.second, choices) == choice.first)
+    {
+      names += (names.empty() ? "" : "|") + std::string(choice.first);
+    }
+    listed.push_back(choice.first);
   }
-  throw CliError(option + ": unknown value '" + text + "' (expected " + names + ")");
+  const std::string hint = Suggestion(ToLower(text), listed);
+  throw CliError(option + ": unknown value '" + text + "'" + (hint.empty() ? "" : hint) + " (expected " +
+    names + ")");
 }
 
 /// The name of 'value' among 'choices' (for reports).

@@ -90,7 +90,11 @@ T ParseInRange(const std::string& option, const std::string& text, T low, T high
   return value;
 }
 
-/// Returns the value of the choice named 'text' (case-insensitive); throws on an unknown name.
+/// " (did you mean 'NAME'?)" for the name of `known` closest to `typed`, or "" when none is close.
+std::string Suggestion(const std::string& typed, const std::vector<std::string>& known);
+
+/// Returns the value of the choice named 'text' (ParaView's names, any case, spaces or
+/// hyphens); throws on an unknown name, with the closest name.
 int ParseChoice(const std::string& option, const std::string& text, const std::vector<Choice>& choices);
 
 /// The name of 'value' among 'choices' (for reports).

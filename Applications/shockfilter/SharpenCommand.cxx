@@ -19,9 +19,12 @@ namespace
 const std::vector<Choice>& SolverChoices()
 {
   static const std::vector<Choice> choices = {
+    { "conjugate-gradient", vtkPolyDataShockSharpenFilter::CONJUGATE_GRADIENT },
+    { "conjugate-gradient-tolerance", vtkPolyDataShockSharpenFilter::CONJUGATE_GRADIENT_TOLERANCE },
+    { "exact", vtkPolyDataShockSharpenFilter::EXACT },
+    // Earlier spellings, still accepted.
     { "cg", vtkPolyDataShockSharpenFilter::CONJUGATE_GRADIENT },
     { "cg-tolerance", vtkPolyDataShockSharpenFilter::CONJUGATE_GRADIENT_TOLERANCE },
-    { "exact", vtkPolyDataShockSharpenFilter::EXACT },
   };
   return choices;
 }
@@ -69,11 +72,11 @@ std::vector<OptionSpec> SharpenOptionSpecs(SharpenSettings& settings)
     settings.screeningWeight, d->GetScreeningWeightMinValue(), d->GetScreeningWeightMaxValue(),
     d->GetScreeningWeight()));
   specs.push_back(ChoiceOptionSpec(
-    "--solver", "NAME", "cg|cg-tolerance|exact", settings.solver, SolverChoices(), d->GetSolver()));
-  specs.push_back(RangeOptionSpec("--iterations", "K", "CG iterations (cap of cg-tolerance)",
+    "--solver", "NAME", "conjugate-gradient|conjugate-gradient-tolerance|exact", settings.solver, SolverChoices(), d->GetSolver()));
+  specs.push_back(RangeOptionSpec("--iterations", "K", "CG iterations (cap of conjugate-gradient-tolerance)",
     settings.iterations, d->GetSolverIterationsMinValue(), d->GetSolverIterationsMaxValue(),
     d->GetSolverIterations()));
-  specs.push_back(RangeOptionSpec("--tolerance", "X", "stop residual of cg-tolerance (implied)",
+  specs.push_back(RangeOptionSpec("--tolerance", "X", "stop residual of conjugate-gradient-tolerance (implied)",
     settings.tolerance, d->GetSolverToleranceMinValue(), d->GetSolverToleranceMaxValue(),
     d->GetSolverTolerance()));
   specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));
@@ -119,7 +122,7 @@ int RunSharpenCommand(const std::vector<std::string>& args)
   const int tolerantSolver = vtkPolyDataShockSharpenFilter::CONJUGATE_GRADIENT_TOLERANCE;
   if (settings.tolerance && settings.solver.value_or(tolerantSolver) != tolerantSolver)
   {
-    throw CliError("sharpen: --tolerance applies to --solver cg-tolerance only");
+    throw CliError("sharpen: --tolerance applies to --solver conjugate-gradient-tolerance only");
   }
   const std::string& inputPath = paths[0];
   const std::string& outputPath = paths[1];

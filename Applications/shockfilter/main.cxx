@@ -37,6 +37,8 @@
 #include "CliOptions.h"
 #include "Commands.h"
 
+#include "vtkVersion.h"
+
 #include <csignal>
 #include <iomanip>
 #include <iostream>
@@ -89,7 +91,7 @@ std::string ShortUsage()
 {
   std::ostringstream text;
   text << "Usage: shockfilter COMMAND ARGUMENTS [options]\n"
-          "       shockfilter --help | COMMAND --help\n"
+          "       shockfilter --help | --version | COMMAND --help\n"
           "Commands:\n";
   for (const Command& command : Commands())
   {
@@ -125,15 +127,28 @@ int Dispatch(const std::vector<std::string>& args)
     std::cout << FullHelp();
     return 0;
   }
+  if (args[0] == "--version")
+  {
+    std::cout << ProgramName << " " << SHOCKFILTERS_VERSION << " (ShockFilters; VTK "
+              << vtkVersion::GetVTKVersion() << ")\n";
+    return 0;
+  }
   const Command* command = FindCommand(args[0]);
   if (!command)
   {
-    std::string names;
+    std::vector<std::string> names;
+    std::string list;
     for (const Command& known : Commands())
     {
-      names += (names.empty() ? "" : ", ") + std::string(known.name);
+      names.emplace_back(known.name);
+      list += (list.empty() ? "" : ", ") + std::string(known.name);
     }
-    throw CliError("unknown command '" + args[0] + "' (commands: " + names + "; see '" +
+    std::string hint = Suggestion(args[0], names);
+    if (hint.empty() && args[0].rfind("--", 0) == 0)
+    {
+      hint = Suggestion(args[0], { "--help", "--version" });
+    }
+    throw CliError("unknown command '" + args[0] + "'" + hint + " (commands: " + list + "; see '" +
       ProgramName + " --help')");
   }
   const std::vector<std::string> commandArgs(args.begin() + 1, args.end());
