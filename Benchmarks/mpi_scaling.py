@@ -161,7 +161,7 @@ def launch(plugin, work, path, ranks, threads, mpi=True, keep_log=False):
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
     script = [os.path.abspath(__file__), "run", plugin, work, path]
     if mpi:
-        command = MPIRUN + ["-np", str(ranks), "pvbatch", "--symmetric", "--mpi"] + script
+        command = MPIRUN + ["-np", str(ranks), "pvbatch", "--symmetric", "--mpi", "-v=1"] + script
     else:
         command = ["pvbatch"] + script
     out = subprocess.run(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,

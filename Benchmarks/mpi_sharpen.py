@@ -3,12 +3,12 @@ ghost layers and traffic per conjugate-gradient iteration.
 
   pvpython Benchmarks/mpi_sharpen.py prepare MESH.off LEVELS OUT.vtp
       Loop-subdivide an OFF mesh LEVELS times (each ~4x the vertices) and write it.
-  mpirun -np N pvbatch --symmetric --mpi Benchmarks/mpi_sharpen.py run PLUGIN MESH.vtp [FlowTime] [GhostLevels]
+  mpirun -np N pvbatch --symmetric --mpi -v=1 Benchmarks/mpi_sharpen.py run PLUGIN MESH.vtp [FlowTime] [GhostLevels]
       Every process: the mesh is read (by process 0) and spread by RedistributeDataSet,
       then Surface Shock Sharpen runs on the pieces. Each process prints one
       "RANK" line: seconds of the filter, its peak resident memory above the
       memory held before it (VmHWM after /proc/self/clear_refs), and the
-      filter's own log line (points owned and in ghost layers, bytes per CG iteration).
+      filter's own log line at verbosity 1 (points owned and in ghost layers, bytes per CG iteration).
 
 docs/parallel.md has the figures and the plan derived from them.
 """

@@ -123,7 +123,7 @@ void ReportRun(vtkPolyDataShockSharpenFilter* self, const shock::SharpeningRepor
   if (report.degenerateTriangles > 0)
   {
     // Removed, they no longer change the result (they used to stop traces): no warning.
-    vtkLogF(INFO, "vtkPolyDataShockSharpenFilter: %lld degenerate (zero-area) triangles ignored",
+    vtkLogF(1, "vtkPolyDataShockSharpenFilter: %lld degenerate (zero-area) triangles ignored",
       static_cast<long long>(report.degenerateTriangles));
   }
 
@@ -134,7 +134,7 @@ void ReportRun(vtkPolyDataShockSharpenFilter* self, const shock::SharpeningRepor
   field->AddArray(SingleValue("ShockFlippedTriangles", report.flippedTriangles));
   field->AddArray(SingleValue("ShockMaxDisplacement", report.maxDisplacement));
   output->SetFieldData(field);
-  vtkLogF(INFO,
+  vtkLogF(1,
     "vtkPolyDataShockSharpenFilter: %d solver iterations, relative residual %.3g%s, %lld flipped "
     "triangles, max displacement %.3g of the bounding-box diagonal",
     report.fit.iterations, report.fit.residual,
@@ -338,7 +338,7 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
   {
     ownedPoints += owned;
   }
-  vtkLogF(INFO,
+  vtkLogF(1,
     "vtkPolyDataShockSharpenFilter piece %d of %d: %lld points (%lld owned, %lld in ghost "
     "layers), %lld triangles; per CG iteration %lld bytes sent and %lld received point to "
     "point, 72 bytes reduced",

@@ -57,7 +57,7 @@
  * and name. Field data gets "ShockSolverIterations",
  * "ShockSolverResidual", "ShockFlippedTriangles" and "ShockMaxDisplacement"
  * (largest displacement / bounding-box diagonal), which are also logged at
- * verbosity INFO. Optional cell arrays: "ShockNormals" (the sharpened normals);
+ * verbosity 1 (quiet at the default INFO). Optional cell arrays: "ShockNormals" (the sharpened normals);
  * with GenerateFlowArrays, "ShockPotential" (points) and "ShockFlow" (cells).
  *
  * Parallel use: a mesh split over MPI processes (e.g. by RedistributeDataSet,

@@ -80,7 +80,7 @@ vtkAbstractArray* vtkShockAdvectionFilter::GetActiveScalarsToFilter(
                   "ParaView).");
     return nullptr;
   }
-  vtkLogF(INFO, "%s: no input array selected: filtering the active %s scalars '%s'.",
+  vtkLogF(1, "%s: no input array selected: filtering the active %s scalars '%s'.",
     this->GetClassName(), where, scalars->GetName() ? scalars->GetName() : "(unnamed)");
   return scalars;
 }

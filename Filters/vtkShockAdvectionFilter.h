@@ -265,7 +265,7 @@ protected:
    * The array chosen with SetInputArrayToProcess (index 0), with its association
    * (vtkDataObject::FIELD_ASSOCIATION_POINTS or _CELLS). With no array named
    * (the default, or an empty name) the active point scalars, else the active
-   * cell scalars, said at INFO level (vtkLog). Reports a vtkErrorMacro
+   * cell scalars, said at verbosity 1 (vtkLog; quiet at the default INFO). Reports a vtkErrorMacro
    * and returns nullptr when it is missing, not numeric, or not point/cell data.
    */
   vtkDataArray* GetArrayToFilter(vtkInformationVector** inputVector, int& association);

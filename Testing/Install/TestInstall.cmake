@@ -33,7 +33,61 @@ run("consumer build" "${CMAKE_COMMAND}" --build "${WORK}/consumer")
 run("consumer run" "${WORK}/consumer/consumer")
 message(STATUS "${run_output}")
 
+# README's C++ route, exactly as written there: its CMakeLists.txt and program,
+# run on a PNG photo in the program's folder.
+if (DEFINED SOURCE AND DEFINED PYTHON)
+  file(READ "${SOURCE}/README.md" readme)
+  string(FIND "${readme}" "### C++ (VTK pipeline)" at)
+  if (at LESS 0)
+    message(FATAL_ERROR "README.md has no section '### C++ (VTK pipeline)'")
+  endif ()
+  string(SUBSTRING "${readme}" ${at} -1 section)
+  foreach (language IN ITEMS cpp cmake)
+    string(FIND "${section}" "```${language}\n" begin)
+    if (begin LESS 0)
+      message(FATAL_ERROR "README.md's C++ section has no ${language} block")
+    endif ()
+    string(LENGTH "```${language}\n" fence)
+    math(EXPR begin "${begin} + ${fence}")
+    string(SUBSTRING "${section}" ${begin} -1 rest)
+    string(FIND "${rest}" "\n```" end)
+    string(SUBSTRING "${rest}" 0 ${end} code_${language})
+  endforeach ()
+  file(WRITE "${WORK}/readme/app.cxx" "${code_cpp}\n")
+  file(WRITE "${WORK}/readme/CMakeLists.txt" "${code_cmake}\n")
+  run("README's C++ project configure" "${CMAKE_COMMAND}" -S "${WORK}/readme" -B "${WORK}/readme/build"
+      "-DCMAKE_PREFIX_PATH=${prefix}" -DCMAKE_BUILD_TYPE=Release)
+  run("README's C++ project build" "${CMAKE_COMMAND}" --build "${WORK}/readme/build")
+  file(WRITE "${WORK}/readme/photo.py" [[
+from vtkmodules.vtkImagingCore import vtkImageShiftScale, vtkRTAnalyticSource
+from vtkmodules.vtkIOImage import vtkPNGWriter
+source = vtkRTAnalyticSource()
+source.SetWholeExtent(0, 63, 0, 47, 0, 0)
+to_bytes = vtkImageShiftScale()
+to_bytes.SetInputConnection(source.GetOutputPort())
+to_bytes.SetShift(-37.0)
+to_bytes.SetScale(255.0 / 240.0)
+to_bytes.SetOutputScalarTypeToUnsignedChar()
+to_bytes.ClampOverflowOn()
+writer = vtkPNGWriter()
+writer.SetInputConnection(to_bytes.GetOutputPort())
+writer.SetFileName("photo.png")
+writer.Write()
+]])
+  execute_process(COMMAND "${PYTHON}" photo.py WORKING_DIRECTORY "${WORK}/readme" RESULT_VARIABLE rc)
+  execute_process(COMMAND "${WORK}/readme/build/app" WORKING_DIRECTORY "${WORK}/readme" RESULT_VARIABLE rc
+    OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if (NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/readme/photo_sharp.png")
+    message(FATAL_ERROR "README's C++ program failed (${rc}) or wrote no photo_sharp.png:\n${out}\n${err}")
+  endif ()
+  message(STATUS "README's C++ program: ok")
+endif ()
+
 # The program.
+run("installed shockfilter --version" "${prefix}/bin/shockfilter" --version)
+if (NOT run_output MATCHES "^shockfilter [0-9]+\\.[0-9]+\\.[0-9]+ ")
+  message(FATAL_ERROR "shockfilter --version printed: ${run_output}")
+endif ()
 run("installed shockfilter --help" "${prefix}/bin/shockfilter" --help)
 
 # The plugin, both ways ParaView users load it.

@@ -105,6 +105,15 @@ try:
     check(list(chosen_first.InputArray) == ["POINTS", "RTData"], "InputArray before Input kept, got %s"
           % chosen_first.InputArray)
 
+    # A mesh with normals and no scalars: normals are no signal to sharpen, so no
+    # default array (the filter asks for one, as the VTK class does).
+    only_normals = SurfaceShockAdvection(Input=GenerateSurfaceNormals(Input=Sphere()))
+    check(list(only_normals.InputArray)[1] == "", "only Normals: no default array, got %s" % only_normals.InputArray)
+    # Normals beside another array: that array.
+    normals_and_heat = SurfaceShockAdvection(Input=GenerateSurfaceNormals(Input=Elevation(Input=Sphere())))
+    check(list(normals_and_heat.InputArray) == ["POINTS", "Elevation"], "Normals and Elevation: Elevation, got %s"
+          % normals_and_heat.InputArray)
+
     # The colours changed (serial runs; the MPI run is compared file by file;
     # the images are compared with the Wavelet there; Elevation is linear on
     # the sphere, a ramp the shock filter leaves nearly as it is).
