@@ -3,7 +3,7 @@ ghost layers and traffic per conjugate-gradient iteration.
 
   pvpython Benchmarks/mpi_sharpen.py prepare MESH.off LEVELS OUT.vtp
       Loop-subdivide an OFF mesh LEVELS times (each ~4x the vertices) and write it.
-  mpirun -np N pvbatch --symmetric --mpi -v=1 Benchmarks/mpi_sharpen.py run PLUGIN MESH.vtp [FlowTime] [GhostLevels]
+  mpirun -np N pvbatch --symmetric --mpi Benchmarks/mpi_sharpen.py run PLUGIN MESH.vtp [FlowTime] [GhostLevels]
       Every process: the mesh is read (by process 0) and spread by RedistributeDataSet,
       then Surface Shock Sharpen runs on the pieces. Each process prints one
       "RANK" line: seconds of the filter, its peak resident memory above the
@@ -69,6 +69,8 @@ def run(plugin, mesh_path, flow_time, ghost_levels):
     pieces = RedistributeDataSet(Input=reader)
     pieces.UpdatePipeline()
     sharpen = globals()["SurfaceShockSharpen"](Input=pieces, FlowTime=flow_time, GhostLevels=ghost_levels)
+    from vtkmodules.vtkCommonCore import vtkLogger
+    vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_1)  # the filter's piece line
     with open("/proc/self/clear_refs", "w") as handle:
         handle.write("5")  # reset VmHWM to the current resident set
     before = memory("VmRSS")

@@ -180,9 +180,18 @@ vtkImageShockAdvectionFilter::vtkImageShockAdvectionFilter()
     vtkDataSetAttributes::SCALARS);
 }
 
+bool vtkImageShockAdvectionFilter::FiltersType(vtkDataObject* input)
+{
+  return vtkImageData::SafeDownCast(input) != nullptr;
+}
+
 int vtkImageShockAdvectionFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  if (this->PassForeignBlock(inputVector, outputVector))
+  {
+    return 1;
+  }
   // Pieces are normalised by the range over all pieces (collective: before anything can fail).
   bool unknown = false;
   vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);

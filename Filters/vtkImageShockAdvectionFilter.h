@@ -175,6 +175,8 @@ protected:
   void CropToUpdateExtent(vtkInformationVector* outputVector);
 
   /// The data range over all pieces, FilterImage, then CropToUpdateExtent.
+  /// Images (a block of another type in a composite input passes through).
+  bool FiltersType(vtkDataObject* input) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 

@@ -67,9 +67,18 @@ int vtkPolyDataShockAdvectionFilter::RequestDataObject(
     : this->Superclass::RequestDataObject(request, inputVector, outputVector);
 }
 
+bool vtkPolyDataShockAdvectionFilter::FiltersType(vtkDataObject* input)
+{
+  return vtkShockPolyDataInternals::IsSurfaceType(input);
+}
+
 int vtkPolyDataShockAdvectionFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  if (this->PassForeignBlock(inputVector, outputVector))
+  {
+    return 1;
+  }
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   bool unknown = false;
   vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);

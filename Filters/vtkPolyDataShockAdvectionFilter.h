@@ -127,6 +127,8 @@ protected:
   bool FilterSurface(vtkPolyData* input, vtkDataArray* selected, int association, vtkPolyData* output,
     double unit = 1.0);
 
+  /// Surfaces: vtkPolyData and vtkUnstructuredGrid (a block of another type in a composite input passes through).
+  bool FiltersType(vtkDataObject* input) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 

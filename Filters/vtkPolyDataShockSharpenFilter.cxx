@@ -354,9 +354,18 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
 }
 }
 
+bool vtkPolyDataShockSharpenFilter::FiltersType(vtkDataObject* input)
+{
+  return vtkShockPolyDataInternals::IsSurfaceType(input);
+}
+
 int vtkPolyDataShockSharpenFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  if (this->PassForeignBlock(inputVector, outputVector))
+  {
+    return 1;
+  }
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   bool unknown = false;
   vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);

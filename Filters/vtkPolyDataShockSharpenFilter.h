@@ -288,6 +288,8 @@ protected:
   /// vtkPolyData output, also for an unstructured-grid input.
   int RequestDataObject(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
+  /// Surfaces: vtkPolyData and vtkUnstructuredGrid (a block of another type in a composite input passes through).
+  bool FiltersType(vtkDataObject* input) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   void ResetMeasurements() override;

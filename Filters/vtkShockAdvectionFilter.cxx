@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
@@ -13,6 +15,7 @@
 #include "vtkCellData.h"
 #include "vtkMultiProcessController.h"
 #include "vtkShockParallel.h"
+#include "vtkSmartPointer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -44,6 +47,52 @@ bool vtkShockAdvectionFilter::BeginExecution()
 {
   this->ResetMeasurements();
   return this->ValidateParameters();
+}
+
+vtkTypeBool vtkShockAdvectionFilter::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector && this->GetNumberOfInputPorts() > 0 && inputVector[0]
+    ? inputVector[0]->GetInformationObject(0)
+    : nullptr;
+  if (auto* composite = vtkCompositeDataSet::SafeDownCast(inInfo ? inInfo->Get(vtkDataObject::DATA_OBJECT()) : nullptr))
+  {
+    this->CompositeInput = composite;
+  }
+  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+}
+
+bool vtkShockAdvectionFilter::IsBlockOfCompositeInput(vtkDataObject* data)
+{
+  if (!data || !this->CompositeInput)
+  {
+    return false;
+  }
+  auto iterator = vtk::TakeSmartPointer(this->CompositeInput->NewIterator());
+  for (iterator->InitTraversal(); !iterator->IsDoneWithTraversal(); iterator->GoToNextItem())
+  {
+    if (iterator->GetCurrentDataObject() == data)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool vtkShockAdvectionFilter::PassForeignBlock(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
+  vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
+  if (!input || !output || this->FiltersType(input) || !output->IsA(input->GetClassName()) ||
+    !this->IsBlockOfCompositeInput(input))
+  {
+    return false;
+  }
+  output->ShallowCopy(input);
+  vtkLogF(1, "%s: a %s block of the composite input is not filtered by this filter: passed through.",
+    this->GetClassName(), input->GetClassName());
+  return true;
 }
 
 bool vtkShockAdvectionFilter::ReportProgress(double fraction)
@@ -95,6 +144,16 @@ vtkDataArray* vtkShockAdvectionFilter::GetArrayToFilter(
   vtkAbstractArray* selected = named
     ? this->GetInputAbstractArrayToProcess(0, inputVector, association)
     : this->GetActiveScalarsToFilter(inputVector, association);
+  if (!selected && named && this->IsBlockOfCompositeInput(vtkDataSet::GetData(inputVector[0], 0)))
+  {
+    // ParaView names one array for all blocks: a block without it filters its own active scalars.
+    selected = this->GetActiveScalarsToFilter(inputVector, association);
+    if (selected)
+    {
+      vtkLogF(1, "%s: this block has no array '%s': filtering its active scalars '%s'.", this->GetClassName(),
+        selection->Get(vtkDataObject::FIELD_NAME()), selected->GetName() ? selected->GetName() : "(unnamed)");
+    }
+  }
   if (!selected)
   {
     if (named)
@@ -127,7 +186,11 @@ vtkDataArray* vtkShockAdvectionFilter::FindArrayToFilter(
   vtkInformation* selection = this->GetInputArrayInformation(0);
   if (selection->Has(vtkDataObject::FIELD_NAME()) && *selection->Get(vtkDataObject::FIELD_NAME()))
   {
-    return vtkDataArray::SafeDownCast(this->GetInputAbstractArrayToProcess(0, inputVector, association));
+    vtkAbstractArray* named = this->GetInputAbstractArrayToProcess(0, inputVector, association);
+    if (named || !this->IsBlockOfCompositeInput(vtkDataSet::GetData(inputVector[0], 0)))
+    {
+      return vtkDataArray::SafeDownCast(named);
+    }
   }
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
   if (!input)

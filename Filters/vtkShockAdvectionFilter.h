@@ -32,6 +32,7 @@
 #define vtkShockAdvectionFilter_h
 
 #include "vtkPassInputTypeAlgorithm.h"
+#include "vtkWeakPointer.h" // for CompositeInput
 
 #include <string>
 #include "vtkFiltersShockModule.h" // for export macro
@@ -39,6 +40,8 @@
 class vtkDataArray;
 class vtkAbstractArray;
 class vtkMultiProcessController;
+
+class vtkCompositeDataSet;
 
 class VTKFILTERSSHOCK_EXPORT vtkShockAdvectionFilter : public vtkPassInputTypeAlgorithm
 {
@@ -258,6 +261,24 @@ protected:
   /// Start of RequestData: ResetMeasurements, then ValidateParameters.
   bool BeginExecution();
 
+  /// Notes a composite input before the pipeline hands its blocks to RequestData.
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  /// Whether `data` is a block of the composite input (RequestData is filtering it block by block).
+  bool IsBlockOfCompositeInput(vtkDataObject* data);
+
+  /// Whether this filter filters `input`'s type (the image filter images, the surface filters surfaces).
+  virtual bool FiltersType(vtkDataObject* input) = 0;
+
+  /**
+   * A block of a composite input that this filter does not filter (a mesh
+   * block under the image filter, an image block under the surface filters)
+   * is copied to the output unchanged, said at verbosity 1: returns true.
+   * False for anything else (the filter runs).
+   */
+  bool PassForeignBlock(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+
   /// Progress/abort bridge for the kernels: UpdateProgress, then false once AbortExecute is set.
   bool ReportProgress(double fraction);
 
@@ -265,8 +286,11 @@ protected:
    * The array chosen with SetInputArrayToProcess (index 0), with its association
    * (vtkDataObject::FIELD_ASSOCIATION_POINTS or _CELLS). With no array named
    * (the default, or an empty name) the active point scalars, else the active
-   * cell scalars, said at verbosity 1 (vtkLog; quiet at the default INFO). Reports a vtkErrorMacro
-   * and returns nullptr when it is missing, not numeric, or not point/cell data.
+   * cell scalars, said at verbosity 1 (vtkLog; quiet at the default INFO).
+   * A block of a composite input that lacks the named array takes its own
+   * active scalars the same way (ParaView names one array for all blocks).
+   * Reports a vtkErrorMacro and returns nullptr when it is missing, not
+   * numeric, or not point/cell data.
    */
   vtkDataArray* GetArrayToFilter(vtkInformationVector** inputVector, int& association);
   /// The active point scalars, else the active cell scalars (no array named).
@@ -324,6 +348,8 @@ protected:
   /// Mean edge length over all pieces for the current execution (0: the mesh's own).
   double ParallelLengthScale = 0.0;
   vtkMultiProcessController* Controller = nullptr;
+  /// The composite input last seen (the pipeline then hands RequestData its blocks one by one).
+  vtkWeakPointer<vtkCompositeDataSet> CompositeInput;
 
   double LastSetupSeconds = 0.0;
   double LastFlowSeconds = 0.0;

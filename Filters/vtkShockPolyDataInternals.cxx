@@ -779,11 +779,17 @@ bool BeginSurface(vtkInformationVector** inputVector, vtkMultiProcessController*
     selection ? *selection : std::string(), ghostLevels, piece, error);
 }
 
+bool IsSurfaceType(vtkDataObject* data)
+{
+  return vtkPolyData::SafeDownCast(data) || vtkUnstructuredGrid::SafeDownCast(data);
+}
+
 bool EnsurePolyDataOutput(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (!inInfo || !outInfo || !vtkDataSet::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
+  // Other data sets (a block of another type in a composite input) keep their type and pass through.
+  if (!inInfo || !outInfo || !IsSurfaceType(inInfo->Get(vtkDataObject::DATA_OBJECT())))
   {
     return false;
   }

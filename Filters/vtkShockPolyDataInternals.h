@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+class vtkDataObject;
 class vtkDataSet;
 class vtkMultiProcessController;
 namespace vtkShockParallel
@@ -173,6 +174,9 @@ std::string ValidateSurface(vtkPolyData* surface);
  * superclass then copies its structure and the blocks come one by one).
  */
 bool EnsurePolyDataOutput(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+
+/// vtkPolyData or vtkUnstructuredGrid: the types the surface filters filter.
+bool IsSurfaceType(vtkDataObject* data);
 
 /// Add "ShockPotential" (points) and "ShockFlow" (cells) to `output`.
 void AttachFlowArrays(vtkPolyData* output, const shock::TriangleMesh& mesh,

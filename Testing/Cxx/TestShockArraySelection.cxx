@@ -1,6 +1,6 @@
 // Which array the advection filters process when none is named: the active
 // point scalars, else the active cell scalars (also for the empty name that
-// ParaView sends when the input had no arrays yet), said at INFO level.
+// ParaView sends when the input had no arrays yet), said at verbosity 1; and mixed composites.
 #include "vtkImageShockAdvectionFilter.h"
 #include "vtkPolyDataShockAdvectionFilter.h"
 
@@ -11,6 +11,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkImageData.h"
 #include "vtkLogger.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -168,4 +169,78 @@ TEST(ShockArraySelection, ANamedArrayThatIsMissingIsStillAnError)
   MessageLog log(filter);
   EXPECT_FALSE(UpdateSucceeds(filter));
   EXPECT_NE(log.Errors.find("no point or cell array named 'Missing'"), std::string::npos) << log.Errors;
+}
+
+// A composite of an image and a mesh (ParaView's GroupDatasets): each filter
+// filters the blocks of its type, as if alone, the others pass through; the one
+// array ParaView names for all blocks falls back to a block's active scalars
+// where the block lacks it (only inside a composite: alone, it is an error above).
+TEST(ShockArraySelection, MixedCompositeBlocks)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(40, 8, 1);
+  image->GetPointData()->SetScalars(Step("ImageStep", 40, 8));
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(32);
+  sphere->SetPhiResolution(16);
+  sphere->Update();
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->DeepCopy(sphere->GetOutput());
+  auto heat = vtkSmartPointer<vtkDoubleArray>::New();
+  heat->SetName("Heat");
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    heat->InsertNextValue(std::tanh(8.0 * mesh->GetPoint(p)[2]));
+  }
+  mesh->GetPointData()->SetScalars(heat);
+  vtkNew<vtkMultiBlockDataSet> group;
+  group->SetNumberOfBlocks(2);
+  group->SetBlock(0, image);
+  group->SetBlock(1, mesh);
+
+  // The image filter, with the mesh's array named (what ParaView's default gave).
+  vtkNew<vtkImageShockAdvectionFilter> imageFilter;
+  imageFilter->SetInputData(group);
+  imageFilter->SetFlowTime(512.0);
+  imageFilter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Heat");
+  InfoLog log;
+  MessageLog messages(imageFilter);
+  ASSERT_TRUE(UpdateSucceeds(imageFilter)) << messages.Errors;
+  EXPECT_EQ(messages.Errors, "");
+  auto* out = vtkMultiBlockDataSet::SafeDownCast(imageFilter->GetOutputDataObject(0));
+  ASSERT_NE(out, nullptr);
+  auto* imageOut = vtkImageData::SafeDownCast(out->GetBlock(0));
+  auto* meshOut = vtkPolyData::SafeDownCast(out->GetBlock(1));
+  ASSERT_NE(imageOut, nullptr);
+  ASSERT_NE(meshOut, nullptr);
+  vtkNew<vtkImageShockAdvectionFilter> imageAlone;
+  imageAlone->SetInputData(image);
+  imageAlone->SetFlowTime(512.0);
+  ASSERT_TRUE(UpdateSucceeds(imageAlone));
+  vtkDataArray* filtered = imageOut->GetPointData()->GetArray("ImageStep");
+  vtkDataArray* alone = imageAlone->GetOutput()->GetPointData()->GetArray("ImageStep");
+  ASSERT_NE(filtered, nullptr);
+  EXPECT_TRUE(Changed(image->GetPointData()->GetScalars(), filtered));
+  ASSERT_NE(alone, nullptr);
+  ASSERT_EQ(alone->GetNumberOfTuples(), filtered->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < alone->GetNumberOfTuples(); ++i)
+  {
+    ASSERT_EQ(alone->GetTuple1(i), filtered->GetTuple1(i)) << "the image block equals the image filtered alone";
+  }
+  EXPECT_EQ(meshOut->GetNumberOfPoints(), mesh->GetNumberOfPoints());
+  EXPECT_EQ(meshOut->GetPointData()->GetArray("Heat"), heat.GetPointer()) << "the mesh block passes through";
+  EXPECT_NE(log.Text.find("no array 'Heat'"), std::string::npos) << log.Text;
+
+  // The surface filter on the same composite: the mesh filtered, the image passed through.
+  vtkNew<vtkPolyDataShockAdvectionFilter> surfaceFilter;
+  surfaceFilter->SetInputData(group);
+  surfaceFilter->SetFlowTime(4096.0);
+  ASSERT_TRUE(UpdateSucceeds(surfaceFilter));
+  out = vtkMultiBlockDataSet::SafeDownCast(surfaceFilter->GetOutputDataObject(0));
+  ASSERT_NE(out, nullptr);
+  ASSERT_NE(vtkImageData::SafeDownCast(out->GetBlock(0)), nullptr);
+  EXPECT_EQ(vtkImageData::SafeDownCast(out->GetBlock(0))->GetPointData()->GetArray("ImageStep"),
+    image->GetPointData()->GetScalars()) << "the image block passes through";
+  ASSERT_NE(vtkPolyData::SafeDownCast(out->GetBlock(1)), nullptr);
+  EXPECT_TRUE(Changed(heat, vtkPolyData::SafeDownCast(out->GetBlock(1))->GetPointData()->GetArray("Heat")));
 }

@@ -26,6 +26,16 @@ endfunction ()
 
 run("install" "${CMAKE_COMMAND}" --install "${BUILD}" --prefix "${prefix}")
 
+# The headers: in a versioned folder, as VTK's and ParaView's, none loose in include/.
+file(GLOB loose_headers "${prefix}/include/*.h")
+if (loose_headers)
+  message(FATAL_ERROR "headers installed loose in include/: ${loose_headers}")
+endif ()
+file(GLOB versioned "${prefix}/include/ShockFilters-*/vtkImageShockAdvectionFilter.h")
+if (NOT versioned)
+  message(FATAL_ERROR "vtkImageShockAdvectionFilter.h is not in include/ShockFilters-<major>.<minor>/")
+endif ()
+
 # An external C++ project.
 run("consumer configure" "${CMAKE_COMMAND}" -S "${CMAKE_CURRENT_LIST_DIR}/Consumer" -B "${WORK}/consumer"
     "-DCMAKE_PREFIX_PATH=${prefix}" -DCMAKE_BUILD_TYPE=Release)

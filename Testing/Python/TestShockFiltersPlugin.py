@@ -13,8 +13,8 @@ Loads the real plugin into the real pvpython and checks, for
   empty output, no crash, and the session goes on; out-of-range values are
   clamped by the classes;
 - composite inputs (GroupDatasets, partitioned collections): block by block,
-  identical to filtering each block alone; mixed block types are refused by
-  the input domain and give a clear error when forced from Python;
+  identical to filtering each block alone; in mixed composites the matching
+  blocks are filtered (each with its own array) and the others pass through;
 - the read-only measurement properties;
 - with SOURCE_XML (Plugin/ShockFilters.xml): one flat definition per filter,
   shared properties identical in each, range domains equal to the class
@@ -787,19 +787,39 @@ check(len(parts) == 2 and np.array_equal(point_array(parts[0], "Colour"),
                                          point_array(fetch(composite_surface).GetBlock(0), "Colour")),
       "partitioned: same result as the multiblock")
 
-# Mixed block types: refused by the input domain (the GUI greys the filter
-# out); forced from Python, the foreign block gives an error and stays empty.
-group_mixed = GroupDatasets(Input=[wavelet, colour])
-mixed = ImageShockAdvection(Input=group_mixed)
-mixed.InputArray = ["POINTS", "RTData"]
-check(not in_input_domain(mixed, group_mixed), "mixed blocks: not in the image input domain")
+# Mixed block types (the input domain accepts a composite with any matching
+# block): the matching blocks are filtered as if alone, each with the array it
+# has (ParaView names one array for all blocks: a block without it takes its
+# own active scalars), the other blocks pass through unchanged; no error.
+heat = Elevation(Input=Sphere(ThetaResolution=48, PhiResolution=24), LowPoint=[0, 0, -0.1], HighPoint=[0, 0, 0.1])
+group_mixed = GroupDatasets(Input=[wavelet, heat])
+mixed = ImageShockAdvection(Input=group_mixed)  # defaults, as a user writes it
+check(in_input_domain(mixed, group_mixed), "mixed blocks: in the image input domain")
+mixed_surface = SurfaceShockAdvection(Input=group_mixed, FlowTime=512.0)
 messages.clear()
 mixed.UpdatePipeline()
-parts = blocks(fetch(mixed))
-check(len(messages.errors) > 0, "mixed blocks: an error is reported")
-check(any("vtkImageData" in e for e in messages.errors), "mixed blocks: the error names the expected type")
-check(len(parts) == 2 and parts[0].GetNumberOfPoints() == 80 * 60 and parts[1].GetNumberOfPoints() == 0,
-      "mixed blocks: image block filtered, polydata block empty")
+mixed_surface.UpdatePipeline()
+check(not messages.errors, "mixed blocks: no error, got %s" % messages.errors)
+image_alone = ImageShockAdvection(Input=wavelet)
+image_alone.InputArray = ["POINTS", "RTData"]
+image_alone.UpdatePipeline()
+surface_alone = SurfaceShockAdvection(Input=heat, FlowTime=512.0)
+surface_alone.UpdatePipeline()
+parts = blocks(mixed.GetClientSideObject().GetOutputDataObject(0))
+check(len(parts) == 2 and parts[0].IsA("vtkImageData") and parts[1].IsA("vtkPolyData"), "mixed blocks: types kept")
+check(np.array_equal(point_array(parts[0], "RTData"), point_array(fetch(image_alone), "RTData")),
+      "mixed blocks: the image block filtered as alone (its RTData)")
+check(not np.array_equal(point_array(parts[0], "RTData"), point_array(fetch(wavelet), "RTData")),
+      "mixed blocks: the image block changed")
+check(np.array_equal(point_array(parts[1], "Elevation"), point_array(fetch(heat), "Elevation")) and
+      np.array_equal(points(parts[1]), points(fetch(heat))), "mixed blocks: the mesh block unchanged by the image filter")
+parts = blocks(mixed_surface.GetClientSideObject().GetOutputDataObject(0))
+check(len(parts) == 2 and np.array_equal(point_array(parts[1], "Elevation"), point_array(fetch(surface_alone), "Elevation")),
+      "mixed blocks: the mesh block filtered as alone by the surface filter")
+check(not np.array_equal(point_array(parts[1], "Elevation"), point_array(fetch(heat), "Elevation")),
+      "mixed blocks: the mesh block changed")
+check(np.array_equal(point_array(parts[0], "RTData"), point_array(fetch(wavelet), "RTData")),
+      "mixed blocks: the image block unchanged by the surface filter")
 
 print("%d passed, %d failed" % (passed, len(failures)))
 sys.exit(1 if failures else 0)
