@@ -160,8 +160,8 @@ std::string ArrayNames(vtkDataSetAttributes* attributes)
 /**
  * The array to filter: the numeric array named 'requested', looked for in the
  * point data then in the cell data (only in those of 'association' when given);
- * without a name, the active scalars of 'association' (default: the point
- * data), named 'unnamedName' if they have no name. Throws, listing the arrays
+ * without a name, the active scalars of 'association' (default: those of the
+ * point data, else of the cell data), named 'unnamedName' if they have no name. Throws, listing the arrays
  * there are, when there is no such array.
  */
 SelectedArray SelectArray(vtkDataSet* data, const std::string& requested, std::optional<int> association,
@@ -189,7 +189,10 @@ SelectedArray SelectArray(vtkDataSet* data, const std::string& requested, std::o
   SelectedArray selected;
   if (requested.empty())
   {
-    selected.association = association.value_or(vtkDataObject::FIELD_ASSOCIATION_POINTS);
+    // As the VTK classes: the active point scalars, else the active cell scalars.
+    selected.association = association.value_or(data->GetPointData()->GetScalars() || !data->GetCellData()->GetScalars()
+        ? vtkDataObject::FIELD_ASSOCIATION_POINTS
+        : vtkDataObject::FIELD_ASSOCIATION_CELLS);
     selected.array = attributesOf(selected.association)->GetScalars();
     if (!selected.array)
     {
@@ -273,8 +276,11 @@ void BackFromUnitFrame(vtkPolyData* mesh, const MeshFrame& frame)
 
 /// Filters the point array 'arrayName' of 'input'; throws "shock filter failed: ..." on error.
 FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
-  const ShockOptions& options, const ImageMethodOptions& methodOptions)
+  const ShockOptions& options, const ImageMethodOptions& methodOptions, int association)
 {
+  vtkDataSetAttributes* attributes = association == vtkDataObject::FIELD_ASSOCIATION_CELLS
+    ? static_cast<vtkDataSetAttributes*>(input->GetCellData())
+    : input->GetPointData();
   vtkNew<vtkImageShockAdvectionFilter> filter;
   ConfigureFilter(filter, options);
   using F = vtkImageShockAdvectionFilter;
@@ -282,21 +288,20 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   SetIfGiven(filter.Get(), &F::SetCourantNumber, methodOptions.courantNumber);
   SetIfGiven(filter.Get(), &F::SetMaximumIterations, methodOptions.maximumIterations);
   SetIfGiven(filter.Get(), &F::SetHierarchyLevels, methodOptions.hierarchyLevels);
-  filter->SetInputArrayToProcess(
-    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrayName.c_str());
+  filter->SetInputArrayToProcess(0, 0, 0, association, arrayName.c_str());
   filter->SetInputData(input);
 
   FilterRun run;
-  vtkDataArray* values = input->GetPointData()->GetArray(arrayName.c_str());
-  run.totalSeconds = TimedUpdate(
-    filter, ImageFilterBytes(input->GetNumberOfPoints(), values ? values->GetNumberOfComponents() : 1));
+  vtkDataArray* values = attributes->GetArray(arrayName.c_str());
+  run.totalSeconds = TimedUpdate(filter,
+    ImageFilterBytes(values ? values->GetNumberOfTuples() : input->GetNumberOfPoints(),
+      values ? values->GetNumberOfComponents() : 1));
   run.output = vtkSmartPointer<vtkImageData>::New();
   run.output->ShallowCopy(filter->GetOutput());
   run.time = filter->GetFlowTime();
   run.flowMode = filter->GetFlowMode();
   run.threads = filter->GetNumberOfThreads();
-  vtkDataArray* array = input->GetPointData()->GetArray(arrayName.c_str());
-  run.components = array ? array->GetNumberOfComponents() : 0;
+  run.components = values ? values->GetNumberOfComponents() : 0;
   run.flowSeconds = filter->GetLastFlowSeconds();
   run.advectionSeconds = filter->GetLastAdvectionSeconds();
   run.traceSteps = filter->GetLastTraceSteps();

@@ -150,7 +150,8 @@ struct ImageMethodOptions
 
 /// Filters the point array 'arrayName' of 'input'; throws "shock filter failed: ..." on error.
 FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
-  const ShockOptions& options, const ImageMethodOptions& methodOptions = ImageMethodOptions());
+  const ShockOptions& options, const ImageMethodOptions& methodOptions = ImageMethodOptions(),
+  int association = vtkDataObject::FIELD_ASSOCIATION_POINTS);
 
 } // namespace shockcli
 

@@ -6,10 +6,14 @@
 
 #include "vtkImageShockAdvectionFilter.h"
 #include "vtkNew.h"
+#include "vtkCellData.h"
+#include "vtkImageData.h"
 #include "vtkPointData.h"
+#include "vtkSmartPointer.h"
 
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace shockcli
@@ -41,11 +45,41 @@ std::string TimingsJson(const std::string& command, vtkImageData* image, const F
   return json.Text();
 }
 
+/**
+ * The cells of `image` as the points of an image (the cells' centres, same
+ * raster): the form the raster writers store, for an image whose pixels are
+ * cells (ParaView's GDAL reader gives photos so). Shares the cell array `arrayName`.
+ */
+vtkSmartPointer<vtkImageData> PixelsAsPoints(vtkImageData* image, const std::string& arrayName)
+{
+  int extent[6];
+  image->GetExtent(extent);
+  double half[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const bool flat = extent[2 * a + 1] == extent[2 * a];
+    half[a] = flat ? 0.0 : 0.5; // a flat axis has one layer of cells, centred on its points
+    extent[2 * a + 1] = flat ? extent[2 * a + 1] : extent[2 * a + 1] - 1;
+  }
+  // Physical(i) = origin + D (i spacing): with the same extent start, the
+  // origin moves by half a cell, to the physical point of index `half`.
+  double origin[3];
+  image->TransformContinuousIndexToPhysicalPoint(half, origin);
+  auto pixels = vtkSmartPointer<vtkImageData>::New();
+  pixels->SetExtent(extent);
+  pixels->SetSpacing(image->GetSpacing());
+  pixels->SetDirectionMatrix(image->GetDirectionMatrix());
+  pixels->SetOrigin(origin);
+  pixels->GetPointData()->SetScalars(image->GetCellData()->GetArray(arrayName.c_str()));
+  return pixels;
+}
+
 struct ImageSettings
 {
   ShockOptions shock;
   ImageMethodOptions method;
   std::string arrayName;
+  std::optional<int> association;
   bool timings = false;
   std::uint64_t maxSamples = shockio::DefaultMaxSamples;
 };
@@ -69,8 +103,11 @@ std::vector<OptionSpec> ImageOptionSpecs(ImageSettings& settings)
   specs.push_back(RangeOptionSpec("--max-iterations", "N", "pde: most explicit steps",
     method.maximumIterations, defaults->GetMaximumIterationsMinValue(),
     defaults->GetMaximumIterationsMaxValue(), defaults->GetMaximumIterations()));
-  specs.push_back(
-    ArrayOptionSpec(settings.arrayName, "point array to filter (default: active point scalars)"));
+  specs.push_back(ArrayOptionSpec(
+    settings.arrayName, "point or cell array to filter (default: active point scalars, else cell scalars)"));
+  specs.push_back({ "--association", "WHERE", "point|cell data only, for --array and the default scalars",
+    [&settings](const std::string& v)
+    { settings.association = ParseChoice("--association", v, AssociationChoices()); } });
   specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));
   specs.push_back(TimingsOptionSpec(settings.timings));
   return specs;
@@ -83,7 +120,8 @@ std::string ImageHelp()
   ImageSettings unused;
   std::ostringstream text;
   text << "shockfilter image INPUT OUTPUT [options]\n"
-          "  Sharpens the selected point array of an image or volume and writes it.\n"
+          "  Sharpens the selected point or cell array of an image or volume and writes it\n"
+          "  (cell data: each cell a pixel, as in the .vti ParaView saves from a photo).\n"
           "  Formats, chosen by extension (case-insensitive):\n"
           "    read:  png jpg jpeg tif tiff bmp pnm ppm pgm vti vtk (structured points)\n"
           "    write: png jpg jpeg tif tiff bmp pnm ppm pgm vti vtk\n"
@@ -122,12 +160,20 @@ int RunImageCommand(const std::vector<std::string>& args)
   RequireWritable(outputPath);
 
   vtkSmartPointer<vtkImageData> input = ReadImageFile(inputPath, settings.maxSamples);
-  const std::string arrayName =
-    SelectArray(input, settings.arrayName, vtkDataObject::FIELD_ASSOCIATION_POINTS, "ImageScalars").name;
+  const SelectedArray selected = SelectArray(input, settings.arrayName, settings.association, "ImageScalars");
+  const std::string& arrayName = selected.name;
+  // Pixels stored as cells (e.g. a .vti ParaView saved from its GDAL reader):
+  // .vti and .vtk keep them so; the raster formats store the same raster as points.
+  const bool cells = selected.association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  const bool raster =
+    outputFormat.id != shockio::ImageFormat::VTI && outputFormat.id != shockio::ImageFormat::LegacyVTK;
   std::string error;
-  Require(shockio::CheckStorable(input, arrayName, outputFormat, outputPath, error), error);
-  const FilterRun run = RunImageFilter(input, arrayName, settings.shock, settings.method);
-  WriteImageFile(run.output, outputPath, arrayName);
+  Require(shockio::CheckStorable(cells ? PixelsAsPoints(input, arrayName).GetPointer() : input.GetPointer(),
+            arrayName, outputFormat, outputPath, error),
+    error);
+  const FilterRun run = RunImageFilter(input, arrayName, settings.shock, settings.method, selected.association);
+  WriteImageFile(cells && raster ? PixelsAsPoints(run.output, arrayName).GetPointer() : run.output.GetPointer(),
+    outputPath, arrayName);
 
   if (settings.timings)
   {

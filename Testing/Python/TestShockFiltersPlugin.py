@@ -270,7 +270,7 @@ if SOURCE_XML:
                    for proxy in ET.parse(SOURCE_XML).getroot().iter("SourceProxy")}
     check(set(definitions) == set(LABELS), "source XML: one flat definition per filter, %s" % sorted(definitions))
     # Deliberately different texts (what is sharpened, what is measured).
-    OWN_TEXT = {"Sampling", "GenerateFlowArrays", "LastSetupSeconds", "LastFlowSeconds",
+    OWN_TEXT = {"FlowTime", "Sampling", "GenerateFlowArrays", "LastSetupSeconds", "LastFlowSeconds",
                 "LastAdvectionSeconds", "LastTraceSteps", "GhostLevels"}
 
     def shape(prop, with_text):
