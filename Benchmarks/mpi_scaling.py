@@ -118,7 +118,8 @@ def run(plugin, work, path):
     # The pieces' figures (points in ghost layers, bytes per CG iteration) are
     # Surface Shock Sharpen's log lines at verbosity 1; weak() reads them.
     from vtkmodules.vtkCommonCore import vtkLogger
-    vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_1)
+    if vtkLogger.GetCurrentVerbosityCutoff() < vtkLogger.VERBOSITY_1:  # -v=TRACE stays TRACE
+        vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_1)
     with open("/proc/self/clear_refs", "w") as handle:
         handle.write("5")  # VmHWM back to the current resident set
     before = memory("VmRSS")

@@ -70,7 +70,8 @@ def run(plugin, mesh_path, flow_time, ghost_levels):
     pieces.UpdatePipeline()
     sharpen = globals()["SurfaceShockSharpen"](Input=pieces, FlowTime=flow_time, GhostLevels=ghost_levels)
     from vtkmodules.vtkCommonCore import vtkLogger
-    vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_1)  # the filter's piece line
+    if vtkLogger.GetCurrentVerbosityCutoff() < vtkLogger.VERBOSITY_1:
+        vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_1)  # the filter's piece line
     with open("/proc/self/clear_refs", "w") as handle:
         handle.write("5")  # reset VmHWM to the current resident set
     before = memory("VmRSS")

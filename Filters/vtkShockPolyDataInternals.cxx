@@ -1,3 +1,4 @@
+#include "vtkLogger.h"
 #include "vtkShockPolyDataInternals.h"
 
 #include "MeshOrder.h"
@@ -415,7 +416,10 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
   const auto start = std::chrono::steady_clock::now();
   out.representative.clear();
   out.pointOrder.clear();
-  if (!ExtractTriangles(input, out.triangles, error))
+  vtkLogStartScope(TRACE, "shock: mesh: triangles");
+  const bool extracted = ExtractTriangles(input, out.triangles, error);
+  vtkLogEndScope("shock: mesh: triangles");
+  if (!extracted)
   {
     error = "Cannot read the mesh: " + error + ".";
     return false;
@@ -442,6 +446,7 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
   // The Morton order serves the renumbering and the search for coincident
   // points (copies share its cells), whether or not the mesh is renumbered.
   shock::MeshNumbering numbering;
+  vtkLogStartScope(TRACE, "shock: mesh: locality order");
   if (localityOrder || mergeCoincidentPoints)
   {
     numbering = shock::MortonOrder(numberOfPoints, points.data(), threads);
@@ -464,6 +469,8 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
       out.triangles.triangles.data(), threads);
     Renumber(std::move(numbering), threads, out);
   }
+  vtkLogEndScope("shock: mesh: locality order");
+  vtkLogScopeF(TRACE, "shock: mesh: connectivity");
   // The ids are taken over by the mesh (not copied): read them back with mesh.Corners.
   const shock::Status built = out.mesh.Build(
     numberOfPoints, out.triangles.points.data(), std::move(out.triangles.triangles), threads);
