@@ -533,7 +533,10 @@ namespace
 std::vector<unsigned long long> PreparationKey(vtkPolyData* input, bool mergeCoincidentPoints)
 {
   using Number = unsigned long long;
-  std::vector<Number> key{ mergeCoincidentPoints ? 1ULL : 0ULL };
+  // The data set's own modification time too: coordinates or connectivity
+  // edited in place and announced with input->Modified() (VTK's idiom) leave
+  // the arrays' times as they were.
+  std::vector<Number> key{ mergeCoincidentPoints ? 1ULL : 0ULL, Number{ input->GetMTime() } };
   vtkPoints* points = input->GetPoints();
   key.insert(key.end(),
     { reinterpret_cast<Number>(points), points ? Number{ points->GetMTime() } : 0ULL,

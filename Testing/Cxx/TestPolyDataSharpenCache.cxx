@@ -171,3 +171,39 @@ TEST(PolyDataSharpenCache, AFailedExecutionKeepsNothingWrong)
   EXPECT_EQ(Points(filter), Points(fresh));
 }
 } // namespace
+
+// VTK's idiom for data edited in place: write the coordinates (here through the
+// array's memory, as numpy does), then Modified() on the data set only. The
+// filter must see the new shape, not the one it prepared before.
+TEST(PolyDataSharpenCache, CoordinatesEditedInPlaceAndTheDataSetModified)
+{
+  RoundedCube shape;
+  shape.moved->Update();
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->DeepCopy(shape.moved->GetOutput());
+  vtkNew<vtkPoints> doubles;
+  doubles->SetDataTypeToDouble();
+  doubles->DeepCopy(mesh->GetPoints());
+  mesh->SetPoints(doubles);
+  vtkNew<Filter> filter;
+  filter->SetInputData(mesh);
+  filter->SetFlowTime(256);
+  filter->Update();
+  const std::vector<double> before = Points(filter);
+
+  auto* coordinates = static_cast<double*>(mesh->GetPoints()->GetData()->GetVoidPointer(0));
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    coordinates[3 * p + 2] *= 2.0; // stretched along z, the arrays' times untouched
+  }
+  mesh->Modified();
+  filter->Update();
+  EXPECT_EQ(filter->GetNumberOfMeshPreparations(), 2);
+  const std::vector<double> after = Points(filter);
+  EXPECT_NE(after, before);
+  vtkNew<Filter> fresh;
+  fresh->SetInputData(mesh);
+  fresh->SetFlowTime(256);
+  fresh->Update();
+  EXPECT_EQ(after, Points(fresh)) << "the edited mesh sharpened, not the old one";
+}
