@@ -31,12 +31,70 @@ vtkStandardNewMacro(vtkImageShockAdvectionFilter);
 namespace
 {
 shock::GridShape SampleGrid(vtkImageData* image, bool cellData);
+
+/// The length of column `a` of the image's direction matrix: the scale it gives axis a.
+double AxisScale(vtkImageData* image, int a)
+{
+  const vtkMatrix3x3* d = image->GetDirectionMatrix();
+  return std::sqrt(d->GetElement(0, a) * d->GetElement(0, a) + d->GetElement(1, a) * d->GetElement(1, a) +
+    d->GetElement(2, a) * d->GetElement(2, a));
+}
+
+/**
+ * "" when the direction matrix is finite with orthogonal, non-zero columns
+ * (a rotation or reflection of the axes, each scaled: the scales count as
+ * spacing), else the message. A shear has no grid of the paper.
+ */
+std::string CheckDirection(vtkImageData* image)
+{
+  const vtkMatrix3x3* d = image->GetDirectionMatrix();
+  double scale[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      if (!std::isfinite(d->GetElement(r, a)))
+      {
+        return "The image direction matrix has a non-finite entry: set a rotation (e.g. the identity).";
+      }
+    }
+    scale[a] = AxisScale(image, a);
+    if (!(scale[a] > 0.0))
+    {
+      return "The image direction matrix is singular (column " + std::to_string(a) +
+        " is zero): set a rotation (e.g. the identity).";
+    }
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int b = a + 1; b < 3; ++b)
+    {
+      double dot = 0.0;
+      for (int r = 0; r < 3; ++r)
+      {
+        dot += d->GetElement(r, a) * d->GetElement(r, b);
+      }
+      if (std::abs(dot) > 1e-6 * scale[a] * scale[b])
+      {
+        return "The image direction matrix shears the axes (columns " + std::to_string(a) + " and " +
+          std::to_string(b) + " are not orthogonal): the filter needs a rotation, scaled per axis at most; "
+          "resample the image onto such a grid first.";
+      }
+    }
+  }
+  return "";
+}
 bool CropByRows(vtkImageData* image, const int target[6]);
 
 /// "" when `array` (of `association`) can be filtered on `image`, else the message.
 std::string CheckImageArray(vtkImageData* image, vtkDataArray* array, int association)
 {
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  const std::string direction = CheckDirection(image);
+  if (!direction.empty())
+  {
+    return direction;
+  }
   const shock::GridShape grid = SampleGrid(image, cellData);
   std::ostringstream error;
   if (array->GetNumberOfTuples() != grid.NumberOfSamples())
@@ -59,7 +117,11 @@ std::string CheckImageArray(vtkImageData* image, vtkDataArray* array, int associ
   return "";
 }
 
-/// The grid of the processed samples: points, or cell centres for cell data.
+/**
+ * The grid of the processed samples: points, or cell centres for cell data;
+ * the physical distance between samples along each axis (|spacing| times the
+ * direction matrix's scale of that axis: diag(4,1,1) is spacing 4 along x).
+ */
 shock::GridShape SampleGrid(vtkImageData* image, bool cellData)
 {
   shock::GridShape shape;
@@ -69,19 +131,21 @@ shock::GridShape SampleGrid(vtkImageData* image, bool cellData)
   for (int a = 0; a < 3; ++a)
   {
     shape.dimensions[a] = cellData ? std::max(dims[a] - 1, 1) : dims[a];
-    shape.spacing[a] = std::abs(spacing[a]);
+    shape.spacing[a] = std::abs(spacing[a]) * AxisScale(image, a);
   }
   return shape;
 }
 
-/// Flow of the kernel (grid axes, |spacing|) in world axes: axis flips, then the direction matrix.
+/// Flow of the kernel (grid axes, physical lengths) in world axes: axis flips,
+/// then the direction matrix's unit columns.
 void ToWorldAxes(vtkImageData* image, const double* gridVector, double* world)
 {
   const double* spacing = image->GetSpacing();
   double flipped[3];
   for (int a = 0; a < 3; ++a)
   {
-    flipped[a] = spacing[a] < 0.0 ? -gridVector[a] : gridVector[a];
+    const double scale = AxisScale(image, a);
+    flipped[a] = (spacing[a] < 0.0 ? -gridVector[a] : gridVector[a]) / (scale > 0.0 ? scale : 1.0);
   }
   image->GetDirectionMatrix()->MultiplyPoint(flipped, world);
 }

@@ -806,3 +806,49 @@ TEST(ImageShockAdvectionFilter, PrintSelfListsTheParameters)
 }
 
 } // namespace
+
+// A direction matrix that scales an axis is that axis's spacing: diag(4,1,1)
+// gives what spacing (4,1,1) gives, and a rotated-and-scaled image what the
+// same scaled image gives (the flow arrays rotate). A singular, non-finite or
+// shearing matrix is refused with a message naming it.
+TEST(ImageShockAdvectionFilter, DirectionMatricesScaleAndRotate)
+{
+  vtkNew<vtkDoubleArray> values;
+  auto image = MakeImage(values, 48, 36);
+  auto asSpacing = vtkSmartPointer<vtkImageData>::New();
+  asSpacing->DeepCopy(image);
+  asSpacing->SetSpacing(4.0, 1.0, 1.0);
+  const auto expected = Values(FilterImage(asSpacing, 300.0)->GetPointData()->GetScalars());
+  const auto identity = Values(FilterImage(image, 300.0)->GetPointData()->GetScalars());
+
+  auto scaled = vtkSmartPointer<vtkImageData>::New();
+  scaled->DeepCopy(image);
+  const double diag[9] = { 4, 0, 0, 0, 1, 0, 0, 0, 1 };
+  scaled->SetDirectionMatrix(diag);
+  const auto viaDirection = Values(FilterImage(scaled, 300.0)->GetPointData()->GetScalars());
+  EXPECT_EQ(viaDirection, expected);
+  EXPECT_NE(viaDirection, identity) << "the scale changed the result";
+
+  auto rotated = vtkSmartPointer<vtkImageData>::New();
+  rotated->DeepCopy(image);
+  const double rotatedAndScaled[9] = { 0, -1, 0, 4, 0, 0, 0, 0, 1 }; // x axis: 4 along world y
+  rotated->SetDirectionMatrix(rotatedAndScaled);
+  EXPECT_EQ(Values(FilterImage(rotated, 300.0)->GetPointData()->GetScalars()), expected);
+
+  const double singular[9] = { 1, 0, 0, 0, 0, 0, 0, 0, 1 };
+  const double notFinite[9] = { 1, 0, 0, 0, std::nan(""), 0, 0, 0, 1 };
+  const double shear[9] = { 1, 0.5, 0, 0, 1, 0, 0, 0, 1 };
+  const std::pair<const double*, const char*> refused[] = { { singular, "singular" },
+    { notFinite, "non-finite" }, { shear, "shears the axes" } };
+  for (const auto& matrix : refused)
+  {
+    auto bad = vtkSmartPointer<vtkImageData>::New();
+    bad->DeepCopy(image);
+    bad->SetDirectionMatrix(matrix.first);
+    vtkNew<vtkImageShockAdvectionFilter> filter;
+    filter->SetInputData(bad);
+    MessageLog log(filter);
+    EXPECT_FALSE(UpdateSucceeds(filter)) << matrix.second;
+    EXPECT_NE(log.Errors.find(matrix.second), std::string::npos) << log.Errors;
+  }
+}
