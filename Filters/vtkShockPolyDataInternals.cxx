@@ -338,13 +338,75 @@ bool FiniteBounds(vtkDataArray* points, int threads, double bounds[6])
 }
 }
 
+namespace
+{
+/**
+ * The bounds of the points the polygons and strips use, when some points are
+ * used by none (isolated points, vertex or line cells pass through the filters
+ * and must not set the mesh's length unit: one point at 1e200 would shrink the
+ * surface below what doubles resolve). False when every point is used (or none).
+ */
+bool UsedPointBounds(vtkPolyData* piece, double bounds[6])
+{
+  const vtkIdType n = piece->GetNumberOfPoints();
+  std::vector<char> used(static_cast<size_t>(n), 0);
+  vtkIdType count = 0;
+  for (vtkCellArray* cells : { piece->GetPolys(), piece->GetStrips() })
+  {
+    if (!cells)
+    {
+      continue;
+    }
+    auto iterator = vtk::TakeSmartPointer(cells->NewIterator());
+    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell())
+    {
+      vtkIdType size;
+      const vtkIdType* ids;
+      iterator->GetCurrentCell(size, ids);
+      for (vtkIdType k = 0; k < size; ++k)
+      {
+        if (ids[k] >= 0 && ids[k] < n && !used[static_cast<size_t>(ids[k])])
+        {
+          used[static_cast<size_t>(ids[k])] = 1;
+          ++count;
+        }
+      }
+    }
+  }
+  if (count == 0 || count == n)
+  {
+    return false;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds[2 * a] = std::numeric_limits<double>::infinity();
+    bounds[2 * a + 1] = -std::numeric_limits<double>::infinity();
+  }
+  double x[3];
+  for (vtkIdType p = 0; p < n; ++p)
+  {
+    if (!used[static_cast<size_t>(p)])
+    {
+      continue;
+    }
+    piece->GetPoint(p, x);
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = std::min(bounds[2 * a], x[a]);
+      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], x[a]);
+    }
+  }
+  return true;
+}
+}
+
 double MeshUnit(vtkMultiProcessController* controller, vtkPolyData* piece, int threads)
 {
   double side = 0.0;
   if (piece && piece->GetNumberOfPoints() > 0)
   {
     double bounds[6];
-    if (!FiniteBounds(piece->GetPoints()->GetData(), threads, bounds))
+    if (!UsedPointBounds(piece, bounds) && !FiniteBounds(piece->GetPoints()->GetData(), threads, bounds))
     {
       piece->GetBounds(bounds); // VTK's rules for non-finite coordinates
     }
@@ -449,7 +511,28 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
   vtkLogStartScope(TRACE, "shock: mesh: locality order");
   if (localityOrder || mergeCoincidentPoints)
   {
-    numbering = shock::MortonOrder(numberOfPoints, points.data(), threads);
+    // The grid spans the triangles' points: a point no triangle uses (an
+    // isolated point far away) is clamped to its border, not allowed to
+    // stretch the grid until the mesh fills one cell.
+    std::vector<char> used(static_cast<size_t>(numberOfPoints), 0);
+    for (const auto id : out.triangles.triangles)
+    {
+      used[static_cast<size_t>(id)] = 1;
+    }
+    const bool allUsed = std::all_of(used.begin(), used.end(), [](char u) { return u != 0; });
+    std::array<double, 6> box{ std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity() };
+    for (std::int64_t p = 0; p < numberOfPoints && !allUsed; ++p)
+    {
+      for (int a = 0; a < 3 && used[static_cast<size_t>(p)]; ++a)
+      {
+        box[2 * a] = std::min(box[2 * a], points[static_cast<size_t>(3 * p + a)]);
+        box[2 * a + 1] = std::max(box[2 * a + 1], points[static_cast<size_t>(3 * p + a)]);
+      }
+    }
+    numbering = shock::MortonOrder(
+      numberOfPoints, points.data(), threads, allUsed || out.triangles.triangles.empty() ? nullptr : box.data());
   }
   if (mergeCoincidentPoints)
   {

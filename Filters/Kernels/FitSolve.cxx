@@ -320,14 +320,17 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
       v.p(i, k) = diag[static_cast<size_t>(i)] * v.r(i, k);
       s[k] += v.r(i, k) * v.r(i, k);
       s[k + 3] += v.r(i, k) * v.p(i, k);
-      s[k + 6] += b(i, k) * b(i, k);
+      // ||b|| over the fitted rows: an identity row (a point no triangle
+      // constrains, e.g. an isolated point far away) only keeps its point.
+      s[k + 6] += system.fitted[static_cast<size_t>(i)] ? b(i, k) * b(i, k) : 0.0;
     }
   });
   bool active[3];
   double threshold[3], rz[3];
   for (int k = 0; k < 3; ++k)
   {
-    threshold[k] = std::max(tolerance * tolerance * start[k + 6], std::numeric_limits<double>::min());
+    threshold[k] = tolerance > 0.0 ? std::max(tolerance * tolerance * start[k + 6], std::numeric_limits<double>::min())
+                                   : std::numeric_limits<double>::min(); // all the iterations
     active[k] = start[k] >= threshold[k];
     rz[k] = start[k + 3];
   }
@@ -416,7 +419,7 @@ double RelativeResidual(const FitSystemData& system, const Coordinates& b, const
       {
         const double r = b(i, k) - ax[k];
         s[k] += r * r;
-        s[k + 3] += b(i, k) * b(i, k);
+        s[k + 3] += system.fitted[static_cast<size_t>(i)] ? b(i, k) * b(i, k) : 0.0; // as the solver's ||b||
       }
     });
   double worst = 0.0;

@@ -5,6 +5,7 @@
 #include "GridTrace.h"
 #include "Timer.h"
 
+#include <limits>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -141,6 +142,10 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
 
   const SignalRange scan = ScanSignal(L.numSamples, C, input, threads);
   const double range = p.valueScale > 0.0 ? p.valueScale : scan.high - scan.low;
+  if (range == std::numeric_limits<double>::infinity())
+  {
+    return { ValueSpanError(scan.low, scan.high) };
+  }
   if (fields)
   {
     ZeroFlowFields(L.numSamples, L.numFaces, *fields);

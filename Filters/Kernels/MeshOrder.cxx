@@ -75,7 +75,7 @@ std::uint32_t MortonCode(const double* point, const double lower[3], const doubl
   return code;
 }
 
-MeshNumbering MortonOrder(std::int64_t numberOfPoints, const double* points, int threads)
+MeshNumbering MortonOrder(std::int64_t numberOfPoints, const double* points, int threads, const double* box)
 {
   MeshNumbering numbering;
   const std::int64_t np = numberOfPoints;
@@ -96,6 +96,10 @@ MeshNumbering MortonOrder(std::int64_t numberOfPoints, const double* points, int
     ux = std::max(ux, points[3 * p]);
     uy = std::max(uy, points[3 * p + 1]);
     uz = std::max(uz, points[3 * p + 2]);
+  }
+  if (box)
+  {
+    lx = box[0], ux = box[1], ly = box[2], uy = box[3], lz = box[4], uz = box[5];
   }
   const double lower[3] = { lx, ly, lz };
   const double side[3] = { ux - lx, uy - ly, uz - lz };

@@ -41,7 +41,8 @@ struct MeshNumbering
  * points, rank and codes (triangles stays empty). `points`: 3 finite
  * coordinates per point.
  */
-MeshNumbering MortonOrder(std::int64_t numberOfPoints, const double* points, int threads);
+MeshNumbering MortonOrder(std::int64_t numberOfPoints, const double* points, int threads,
+  const double* box = nullptr);
 
 /**
  * For each point, the first point (smallest index) with exactly the same

@@ -23,6 +23,7 @@ struct MeshRun
   int threads;
   double length = 0.0; // length unit: the signal's lengthScale or the mean edge length
   double range = 0.0;
+  double low = 0.0, high = 0.0; ///< the finite values' extremes
   std::vector<unsigned char> validPoint;    // point has a finite value (or, for cells, a finite neighbour)
   std::vector<unsigned char> validTriangle; // non-degenerate, finite corners (and value): carries flow
   ValueVector umbrellaWeight;               // per one-ring entry, exp(-|(v-w)/l|^2)
@@ -131,6 +132,8 @@ bool Prepare(MeshRun& run)
       }
     }
   }
+  run.low = low;
+  run.high = high;
   run.range = run.signal.valueScale > 0.0 ? run.signal.valueScale : high - low;
   run.length = run.signal.lengthScale > 0.0 ? run.signal.lengthScale : mesh.MeanEdgeLength();
   if (!(run.range > 0.0) || !std::isfinite(run.range) || !(run.length > 0.0))
@@ -235,6 +238,10 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
   const auto setupStart = Clock::now();
   if (!Prepare(run))
   {
+    if (run.range == std::numeric_limits<double>::infinity())
+    {
+      return { ValueSpanError(run.low, run.high) };
+    }
     keepTheInput();
     return {};
   }

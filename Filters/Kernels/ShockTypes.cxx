@@ -16,6 +16,7 @@
 #endif
 
 #include <algorithm>
+#include <sstream>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -167,6 +168,15 @@ bool UseTheWholeNodeWhenAlone()
   }();
   return widened;
 #endif
+}
+
+std::string ValueSpanError(double low, double high)
+{
+  std::ostringstream text;
+  text << "the values span from " << low << " to " << high
+       << ", more than a double can hold as their difference (the data range the flow is normalised by); "
+          "rescale the array first (e.g. divide it by 1e10)";
+  return text.str();
 }
 
 int ResolveThreadCount(int requested)

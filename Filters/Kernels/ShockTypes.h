@@ -112,6 +112,12 @@ struct Status
 };
 
 /**
+ * The error of finite values whose difference overflows a double (the data
+ * range the flow is normalised by): from `low` to `high`.
+ */
+std::string ValueSpanError(double low, double high);
+
+/**
  * Resolve a thread-count parameter: values <= 0 mean OMP_NUM_THREADS when it
  * is set, else all available cores (those of the process's affinity mask; see
  * UseTheWholeNodeWhenAlone).

@@ -1,0 +1,132 @@
+// Inputs the filters once turned into a plausible wrong result with success:
+// each is now honoured exactly or refused with a message naming the problem.
+// - values whose difference overflows a double (near +-1e308): refused;
+// - one isolated point (no cell uses it) far away, 1e80 or 1e200: the
+//   surface is filtered exactly as without it, and the point passes through.
+#include "vtkImageShockAdvectionFilter.h"
+#include "vtkPolyDataShockAdvectionFilter.h"
+#include "vtkPolyDataShockSharpenFilter.h"
+
+#include "TestFilterHelpers.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace
+{
+using shock_test::MessageLog;
+using shock_test::UpdateSucceeds;
+using shock_test::Values;
+
+/// A sphere (double points) with a blurred step "Heat" across z, times `scale`;
+/// with an extra point at (far, 0, 0) that no cell uses when far != 0.
+vtkSmartPointer<vtkPolyData> Sphere(double scale, double far = 0.0)
+{
+  vtkNew<vtkSphereSource> source;
+  source->SetThetaResolution(32);
+  source->SetPhiResolution(24);
+  source->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  source->Update();
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->DeepCopy(source->GetOutput());
+  if (far != 0.0)
+  {
+    mesh->GetPoints()->InsertNextPoint(far, 0.0, 0.0);
+  }
+  vtkNew<vtkDoubleArray> heat;
+  heat->SetName("Heat");
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    heat->InsertNextValue(scale * std::tanh(8.0 * mesh->GetPoint(p)[2]));
+  }
+  mesh->GetPointData()->SetScalars(heat);
+  return mesh;
+}
+
+template <typename Filter>
+std::vector<double> Filtered(vtkPolyData* input, bool points)
+{
+  vtkNew<Filter> filter;
+  filter->SetInputData(input);
+  filter->SetFlowTime(512.0);
+  EXPECT_TRUE(UpdateSucceeds(filter));
+  return points ? Values(filter->GetOutput()->GetPoints()->GetData())
+                : Values(filter->GetOutput()->GetPointData()->GetArray("Heat"));
+}
+}
+
+TEST(ShockInputsHonouredOrRefused, ValuesWhoseRangeOverflowsAreRefused)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(32, 24, 1);
+  vtkNew<vtkDoubleArray> values;
+  values->SetName("v");
+  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
+  {
+    values->InsertNextValue(1.5e308 * std::tanh(0.5 * (static_cast<double>(i % 32) - 15.5)));
+  }
+  image->GetPointData()->SetScalars(values);
+  vtkNew<vtkImageShockAdvectionFilter> imageFilter;
+  imageFilter->SetInputData(image);
+  MessageLog imageLog(imageFilter);
+  EXPECT_FALSE(UpdateSucceeds(imageFilter));
+  EXPECT_NE(imageLog.Errors.find("more than a double can hold as their difference"), std::string::npos)
+    << imageLog.Errors;
+
+  vtkNew<vtkPolyDataShockAdvectionFilter> surfaceFilter;
+  surfaceFilter->SetInputData(Sphere(1.5e308));
+  MessageLog surfaceLog(surfaceFilter);
+  EXPECT_FALSE(UpdateSucceeds(surfaceFilter));
+  EXPECT_NE(surfaceLog.Errors.find("rescale the array"), std::string::npos) << surfaceLog.Errors;
+
+  // 1e300 wide is still a double's difference: filtered like the unit range, scaled.
+  const std::vector<double> unit = Filtered<vtkPolyDataShockAdvectionFilter>(Sphere(1.0), false);
+  const std::vector<double> wide = Filtered<vtkPolyDataShockAdvectionFilter>(Sphere(5e299), false);
+  ASSERT_EQ(unit.size(), wide.size());
+  double largest = 0.0, change = 0.0;
+  const std::vector<double> input = Values(Sphere(1.0)->GetPointData()->GetArray("Heat"));
+  for (size_t i = 0; i < unit.size(); ++i)
+  {
+    largest = std::max(largest, std::abs(wide[i] / 5e299 - unit[i]));
+    change = std::max(change, std::abs(unit[i] - input[i]));
+  }
+  EXPECT_LT(largest, 1e-9);
+  EXPECT_GT(change, 0.05);
+}
+
+TEST(ShockInputsHonouredOrRefused, AnIsolatedFarPointChangesNothing)
+{
+  for (double far : { 1e80, 1e200 })
+  {
+    for (bool sharpen : { false, true })
+    {
+      const std::vector<double> alone = sharpen ? Filtered<vtkPolyDataShockSharpenFilter>(Sphere(1.0), true)
+                                                : Filtered<vtkPolyDataShockAdvectionFilter>(Sphere(1.0), false);
+      vtkSmartPointer<vtkPolyData> withFar = Sphere(1.0, far);
+      const std::vector<double> with = sharpen ? Filtered<vtkPolyDataShockSharpenFilter>(withFar, true)
+                                               : Filtered<vtkPolyDataShockAdvectionFilter>(withFar, false);
+      const std::vector<double> before = sharpen ? Values(Sphere(1.0)->GetPoints()->GetData())
+                                                 : Values(Sphere(1.0)->GetPointData()->GetArray("Heat"));
+      ASSERT_EQ(with.size(), alone.size() + (sharpen ? 3 : 1)) << far;
+      EXPECT_EQ(std::vector<double>(with.begin(), with.begin() + static_cast<long>(alone.size())), alone)
+        << "far point at " << far << (sharpen ? ", sharpen" : ", advection");
+      EXPECT_NE(alone, before) << "the filter changed the surface";
+      if (sharpen)
+      {
+        EXPECT_EQ(with[alone.size()], far) << "the isolated point stays where it is";
+      }
+    }
+  }
+}
