@@ -8,6 +8,7 @@
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDataSet.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkLogger.h"
@@ -59,7 +60,18 @@ vtkTypeBool vtkShockAdvectionFilter::ProcessRequest(
   {
     this->CompositeInput = composite;
   }
-  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  if (!result && request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+  {
+    // A failed execution leaves nothing that looks like a result (the output
+    // object is reused: a failed block of a composite would otherwise carry
+    // the arrays of the block before it).
+    if (vtkDataObject* output = vtkDataObject::GetData(outputVector, 0))
+    {
+      output->Initialize();
+    }
+  }
+  return result;
 }
 
 bool vtkShockAdvectionFilter::IsBlockOfCompositeInput(vtkDataObject* data)

@@ -2,7 +2,8 @@
 // each is now honoured exactly or refused with a message naming the problem.
 // - values whose difference overflows a double (near +-1e308): refused;
 // - one isolated point (no cell uses it) far away, 1e80 or 1e200: the
-//   surface is filtered exactly as without it, and the point passes through.
+//   surface is filtered exactly as without it, and the point passes through;
+// - a block of a composite that fails: empty, nothing of another block.
 #include "vtkImageShockAdvectionFilter.h"
 #include "vtkPolyDataShockAdvectionFilter.h"
 #include "vtkPolyDataShockSharpenFilter.h"
@@ -11,6 +12,7 @@
 
 #include "vtkDoubleArray.h"
 #include "vtkImageData.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -128,5 +130,43 @@ TEST(ShockInputsHonouredOrRefused, AnIsolatedFarPointChangesNothing)
         EXPECT_EQ(with[alone.size()], far) << "the isolated point stays where it is";
       }
     }
+  }
+}
+
+// A block that fails (no array to filter) comes out empty, not with the
+// arrays of the block filtered before it; the other blocks are filtered.
+TEST(ShockInputsHonouredOrRefused, AFailedBlockCarriesNothing)
+{
+  auto good = vtkSmartPointer<vtkImageData>::New();
+  good->SetDimensions(24, 16, 1);
+  vtkNew<vtkDoubleArray> values;
+  values->SetName("Step");
+  for (vtkIdType i = 0; i < good->GetNumberOfPoints(); ++i)
+  {
+    values->InsertNextValue(std::tanh(0.5 * (static_cast<double>(i % 24) - 11.5)));
+  }
+  good->GetPointData()->SetScalars(values);
+  auto bad = vtkSmartPointer<vtkImageData>::New();
+  bad->SetDimensions(5, 5, 1); // no array at all
+  vtkNew<vtkMultiBlockDataSet> group;
+  group->SetNumberOfBlocks(2);
+  group->SetBlock(0, good);
+  group->SetBlock(1, bad);
+  vtkNew<vtkImageShockAdvectionFilter> filter;
+  filter->SetInputData(group);
+  filter->SetFlowTime(256.0);
+  MessageLog log(filter);
+  filter->Update();
+  EXPECT_NE(log.Errors.find("No array to process"), std::string::npos) << log.Errors;
+  auto* out = vtkMultiBlockDataSet::SafeDownCast(filter->GetOutputDataObject(0));
+  ASSERT_NE(out, nullptr);
+  auto* first = vtkImageData::SafeDownCast(out->GetBlock(0));
+  ASSERT_NE(first, nullptr);
+  EXPECT_NE(Values(first->GetPointData()->GetArray("Step")), Values(values)) << "the good block is filtered";
+  auto* second = vtkImageData::SafeDownCast(out->GetBlock(1));
+  if (second)
+  {
+    EXPECT_EQ(second->GetPointData()->GetNumberOfArrays(), 0) << "nothing of the block before";
+    EXPECT_EQ(second->GetNumberOfPoints(), 0);
   }
 }
