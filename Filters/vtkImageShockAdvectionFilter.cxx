@@ -682,22 +682,18 @@ int vtkImageShockAdvectionFilter::RequestUpdateExtent(
   }
   else if (outInfo->Has(SDDP::UPDATE_EXTENT()) && inInfo->Has(SDDP::WHOLE_EXTENT()))
   {
+    // A sub-extent (vtkExtractVOI, a zoomed view): the whole image is filtered
+    // and cropped, so that the samples asked for are those of the whole
+    // image's result (its data range normalises the flow, and a flow line may
+    // start anywhere); an empty request stays empty.
     int extent[6];
     int whole[6];
     outInfo->Get(SDDP::UPDATE_EXTENT(), extent);
     inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
-    for (int a = 0; a < 3; ++a)
+    const bool empty = extent[0] > extent[1] || extent[2] > extent[3] || extent[4] > extent[5];
+    if (!empty && !std::equal(extent, extent + 6, whole))
     {
-      // Grow along the axes the image spans, unless the requested extent is empty.
-      if (whole[2 * a + 1] > whole[2 * a] && extent[2 * a] <= extent[2 * a + 1])
-      {
-        extent[2 * a] = std::max(whole[2 * a], extent[2 * a] - this->GhostLevels);
-        extent[2 * a + 1] = std::min(whole[2 * a + 1], extent[2 * a + 1] + this->GhostLevels);
-      }
-    }
-    if (!std::equal(extent, extent + 6, outInfo->Get(SDDP::UPDATE_EXTENT())))
-    {
-      inInfo->Set(SDDP::UPDATE_EXTENT(), extent, 6); // only a sub-extent grows
+      inInfo->Set(SDDP::UPDATE_EXTENT(), whole, 6);
     }
   }
   return 1;

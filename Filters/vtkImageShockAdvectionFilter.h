@@ -166,12 +166,13 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
   /// A piece of a distributed image asks for what is asked of it (the halo comes from the
-  /// other processes); otherwise the output's UPDATE_EXTENT grown by GhostLevels (and as
-  /// many ghost levels).
+  /// other processes); a piece without a controller, its extent grown by GhostLevels (and
+  /// as many ghost levels); a sub-extent of one piece, the whole extent (cropped after:
+  /// the samples equal the whole image's result).
   int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
-  /// Crop the output (filtered on the grown input extent) to the output's UPDATE_EXTENT.
+  /// Crop the output (filtered on the larger input extent) to the output's UPDATE_EXTENT.
   void CropToUpdateExtent(vtkInformationVector* outputVector);
 
   /// The data range over all pieces, FilterImage, then CropToUpdateExtent.
