@@ -12,7 +12,10 @@
 #include "vtkInformationVector.h"
 #include "vtkLogger.h"
 #include "vtkMultiProcessController.h"
+#include "vtkCommunicator.h"
 #include "vtkMatrix3x3.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -21,6 +24,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <limits>
 #include <sstream>
 #include <cmath>
 #include <cstring>
@@ -85,6 +89,41 @@ std::string CheckDirection(vtkImageData* image)
   return "";
 }
 bool CropByRows(vtkImageData* image, const int target[6]);
+
+/**
+ * A double copy of `array` whose blanked samples (the ghost array's
+ * HIDDENPOINT, or HIDDENCELL for cell data) are NaN, or nullptr when none is
+ * blanked.
+ */
+vtkSmartPointer<vtkDataArray> MaskHiddenSamples(vtkImageData* image, vtkDataArray* array, bool cellData)
+{
+  vtkUnsignedCharArray* ghosts = cellData ? image->GetCellGhostArray() : image->GetPointGhostArray();
+  const unsigned char hidden = static_cast<unsigned char>(
+    cellData ? static_cast<int>(vtkDataSetAttributes::HIDDENCELL) : static_cast<int>(vtkDataSetAttributes::HIDDENPOINT));
+  if (!ghosts || ghosts->GetNumberOfTuples() != array->GetNumberOfTuples())
+  {
+    return nullptr;
+  }
+  vtkSmartPointer<vtkDoubleArray> masked;
+  for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+  {
+    if (!(ghosts->GetValue(t) & hidden))
+    {
+      continue;
+    }
+    if (!masked)
+    {
+      masked = vtkSmartPointer<vtkDoubleArray>::New();
+      masked->DeepCopy(array); // as doubles
+      masked->SetName(array->GetName());
+    }
+    for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+    {
+      masked->SetComponent(t, c, std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  return masked;
+}
 
 /// "" when `array` (of `association`) can be filtered on `image`, else the message.
 std::string CheckImageArray(vtkImageData* image, vtkDataArray* array, int association)
@@ -323,10 +362,37 @@ int vtkImageShockAdvectionFilter::FilterImageArray(
   // results straight into a new array of the input's type.
   output->ShallowCopy(input);
   vtkShockFilterInternals::KernelOutput filtered = vtkShockFilterInternals::OutputForKernel(array);
+  // Blanked samples (vtkGhostType HIDDENPOINT, or HIDDENCELL for cell data)
+  // neither feed nor receive values: the kernel sees them as NaN (a sample
+  // that carries no flow and is never interpolated) and they keep their own.
+  vtkSmartPointer<vtkDataArray> masked = MaskHiddenSamples(input, array, cellData);
+  if (masked)
+  {
+    const shock::SampleWriter typed = filtered.writer;
+    const int C = array->GetNumberOfComponents();
+    vtkDataArray* original = array;
+    vtkUnsignedCharArray* ghosts = cellData ? input->GetCellGhostArray() : input->GetPointGhostArray();
+    const unsigned char hidden = static_cast<unsigned char>(
+    cellData ? static_cast<int>(vtkDataSetAttributes::HIDDENCELL) : static_cast<int>(vtkDataSetAttributes::HIDDENPOINT));
+    filtered.writer = [typed, C, original, ghosts, hidden](std::int64_t first, std::int64_t count, const double* in) {
+      std::vector<double> values(in, in + count * C);
+      for (std::int64_t s = 0; s < count; ++s)
+      {
+        if (ghosts->GetValue(first + s) & hidden)
+        {
+          for (int c = 0; c < C; ++c)
+          {
+            values[static_cast<size_t>(s * C + c)] = original->GetComponent(first + s, c);
+          }
+        }
+      }
+      typed(first, count, values.data());
+    };
+  }
   shock::GridFlowFields fields;
   bool aborted = false;
-  const bool ran =
-    this->RunKernel(grid, array, filtered, this->GenerateFlowArrays ? &fields : nullptr, aborted);
+  const bool ran = this->RunKernel(
+    grid, masked ? masked.GetPointer() : array, filtered, this->GenerateFlowArrays ? &fields : nullptr, aborted);
   if (!ran)
   {
     return 0;
@@ -387,6 +453,28 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
   vtkLogStartScope(TRACE, "shock: image halo exchange");
   vtkSmartPointer<vtkDataArray> grownArray =
     vtkShockParallel::GrowImageSamples(controller, array, extent, this->GhostLevels, grown);
+  // Blanked samples: their marks travel with the halo when any piece has some
+  // (decided together: the exchange is collective).
+  vtkSmartPointer<vtkDataArray> grownGhosts;
+  {
+    vtkUnsignedCharArray* ghosts = !array ? nullptr : (cellData ? input->GetCellGhostArray() : input->GetPointGhostArray());
+    int hidden = ghosts && MaskHiddenSamples(input, array, cellData) ? 1 : 0;
+    int anyHidden = 0;
+    controller->AllReduce(&hidden, &anyHidden, 1, vtkCommunicator::MAX_OP);
+    if (anyHidden)
+    {
+      vtkNew<vtkUnsignedCharArray> none; // a piece without marks: nothing blanked
+      if (array && !(ghosts && ghosts->GetNumberOfTuples() == array->GetNumberOfTuples()))
+      {
+        none->SetNumberOfTuples(array->GetNumberOfTuples());
+        none->Fill(0);
+        ghosts = none;
+      }
+      int grownAgain[6];
+      grownGhosts = vtkShockParallel::GrowImageSamples(controller, array ? ghosts : nullptr, extent,
+        this->GhostLevels, grownAgain);
+    }
+  }
   vtkLogEndScope("shock: image halo exchange");
   if (empty || !grownArray)
   {
@@ -409,6 +497,11 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
   vtkDataSetAttributes* samples = cellData ? static_cast<vtkDataSetAttributes*>(withHalo->GetCellData())
                                            : static_cast<vtkDataSetAttributes*>(withHalo->GetPointData());
   samples->SetScalars(grownArray);
+  if (grownGhosts)
+  {
+    grownGhosts->SetName(vtkDataSetAttributes::GhostArrayName());
+    samples->AddArray(grownGhosts);
+  }
   vtkNew<vtkImageData> filtered;
   if (!this->FilterImageArray(withHalo, grownArray, association, filtered))
   {

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkPolyDataShockAdvectionFilter);
@@ -303,6 +304,26 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   std::vector<double> values(static_cast<size_t>(array->GetNumberOfValues()));
   vtkShockFilterInternals::ToDoubles(
     array, values.data(), shock::ThreadsForWork(this->NumberOfThreads, array->GetNumberOfTuples()));
+  // Blanked samples (vtkGhostType HIDDENPOINT, or HIDDENCELL for cell data)
+  // neither feed nor receive values: NaN for the kernel (no flow, never
+  // interpolated), their own values in the output.
+  std::vector<std::pair<vtkIdType, std::vector<double>>> hidden;
+  {
+    vtkUnsignedCharArray* ghosts = cellData ? input->GetCellGhostArray() : input->GetPointGhostArray();
+    const int mark = cellData ? static_cast<int>(vtkDataSetAttributes::HIDDENCELL)
+                              : static_cast<int>(vtkDataSetAttributes::HIDDENPOINT);
+    for (vtkIdType t = 0; ghosts && ghosts->GetNumberOfTuples() == array->GetNumberOfTuples() &&
+         t < array->GetNumberOfTuples();
+         ++t)
+    {
+      if (ghosts->GetValue(t) & mark)
+      {
+        double* row = &values[static_cast<size_t>(t * components)];
+        hidden.emplace_back(t, std::vector<double>(row, row + components));
+        std::fill(row, row + components, std::numeric_limits<double>::quiet_NaN());
+      }
+    }
+  }
   std::vector<double> signal;
   if (cellData)
   {
@@ -354,6 +375,10 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   {
     filtered = prepared->FromMeshPoints(std::move(filtered), components, this->NumberOfThreads);
   }
+  for (const auto& sample : hidden)
+  {
+    std::copy(sample.second.begin(), sample.second.end(), &filtered[static_cast<size_t>(sample.first * components)]);
+  }
   vtkDataSetAttributes* attributes =
     cellData ? static_cast<vtkDataSetAttributes*>(output->GetCellData()) : output->GetPointData();
   vtkShockFilterInternals::ReplaceArray(
@@ -382,8 +407,13 @@ bool vtkPolyDataShockAdvectionFilter::LocalValueRange(
   const int components = array->GetNumberOfComponents();
   std::vector<double> tuple(static_cast<size_t>(components));
   const vtkIdType cells = std::min(array->GetNumberOfTuples(), input->GetNumberOfCells());
+  vtkUnsignedCharArray* ghosts = input->GetCellGhostArray();
   for (vtkIdType c = 0; c < cells; ++c)
   {
+    if (ghosts && ghosts->GetNumberOfTuples() > c && (ghosts->GetValue(c) & vtkDataSetAttributes::HIDDENCELL))
+    {
+      continue; // blanked: no part in the range, as in the kernel
+    }
     const int type = input->GetCellType(c);
     const bool surface = type == VTK_TRIANGLE || type == VTK_QUAD || type == VTK_POLYGON ||
       type == VTK_TRIANGLE_STRIP;

@@ -13,6 +13,7 @@
 #include "vtkInformationVector.h"
 #include "vtkLogger.h"
 #include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkCellData.h"
 #include "vtkMultiProcessController.h"
 #include "vtkShockParallel.h"
@@ -259,8 +260,19 @@ bool vtkShockAdvectionFilter::LocalValueRange(vtkInformationVector** inputVector
   }
   const int components = array->GetNumberOfComponents();
   std::vector<double> tuple(static_cast<size_t>(components));
+  // Blanked samples (HIDDENPOINT / HIDDENCELL) take no part, as in the kernels.
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
+  const bool cells = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  vtkUnsignedCharArray* ghosts = input ? (cells ? input->GetCellGhostArray() : input->GetPointGhostArray()) : nullptr;
+  ghosts = ghosts && ghosts->GetNumberOfTuples() == array->GetNumberOfTuples() ? ghosts : nullptr;
+  const int hidden =
+    cells ? static_cast<int>(vtkDataSetAttributes::HIDDENCELL) : static_cast<int>(vtkDataSetAttributes::HIDDENPOINT);
   for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
   {
+    if (ghosts && (ghosts->GetValue(t) & hidden))
+    {
+      continue;
+    }
     array->GetTuple(t, tuple.data());
     bool finite = true;
     for (int c = 0; c < components && finite; ++c)

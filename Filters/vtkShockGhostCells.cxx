@@ -1137,6 +1137,13 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
       holder = packets[static_cast<size_t>(ghostRow.packet)]->GetPointData();
       row = ghostRow.row;
     });
+  // Blanked points (HIDDENPOINT) keep their mark; the rest is the owners' marks below.
+  auto* givenGhosts = vtkUnsignedCharArray::SafeDownCast(pointData->GetArray(vtkDataSetAttributes::GhostArrayName()));
+  std::vector<unsigned char> hiddenPoints(static_cast<size_t>(total), 0);
+  for (vtkIdType p = 0; givenGhosts && givenGhosts->GetNumberOfTuples() == total && p < total; ++p)
+  {
+    hiddenPoints[static_cast<size_t>(p)] = givenGhosts->GetValue(p) & vtkDataSetAttributes::HIDDENPOINT;
+  }
   pointData->RemoveArray(vtkDataSetAttributes::GhostArrayName());
   vtkNew<vtkIdTypeArray> ids;
   ids->SetName("vtkShockGlobalPointIds"); // a name no user array is likely to have
@@ -1149,7 +1156,8 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
     // A point no cell uses stays its piece's own (it is no other piece's).
     const bool owned = p < np && ownerOf[static_cast<size_t>(p)] == me;
     ids->SetValue(p, p < np ? gid[static_cast<size_t>(p)] : ghostPointIds[static_cast<size_t>(p - np)]);
-    pointGhosts->SetValue(p, owned ? 0 : vtkDataSetAttributes::DUPLICATEPOINT);
+    pointGhosts->SetValue(p,
+      static_cast<unsigned char>((owned ? 0 : vtkDataSetAttributes::DUPLICATEPOINT) | hiddenPoints[static_cast<size_t>(p)]));
   }
   if (givenIds && givenIds->GetName())
   {
@@ -1229,12 +1237,17 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
       row = ghostRow.row;
     }) || missing;
   vtkCellData* cellData = result->GetCellData();
+  auto* givenCellGhosts = vtkUnsignedCharArray::SafeDownCast(cellData->GetArray(vtkDataSetAttributes::GhostArrayName()));
   vtkNew<vtkUnsignedCharArray> cellGhosts;
   cellGhosts->SetName(vtkDataSetAttributes::GhostArrayName());
   cellGhosts->SetNumberOfTuples(cellTotal);
   for (vtkIdType c = 0; c < cellTotal; ++c)
   {
-    cellGhosts->SetValue(c, order[static_cast<size_t>(c)].first == 0 ? 0 : vtkDataSetAttributes::DUPLICATECELL);
+    const unsigned char hiddenCell = givenCellGhosts && givenCellGhosts->GetNumberOfTuples() == cellTotal
+      ? givenCellGhosts->GetValue(c) & vtkDataSetAttributes::HIDDENCELL
+      : 0; // blanked cells keep their mark
+    cellGhosts->SetValue(c,
+      static_cast<unsigned char>((order[static_cast<size_t>(c)].first == 0 ? 0 : vtkDataSetAttributes::DUPLICATECELL) | hiddenCell));
   }
   cellData->RemoveArray(vtkDataSetAttributes::GhostArrayName());
   cellData->AddArray(cellGhosts);

@@ -3,7 +3,8 @@
 // - values whose difference overflows a double (near +-1e308): refused;
 // - one isolated point (no cell uses it) far away, 1e80 or 1e200: the
 //   surface is filtered exactly as without it, and the point passes through;
-// - a block of a composite that fails: empty, nothing of another block.
+// - a block of a composite that fails: empty, nothing of another block;
+// - blanked samples (HIDDENPOINT): they neither feed nor receive values.
 #include "vtkImageShockAdvectionFilter.h"
 #include "vtkPolyDataShockAdvectionFilter.h"
 #include "vtkPolyDataShockSharpenFilter.h"
@@ -19,6 +20,8 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkDataSetAttributes.h"
 
 #include <gtest/gtest.h>
 
@@ -169,4 +172,95 @@ TEST(ShockInputsHonouredOrRefused, AFailedBlockCarriesNothing)
     EXPECT_EQ(second->GetPointData()->GetNumberOfArrays(), 0) << "nothing of the block before";
     EXPECT_EQ(second->GetNumberOfPoints(), 0);
   }
+}
+
+namespace
+{
+/// A 48 x 40 blurred step; columns 28..33 blanked (HIDDENPOINT) and holding `underneath`.
+vtkSmartPointer<vtkImageData> BlankedStep(double underneath)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(48, 40, 1);
+  vtkNew<vtkDoubleArray> values;
+  values->SetName("v");
+  vtkNew<vtkUnsignedCharArray> ghosts;
+  ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
+  {
+    const int x = static_cast<int>(i % 48);
+    const bool hidden = x >= 28 && x <= 33;
+    values->InsertNextValue(hidden ? underneath : 0.5 + 0.49 * std::tanh((x - 20.0) / 3.0));
+    ghosts->InsertNextValue(hidden ? vtkDataSetAttributes::HIDDENPOINT : 0);
+  }
+  image->GetPointData()->SetScalars(values);
+  image->GetPointData()->AddArray(ghosts);
+  return image;
+}
+}
+
+// Blanked samples (vtkGhostType HIDDENPOINT) neither feed nor receive values:
+// whatever lies under the blanking, the visible samples come out the same, and
+// the blanked ones keep their own.
+TEST(ShockInputsHonouredOrRefused, BlankedSamplesNeitherFeedNorReceive)
+{
+  std::vector<std::vector<double>> results;
+  for (double underneath : { 5.0, -3.0 })
+  {
+    vtkNew<vtkImageShockAdvectionFilter> filter;
+    filter->SetInputData(BlankedStep(underneath));
+    filter->SetFlowTime(512.0);
+    ASSERT_TRUE(UpdateSucceeds(filter));
+    results.push_back(Values(filter->GetOutput()->GetPointData()->GetArray("v")));
+  }
+  const std::vector<double> input = Values(BlankedStep(5.0)->GetPointData()->GetArray("v"));
+  double changed = 0.0;
+  for (size_t i = 0; i < input.size(); ++i)
+  {
+    const int x = static_cast<int>(i % 48);
+    if (x >= 28 && x <= 33)
+    {
+      EXPECT_EQ(results[0][i], 5.0);
+      EXPECT_EQ(results[1][i], -3.0);
+      continue;
+    }
+    ASSERT_EQ(results[0][i], results[1][i]) << "sample " << i << " depends on the blanked values";
+    EXPECT_LE(results[0][i], 0.99 + 1e-12);
+    changed = std::max(changed, std::abs(results[0][i] - input[i]));
+  }
+  EXPECT_GT(changed, 0.05);
+
+  // The same on a surface: blanked points of a sphere.
+  std::vector<std::vector<double>> surfaces;
+  for (double underneath : { 7.0, -7.0 })
+  {
+    vtkSmartPointer<vtkPolyData> mesh = Sphere(1.0);
+    vtkNew<vtkUnsignedCharArray> ghosts;
+    ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+    auto* heat = mesh->GetPointData()->GetArray("Heat");
+    for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+    {
+      const bool hidden = mesh->GetPoint(p)[0] > 0.3;
+      ghosts->InsertNextValue(hidden ? vtkDataSetAttributes::HIDDENPOINT : 0);
+      if (hidden)
+      {
+        heat->SetTuple1(p, underneath);
+      }
+    }
+    mesh->GetPointData()->AddArray(ghosts);
+    surfaces.push_back(Filtered<vtkPolyDataShockAdvectionFilter>(mesh, false));
+  }
+  vtkSmartPointer<vtkPolyData> plain = Sphere(1.0);
+  const std::vector<double> before = Values(plain->GetPointData()->GetArray("Heat"));
+  double surfaceChange = 0.0;
+  for (vtkIdType p = 0; p < plain->GetNumberOfPoints(); ++p)
+  {
+    if (plain->GetPoint(p)[0] > 0.3)
+    {
+      EXPECT_EQ(surfaces[0][static_cast<size_t>(p)], 7.0);
+      continue;
+    }
+    ASSERT_EQ(surfaces[0][static_cast<size_t>(p)], surfaces[1][static_cast<size_t>(p)]) << "point " << p;
+    surfaceChange = std::max(surfaceChange, std::abs(surfaces[0][static_cast<size_t>(p)] - before[static_cast<size_t>(p)]));
+  }
+  EXPECT_GT(surfaceChange, 0.05);
 }

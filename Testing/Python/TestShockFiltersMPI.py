@@ -113,7 +113,43 @@ def piece_extents(path):
         return [list(map(int, e.split())) for e in re.findall(r'<Piece Extent="([^"]*)"', handle.read())]
 
 
-def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=None, cells=False):
+# Blanking (vtkGhostType HIDDENPOINT) of the samples whose y lies in [120, 135],
+# across the boundary between the pieces, with garbage values under it: the
+# marks must travel with the halo. The same code marks the serial input and the
+# pieces (a Programmable Filter).
+BLANK_SCRIPT = """
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonDataModel import vtkDataSetAttributes
+image = self.GetOutputDataObject(0)
+image.ShallowCopy(self.GetInputDataObject(0, 0))
+extent = image.GetExtent()
+y = np.indices((extent[5] - extent[4] + 1, extent[3] - extent[2] + 1, extent[1] - extent[0] + 1))[1].ravel() + extent[2]
+hidden = (y >= 120) & (y <= 135)
+marks = numpy_to_vtk(np.where(hidden, vtkDataSetAttributes.HIDDENPOINT, 0).astype(np.uint8), deep=1)
+marks.SetName("vtkGhostType")
+image.GetPointData().AddArray(marks)
+values = vtk_to_numpy(image.GetPointData().GetArray("RTData")).copy()
+values[hidden] = 1e4  # garbage under the blanking
+garbage = numpy_to_vtk(values, deep=1)
+garbage.SetName("RTData")
+image.GetPointData().SetScalars(garbage)
+"""
+
+
+def blank(image):
+    """The serial input marked as BLANK_SCRIPT marks the pieces."""
+    class Holder:
+        pass
+    holder = Holder()
+    out = image.NewInstance()
+    holder.GetOutputDataObject = lambda port: out
+    holder.GetInputDataObject = lambda port, connection: image
+    exec(BLANK_SCRIPT, {"self": holder})
+    return out
+
+
+def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=None, cells=False, blanked=False):
     """Filter in parallel and serially; equality outside `band` samples of the
     piece boundaries, and at most `bound` of the samples differing."""
     name = "Step" if expression else "RTData"
@@ -127,6 +163,13 @@ def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=N
         to_cells.SetInputConnection(reference_input.GetOutputPort())
         keep.append(to_cells)
         last = to_cells
+    if blanked:
+        from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
+        last.Update()
+        producer = vtkTrivialProducer()
+        producer.SetOutput(blank(last.GetOutputDataObject(0)))
+        keep.append(producer)
+        last = producer
     serial = serial_filter("ImageShockAdvection", last, InputArray=[association, name], FlowTime=flow_time)
     # Parallel run (fresh proxies: a source keeps the ghost layers of an earlier request).
     proxies = [Wavelet(WholeExtent=extent)]
@@ -134,10 +177,18 @@ def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=N
         proxies.append(Calculator(Input=proxies[-1], Function=expression, ResultArrayName="Step"))
     if cells:
         proxies.append(PointDatatoCellData(Input=proxies[-1]))
+    if blanked:
+        proxies.append(ProgrammableFilter(Input=proxies[-1], Script=BLANK_SCRIPT))
     filtered = ImageShockAdvection(Input=proxies[-1], InputArray=[association, name], FlowTime=flow_time,
                                    GhostLevels=ghost_levels)
     path = os.path.join(OUTPUT, "image_%s.pvti" % label)
     SaveData(path, proxy=filtered)
+    if blanked:
+        # ParaView 5.11's Programmable Filter runs in this script's namespace and
+        # imports numpy's names into it (min, max, ...): the builtins back.
+        import builtins
+        for builtin in ("min", "max", "sum", "abs", "round", "all", "any"):
+            globals()[builtin] = getattr(builtins, builtin)
     for proxy in [filtered] + proxies[::-1]:
         Delete(proxy)
 
@@ -187,6 +238,11 @@ def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=N
     check(not outside.any(), "%s: %d samples differ farther than %d samples from a piece boundary"
           % (label, outside.sum(), band))
     check(fraction <= bound, "%s: %.4f%% of the samples differ (bound %.4f%%)" % (label, 100 * fraction, 100 * bound))
+    if blanked:
+        from vtkmodules.vtkCommonDataModel import vtkDataSetAttributes
+        hidden = vtk_to_numpy(data.GetArray("vtkGhostType")) & vtkDataSetAttributes.HIDDENPOINT != 0
+        check(hidden.any() and np.all(parallel[hidden] == 1e4), "%s: the blanked samples keep their values" % label)
+        check(np.all(parallel[~hidden] < 1e3), "%s: nothing under the blanking reached a visible sample" % label)
 
 
 def unsplit_image_case():
@@ -473,6 +529,7 @@ cases = [
     lambda: image_case("step2d_t4096", [-128, 127, -128, 127, 0, 0], 4096, 16, 16, 0.005,
                        expression="tanh((coordsY-12+0.1*coordsX)/6)"),
     lambda: image_case("wavelet2d_cells", [0, 255, 0, 255, 0, 0], 64, 16, 16, 0.005, cells=True),
+    lambda: image_case("wavelet2d_blanked", [0, 255, 0, 255, 0, 0], 64, 16, 16, 0.005, blanked=True),
     lambda: image_case("wavelet3d", [0, 95, 0, 95, 0, 95], 256, 16, 16, 0.005),
     unsplit_image_case,
     surface_cases,
