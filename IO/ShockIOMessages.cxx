@@ -169,6 +169,24 @@ bool MessageTrap::Finish(const std::string& context, std::string& error, Strictn
   {
     reason = CleanMessage(this->Warnings.front());
   }
+  // "vtkClass: Shock filter failed: x" under the context "shock filter failed"
+  // says it once: "Shock filter failed: x".
+  const size_t colon = reason.find(": ");
+  if (reason.rfind("vtk", 0) == 0 && colon != std::string::npos && reason.find(' ') > colon)
+  {
+    std::string body = reason.substr(colon + 2);
+    std::string lower = body;
+    std::string lowerContext = context;
+    for (std::string* text : { &lower, &lowerContext })
+    {
+      std::transform(text->begin(), text->end(), text->begin(), [](unsigned char c) { return std::tolower(c); });
+    }
+    if (!context.empty() && lower.rfind(lowerContext, 0) == 0)
+    {
+      error = body;
+      return false;
+    }
+  }
   error = context + ": " + (reason.empty() ? "VTK reported a failure" : reason);
   return false;
 }

@@ -30,6 +30,7 @@ struct ImageHeader
   std::uint64_t components = 1;        ///< per sample
   std::uint64_t bytesPerComponent = 1; ///< as read
   bool known = false;                  ///< whether the header gave the size
+  std::uint64_t maxValue = 0;          ///< PNM: the declared maximum value (0: not given)
 
   std::uint64_t Samples() const { return this->width * this->height * this->depth; }
   /// Bytes of the image as read (saturating; 0 if unknown).

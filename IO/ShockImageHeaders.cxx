@@ -259,7 +259,7 @@ bool PnmHeader(
       " (sizes must be positive, values 1 to 255)";
     return false;
   }
-  header = { values[0], values[1], 1, bytes[1] == '6' ? 3u : 1u, 1, true };
+  header = { values[0], values[1], 1, bytes[1] == '6' ? 3u : 1u, 1, true, values[2] };
   if (!WithinLimit(header, maxSamples, problem))
   {
     return false;

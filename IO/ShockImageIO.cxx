@@ -14,6 +14,7 @@
 #include "vtkPNGReader.h"
 #include "vtkPNGWriter.h"
 #include "vtkPNMReader.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkPNMWriter.h"
 #include "vtkPointData.h"
 #include "vtkStructuredPointsReader.h"
@@ -238,7 +239,24 @@ vtkSmartPointer<vtkImageData> ReadImage(
   }
   try
   {
-    return RunReader(path, *format, error);
+    vtkSmartPointer<vtkImageData> image = RunReader(path, *format, error);
+    if (image && header.maxValue > 0 && header.maxValue < 255)
+    {
+      // PGM/PPM with a maximum value below 255 (e.g. 15): white is that value;
+      // VTK's reader hands the raw numbers, scaled here to 0..255.
+      vtkDataArray* values = image->GetPointData()->GetScalars();
+      auto* bytes = vtkUnsignedCharArray::SafeDownCast(values);
+      if (bytes)
+      {
+        const double scale = 255.0 / static_cast<double>(header.maxValue);
+        for (vtkIdType i = 0; i < bytes->GetNumberOfValues(); ++i)
+        {
+          bytes->SetValue(i, static_cast<unsigned char>(std::min(255.0, std::round(bytes->GetValue(i) * scale))));
+        }
+        bytes->Modified();
+      }
+    }
+    return image;
   }
   catch (const std::bad_alloc&)
   {
@@ -267,6 +285,13 @@ bool CheckStorable(vtkImageData* image, const std::string& arrayName, const Imag
   }
   const auto& counts = format.components;
   const int components = array->GetNumberOfComponents();
+  if (format.id == ImageFormat::TIFF && dims[2] > 1 && components > 1)
+  {
+    // vtkTIFFWriter stores a volume as pages of one sample per pixel.
+    error = where + "TIFF volumes hold one component per voxel, array '" + arrayName + "' has " +
+      std::to_string(components) + " (write .vti or .vtk)";
+    return false;
+  }
   if (!counts.empty() && std::find(counts.begin(), counts.end(), components) == counts.end())
   {
     std::string allowed;

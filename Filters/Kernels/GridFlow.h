@@ -686,9 +686,11 @@ inline Status CheckGridShape(const GridShape& shape, int components)
     {
       return { "grid dimensions must be >= 1" };
     }
-    if (!(shape.spacing[a] > 0.0) || !std::isfinite(shape.spacing[a]))
+    // A flat axis (one sample) has no edges: its spacing plays no part.
+    if (shape.dimensions[a] > 1 && (!(shape.spacing[a] > 0.0) || !std::isfinite(shape.spacing[a])))
     {
-      return { "grid spacing must be finite and > 0" };
+      return { "the grid spacing along axis " + std::to_string(a) + " (" + std::to_string(shape.spacing[a]) +
+        ") must be finite and > 0" };
     }
   }
   if (components < 1)

@@ -325,4 +325,42 @@ TEST(ShockImageIO, RasterFilesRoundTripAndAFailedWriteLeavesTheTarget)
   }
 }
 
+// A PGM/PPM whose maximum value is below 255 (white = 15 here) is read on the
+// 0..255 scale: v -> round(255 v / maxval). And a 3D RGB volume is refused for
+// TIFF (its writer would store one sample per voxel), kept by .vti.
+TEST(ShockImageIO, PnmMaximumValuesAndTiffVolumesAreHonoured)
+{
+  const std::string path = TempPath("grey15.pgm");
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+    << std::string("P5\n4 2\n15\n") + std::string{ 0, 5, 10, 15, 15, 15, 0, 7 };
+  std::string error;
+  const vtkSmartPointer<vtkImageData> read = shockio::ReadImage(path, shockio::DefaultMaxSamples, error);
+  ASSERT_NE(read, nullptr) << error;
+  vtkDataArray* values = read->GetPointData()->GetScalars();
+  // VTK puts the last row of the file first.
+  const double expected[8] = { 255, 255, 0, 119, 0, 85, 170, 255 };
+  for (vtkIdType i = 0; i < 8; ++i)
+  {
+    EXPECT_EQ(values->GetTuple1(i), expected[i]) << i;
+  }
+
+  vtkNew<vtkImageData> volume;
+  volume->SetDimensions(6, 5, 4);
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetName("Colour");
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(volume->GetNumberOfPoints());
+  rgb->Fill(7);
+  volume->GetPointData()->SetScalars(rgb);
+  const std::string tif = TempPath("volume.tif");
+  const shockio::ImageFormat* format = shockio::ImageFormatOf(tif, error);
+  ASSERT_NE(format, nullptr) << error;
+  EXPECT_FALSE(shockio::CheckStorable(volume, "Colour", *format, tif, error));
+  EXPECT_NE(error.find("TIFF volumes hold one component per voxel"), std::string::npos) << error;
+  const std::string vti = TempPath("volume.vti");
+  format = shockio::ImageFormatOf(vti, error);
+  ASSERT_NE(format, nullptr);
+  EXPECT_TRUE(shockio::CheckStorable(volume, "Colour", *format, vti, error)) << error;
+}
+
 } // namespace

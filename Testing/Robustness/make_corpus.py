@@ -240,11 +240,11 @@ def legacy_image(dims="4 3 1", count=12, values=None):
             "SPACING 1 1 1\nPOINT_DATA %d\nSCALARS v float 1\nLOOKUP_TABLE default\n%s\n" % (dims, count, values)).encode()
 
 
-def vti(extent="0 3 0 2 0 0", values=" ".join(str(i) for i in range(12)), count=12):
+def vti(extent="0 3 0 2 0 0", values=" ".join(str(i) for i in range(12)), count=12, spacing="1 1 1"):
     return ('<?xml version="1.0"?>\n<VTKFile type="ImageData" version="0.1" byte_order="LittleEndian">\n'
-            '<ImageData WholeExtent="%s" Origin="0 0 0" Spacing="1 1 1">\n<Piece Extent="%s">\n'
+            '<ImageData WholeExtent="%s" Origin="0 0 0" Spacing="%s">\n<Piece Extent="%s">\n'
             '<PointData Scalars="v"><DataArray type="Float32" Name="v" format="ascii" NumberOfTuples="%d">%s</DataArray>'
-            '</PointData>\n</Piece>\n</ImageData>\n</VTKFile>\n' % (extent, extent, count, values)).encode()
+            '</PointData>\n</Piece>\n</ImageData>\n</VTKFile>\n' % (extent, spacing, extent, count, values)).encode()
 
 
 def vtk_image_kinds():
@@ -256,8 +256,10 @@ def vtk_image_kinds():
                        ("not_vtk", b"hello\n")]:
         add("vtk_image_%s.vtk" % name, data, "image", "refuse")
     add("vti_valid.vti", vti(), "image", "ok")
+    add("vti_flat_axis_spacing_zero.vti", vti(spacing="1 1 0"), "image", "ok")  # a 2D image: z has no edges
     for name, data in [("huge", vti("0 64999 0 64999 0 64999")), ("inverted", vti("3 0 2 0 0 0")),
                        ("short_data", vti(values="1 2 3")), ("truncated", vti()[:150]), ("not_xml", b"hello\n"),
+                       ("zero_spacing_along_y", vti(spacing="1 0 1")),
                        ("bad_tag", vti().replace(b"</ImageData>", b"</Image>"))]:
         add("vti_%s.vti" % name, data, "image", "refuse")
 
