@@ -493,7 +493,7 @@ bool ReadHeader(const std::string& path, const ImageFormat& format, std::uint64_
     case ImageFormat::PNM:
       return PnmHeader(path, maxSamples, header, problem);
     case ImageFormat::VTI:
-      return VtkHeader(path, true, header, problem);
+      return VtkHeader(path, true, header, problem) && CheckXmlCompleteness(path, problem);
     case ImageFormat::LegacyVTK:
       return CheckLegacyCounts(path, maxSamples, problem) && VtkHeader(path, false, header, problem);
   }

@@ -61,6 +61,14 @@ bool CheckLegacyCounts(const std::string& path, std::uint64_t maxElements, std::
  */
 bool CheckXmlCounts(const std::string& path, std::uint64_t maxElements, std::string& error);
 
+/**
+ * Whether a VTK XML file (.vti, .vtp) holds all it declares: a single piece
+ * covers the whole extent, and the raw appended data of every array lies
+ * within the file (VTK reads what is missing as zeros). False with `problem`
+ * (without the path) set.
+ */
+bool CheckXmlCompleteness(const std::string& path, std::string& problem);
+
 } // namespace shockio
 
 #endif

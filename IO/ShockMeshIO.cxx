@@ -286,8 +286,14 @@ vtkSmartPointer<vtkPolyData> ReadFormat(const MeshFormat& format, const std::str
     case MeshFormat::STL:
       return CheckStl(path, error) ? ReadWith<vtkSTLReader>(path, trap) : nullptr;
     case MeshFormat::VTP:
-      return CheckXmlCounts(path, maxSamples, error) ? ReadWith<vtkXMLPolyDataReader>(path, trap)
-                                                     : nullptr;
+    {
+      std::string problem;
+      if (CheckXmlCounts(path, maxSamples, error) && !CheckXmlCompleteness(path, problem))
+      {
+        error = path + ": " + problem;
+      }
+      return error.empty() ? ReadWith<vtkXMLPolyDataReader>(path, trap) : nullptr;
+    }
     case MeshFormat::VTK:
       return CheckLegacyCounts(path, maxSamples, error) ? ReadLegacy(path, trap, error) : nullptr;
     case MeshFormat::OFF:

@@ -141,4 +141,155 @@ bool CheckXmlCounts(const std::string& path, std::uint64_t maxElements, std::str
   return true;
 }
 
+namespace
+{
+/// The value of attribute `name` in the XML tag `tag` ("" when absent).
+std::string Attribute(std::string_view tag, std::string_view name)
+{
+  for (size_t at = tag.find(name); at != std::string_view::npos; at = tag.find(name, at + 1))
+  {
+    const bool word = at == 0 || std::isspace(static_cast<unsigned char>(tag[at - 1]));
+    size_t eq = at + name.size();
+    while (eq < tag.size() && std::isspace(static_cast<unsigned char>(tag[eq])))
+    {
+      ++eq;
+    }
+    if (!word || eq >= tag.size() || tag[eq] != '=')
+    {
+      continue;
+    }
+    const size_t open = tag.find('"', eq);
+    const size_t close = open == std::string_view::npos ? open : tag.find('"', open + 1);
+    if (close != std::string_view::npos)
+    {
+      return std::string(tag.substr(open + 1, close - open - 1));
+    }
+  }
+  return "";
+}
+
+/// The integers of a space-separated list ("0 3 0 2 0 0"); empty when one is not an integer.
+std::vector<std::int64_t> Numbers(const std::string& text)
+{
+  std::vector<std::int64_t> numbers;
+  size_t at = 0;
+  while (at < text.size())
+  {
+    while (at < text.size() && std::isspace(static_cast<unsigned char>(text[at])))
+    {
+      ++at;
+    }
+    const size_t end = std::min(text.find_first_of(" \t\r\n", at), text.size());
+    if (end == at)
+    {
+      break;
+    }
+    std::int64_t value = 0;
+    const bool negative = text[at] == '-';
+    if (!ParseCount(std::string_view(text).substr(at + (negative ? 1 : 0), end - at - (negative ? 1 : 0)), value))
+    {
+      return {};
+    }
+    numbers.push_back(negative ? -value : value);
+    at = end;
+  }
+  return numbers;
+}
+
+/// The unsigned integer of `bytes` bytes (little or big endian) at `at` of `text`.
+std::uint64_t Unsigned(const std::string& text, size_t at, int bytes, bool bigEndian)
+{
+  std::uint64_t value = 0;
+  for (int k = 0; k < bytes; ++k)
+  {
+    const auto byte = static_cast<unsigned char>(text[at + static_cast<size_t>(bigEndian ? k : bytes - 1 - k)]);
+    value = (value << 8) | byte;
+  }
+  return value;
+}
+}
+
+bool CheckXmlCompleteness(const std::string& path, std::string& problem)
+{
+  std::string text;
+  std::string error;
+  if (!ReadFile(path, text, error))
+  {
+    problem = "cannot be read";
+    return false;
+  }
+  const size_t appendedTag = text.find("<AppendedData");
+  const std::string_view header = std::string_view(text).substr(0, std::min(appendedTag, text.size()));
+  // An image whose only piece covers part of its whole extent: VTK fills the rest with zeros.
+  const std::string whole = Attribute(header.substr(0, header.find("<Piece")), "WholeExtent");
+  const size_t piece = header.find("<Piece");
+  if (!whole.empty() && piece != std::string_view::npos && header.find("<Piece", piece + 1) == std::string_view::npos)
+  {
+    const std::string extent = Attribute(header.substr(piece, header.find('>', piece) - piece), "Extent");
+    std::vector<std::int64_t> a = Numbers(whole), b = Numbers(extent);
+    if (a.size() == 6 && b.size() == 6 && a != b)
+    {
+      problem = "its only piece covers the extent " + extent + " of the whole extent " + whole +
+        " (the rest would read as zeros)";
+      return false;
+    }
+  }
+  if (appendedTag == std::string::npos)
+  {
+    return true;
+  }
+  // Appended raw data: every array's block (its byte count, then its bytes) within the file.
+  const size_t tagEnd = text.find('>', appendedTag);
+  const std::string_view appendedOpen = std::string_view(text).substr(appendedTag, tagEnd - appendedTag);
+  if (tagEnd == std::string::npos || Attribute(appendedOpen, "encoding") != "raw")
+  {
+    return true; // base64: VTK's decoder reports what is missing
+  }
+  const size_t start = text.find('_', tagEnd) + 1;
+  const size_t closing = text.rfind("</AppendedData>");
+  const size_t end = closing != std::string::npos && closing >= start ? closing : text.size();
+  const std::string_view file = header.substr(0, header.find('>'));
+  const int headerBytes = Attribute(file, "header_type") == "UInt64" ? 8 : 4;
+  const bool bigEndian = Attribute(file, "byte_order") == "BigEndian";
+  const bool compressed = !Attribute(file, "compressor").empty();
+  for (size_t at = header.find("<DataArray"); at != std::string_view::npos; at = header.find("<DataArray", at + 1))
+  {
+    const std::string_view tag = header.substr(at, header.find('>', at) - at);
+    if (Attribute(tag, "format") != "appended")
+    {
+      continue;
+    }
+    std::int64_t offset = 0;
+    if (!ParseCount(Attribute(tag, "offset"), offset))
+    {
+      continue; // the reader reports a malformed offset
+    }
+    const std::string name = Attribute(tag, "Name");
+    const std::uint64_t first = start + static_cast<std::uint64_t>(offset);
+    std::uint64_t total = 0; // the array's block, its header included
+    bool fits = first + static_cast<std::uint64_t>(headerBytes) <= end;
+    if (fits && !compressed)
+    {
+      total = headerBytes + Unsigned(text, first, headerBytes, bigEndian);
+    }
+    else if (fits)
+    {
+      // Compressed: [blocks, block size, last block size, the blocks' compressed sizes...].
+      const std::uint64_t blocks = Unsigned(text, first, headerBytes, bigEndian);
+      fits = blocks < (1ull << 40) && first + (3 + blocks) * headerBytes <= end;
+      total = (3 + blocks) * headerBytes;
+      for (std::uint64_t k = 0; fits && k < blocks; ++k)
+      {
+        total += Unsigned(text, first + (3 + k) * headerBytes, headerBytes, bigEndian);
+      }
+    }
+    if (!fits || first + total > end)
+    {
+      problem = "the appended data of array '" + name + "' ends beyond the end of the file (truncated)";
+      return false;
+    }
+  }
+  return true;
+}
+
 } // namespace shockio

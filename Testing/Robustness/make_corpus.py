@@ -247,6 +247,18 @@ def vti(extent="0 3 0 2 0 0", values=" ".join(str(i) for i in range(12)), count=
             '</PointData>\n</Piece>\n</ImageData>\n</VTKFile>\n' % (extent, spacing, extent, count, values)).encode()
 
 
+def vti_appended(extent="0 3 0 2 0 0", piece=None, count=12):
+    """A .vti with raw appended Float32 data (a UInt32 byte count, then the values)."""
+    import struct
+    data = struct.pack("<I", 4 * count) + b"".join(struct.pack("<f", float(i)) for i in range(count))
+    return ('<?xml version="1.0"?>\n<VTKFile type="ImageData" version="0.1" byte_order="LittleEndian" '
+            'header_type="UInt32">\n<ImageData WholeExtent="%s" Origin="0 0 0" Spacing="1 1 1">\n'
+            '<Piece Extent="%s">\n<PointData Scalars="v"><DataArray type="Float32" Name="v" '
+            'format="appended" offset="0"/></PointData>\n</Piece>\n</ImageData>\n'
+            '<AppendedData encoding="raw">\n_' % (extent, piece or extent)).encode() + data + \
+        b"\n</AppendedData>\n</VTKFile>\n"
+
+
 def vtk_image_kinds():
     add("vtk_image_valid.vtk", legacy_image(), "image", "ok")
     for name, data in [("huge", legacy_image("65000 65000 65000")), ("negative", legacy_image("-4 3 1")),
@@ -256,6 +268,14 @@ def vtk_image_kinds():
                        ("not_vtk", b"hello\n")]:
         add("vtk_image_%s.vtk" % name, data, "image", "refuse")
     add("vti_valid.vti", vti(), "image", "ok")
+    add("vti_appended_valid.vti", vti_appended(), "image", "ok")
+    full = vti_appended()
+    cut = full.index(b"_") + 1
+    for fraction in (0.1, 0.5, 0.95):
+        # Cut inside the appended data: VTK would read the missing values as zeros.
+        add("vti_appended_cut_%d.vti" % int(100 * fraction), full[:cut + int(fraction * (len(full) - cut - 30))],
+            "image", "refuse")
+    add("vti_piece_covers_half.vti", vti_appended(extent="0 3 0 5 0 0", piece="0 3 0 2 0 0"), "image", "refuse")
     add("vti_flat_axis_spacing_zero.vti", vti(spacing="1 1 0"), "image", "ok")  # a 2D image: z has no edges
     for name, data in [("huge", vti("0 64999 0 64999 0 64999")), ("inverted", vti("3 0 2 0 0 0")),
                        ("short_data", vti(values="1 2 3")), ("truncated", vti()[:150]), ("not_xml", b"hello\n"),
