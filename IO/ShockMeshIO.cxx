@@ -360,8 +360,20 @@ vtkSmartPointer<vtkPolyData> ReadMesh(
     error = path + ": out of memory (is the file corrupt?)";
   }
   // What VTK reported explains a failure best, even one found here after it.
-  if (!trap->Finish(path, error) || !mesh)
+  // The OBJ reader only warns when it drops a face (one whose vertex references
+  // take another form than the faces before it): a lost face is an error.
+  const Strictness strictness =
+    format->id == MeshFormat::OBJ ? Strictness::WarningsFail : Strictness::MessagesFail;
+  if (!trap->Finish(path, error, strictness) || !mesh)
   {
+    const size_t skipped = error.find("Skipping poly ");
+    if (skipped != std::string::npos)
+    {
+      const std::string face = error.substr(skipped + 14, error.find(' ', skipped + 14) - skipped - 14);
+      error = path + ": face " + face + " (counting from 1) writes its vertex references in another form (v, "
+        "v/vt, v//vn or v/vt/vn) than the faces before it, and VTK's OBJ reader drops such faces; write every "
+        "face in one form";
+    }
     return nullptr;
   }
   if (mesh->GetNumberOfPoints() == 0)

@@ -493,6 +493,31 @@ bool CheckPlyLayout(const std::vector<PlyElement>& elements, std::string& proble
       (misdeclared->countType ? "list" : "single value") + ", which VTK's PLY reader does not take";
     return false;
   }
+  // VTK's PLY reader stores colours as 8-bit values whatever their type: 0..1
+  // floats would turn black and 16-bit values wrap (60000 -> 96).
+  for (size_t e = 0; e < elements.size() && e < 2; ++e)
+  {
+    for (const PlyProperty& property : elements[e].properties)
+    {
+      const bool colour = property.name == "red" || property.name == "green" || property.name == "blue" ||
+        property.name == "alpha" || property.name.rfind("diffuse_", 0) == 0;
+      if (colour && !property.countType && !(property.type.integer && property.type.size == 1))
+      {
+        problem = "the PLY colour '" + std::string(property.name) + "' of the " + std::string(elements[e].name) +
+          " element is " + (property.type.integer ? std::to_string(8 * property.type.size) + "-bit" : "a real number") +
+          ", but VTK's PLY reader reads colours as 8-bit (0..255) values and would change them; store them as uchar";
+        return false;
+      }
+    }
+  }
+  // An element of triangle strips is skipped by VTK's PLY reader: its triangles would be lost.
+  const int strips = FindPlyElement(elements, "tristrips");
+  if (strips >= 0 && elements[static_cast<size_t>(strips)].count > 0)
+  {
+    problem = "the PLY file holds its triangles as 'tristrips', which VTK's PLY reader skips; write them as a "
+              "'face' element";
+    return false;
+  }
   return true;
 }
 

@@ -752,17 +752,48 @@ TEST(ShockMeshIO, TruncatedAndCorruptBinaryFilesGiveErrors)
   EXPECT_EQ(output.Text(), "");
 }
 
-TEST(ShockMeshIO, WarningsOfASuccessfulReadGoToTheOutputWindow)
+// What VTK's mesh readers would silently change or drop is refused, naming it:
+// a face vtkOBJReader skips (vertex references in another form than the faces
+// before it), PLY colours that are not 8-bit (vtkPLYReader stores them as
+// 8-bit: 0..1 floats would turn black, 60000 would become 96), triangle strips
+// vtkPLYReader skips. The same faces in one form are read whole.
+TEST(ShockMeshIO, WhatTheReadersWouldDropOrChangeIsRefused)
 {
-  // vtkOBJReader skips the face without normals of a file with normals, and warns.
-  const std::string path = TextFile(
-    "skipped.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 2 4 3\n");
-  OutputWindowScope output;
   std::string error;
-  const vtkSmartPointer<vtkPolyData> mesh = shockio::ReadMesh(path, error);
+  const std::string mixed = TextFile(
+    "skipped.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 2 4 3\n");
+  EXPECT_FALSE(shockio::ReadMesh(mixed, error));
+  EXPECT_EQ(error, mixed + ": face 2 (counting from 1) writes its vertex references in another form (v, v/vt, "
+                           "v//vn or v/vt/vn) than the faces before it, and VTK's OBJ reader drops such faces; "
+                           "write every face in one form");
+  const std::string oneForm = TextFile(
+    "one_form.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 2//1 4//1 3//1\n");
+  const vtkSmartPointer<vtkPolyData> mesh = shockio::ReadMesh(oneForm, error);
   ASSERT_TRUE(mesh) << error;
-  EXPECT_EQ(mesh->GetNumberOfPolys(), 1);
-  EXPECT_NE(output.Text().find("Skipping poly 2"), std::string::npos) << output.Text();
+  EXPECT_EQ(mesh->GetNumberOfPolys(), 2);
+
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property float z\n";
+  const std::string faces = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const std::string type : { "float", "ushort", "double" })
+  {
+    const std::string path = TextFile("colours_" + type + ".ply",
+      header + "property " + type + " red\nproperty " + type + " green\nproperty " + type + " blue\n" + faces +
+        "0 0 0 0 0 1\n1 0 0 1 0 0\n0 1 0 0 1 0\n3 0 1 2\n");
+    EXPECT_FALSE(shockio::ReadMesh(path, error)) << type;
+    EXPECT_NE(error.find("the PLY colour 'red' of the vertex element is"), std::string::npos) << error;
+    EXPECT_NE(error.find("store them as uchar"), std::string::npos) << error;
+  }
+  const std::string bytes = TextFile("colours_uchar.ply",
+    header + "property uchar red\nproperty uchar green\nproperty uchar blue\n" + faces +
+      "0 0 0 0 0 255\n1 0 0 255 0 0\n0 1 0 0 255 0\n3 0 1 2\n");
+  EXPECT_TRUE(shockio::ReadMesh(bytes, error)) << error;
+
+  const std::string strips = TextFile("strips.ply",
+    header + "element tristrips 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+             "3 0 1 2\n");
+  EXPECT_FALSE(shockio::ReadMesh(strips, error));
+  EXPECT_NE(error.find("'tristrips', which VTK's PLY reader skips"), std::string::npos) << error;
 }
 
 TEST(ShockMeshIO, LegacyUnstructuredGridIsReadAsItsSurface)
