@@ -118,8 +118,15 @@ bool OutputFile::Open(std::string& error)
   const fs::path directory = target.parent_path();
   for (int attempt = 0; attempt < 100; ++attempt)
   {
-    const std::string name = "." + target.filename().string() + ".partial-" +
-      std::to_string(::getpid()) + "-" + std::to_string(counter++) + LowerExtension(this->Target);
+    const std::string tail = ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) +
+      LowerExtension(this->Target);
+    // The target's name, shortened when the whole would pass the file system's
+    // limit on a name (255 bytes): a legal target name never fails for its
+    // temporary file.
+    std::string stem = target.filename().string();
+    const size_t room = 255 - std::min<size_t>(255, 1 + tail.size());
+    stem = stem.size() > room ? stem.substr(0, room) : stem;
+    const std::string name = "." + stem + tail;
     const std::string candidate = (directory / name).string();
     const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0666);
     if (fd >= 0)

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -361,6 +362,18 @@ TEST(ShockImageIO, PnmMaximumValuesAndTiffVolumesAreHonoured)
   format = shockio::ImageFormatOf(vti, error);
   ASSERT_NE(format, nullptr);
   EXPECT_TRUE(shockio::CheckStorable(volume, "Colour", *format, vti, error)) << error;
+}
+
+// A target name of 254 bytes (legal: the limit is 255) is written; its
+// temporary file beside it takes a shortened name, never the target's whole.
+TEST(ShockImageIO, ALongLegalNameIsWritten)
+{
+  const std::string path =
+    (std::filesystem::path(TempPath("x")).parent_path() / (std::string(250, 'n') + ".png")).string();
+  std::string error, note;
+  ASSERT_TRUE(shockio::WriteImage(TestImage(), path, "Colour", error, note)) << error;
+  EXPECT_NE(shockio::ReadImage(path, shockio::DefaultMaxSamples, error), nullptr) << error;
+  std::remove(path.c_str());
 }
 
 } // namespace
