@@ -129,11 +129,9 @@ public:
     {
       return false;
     }
-    if (end == this->Data.size())
-    {
-      problem = "the last line has no line break, which VTK's PLY reader needs";
-      return false;
-    }
+    // A last line without its line break: a truncated file when values are
+    // missing (said by Next), else only the break VTK's reader needs (said by End).
+    this->Unterminated = end == this->Data.size();
     if (this->LineWords.empty())
     {
       problem = "a blank line in the data";
@@ -149,7 +147,8 @@ public:
     {
       if (this->NextWord >= this->LineWords.size())
       {
-        problem = "fewer values than the header announces";
+        problem = this->Unterminated ? "the file ends inside the data (truncated?)"
+                                     : "fewer values than the header announces";
         return false;
       }
       const std::string_view word = this->LineWords[this->NextWord++];
@@ -183,6 +182,11 @@ public:
     if (this->Encoding == PlyEncoding::Ascii && this->NextWord < this->LineWords.size())
     {
       problem = "more values than the header announces";
+      return false;
+    }
+    if (this->Encoding == PlyEncoding::Ascii && this->Unterminated)
+    {
+      problem = "the last line has no line break, which VTK's PLY reader needs";
       return false;
     }
     return true;
@@ -246,6 +250,7 @@ private:
   std::vector<std::string_view> LineWords;
   size_t NextWord = 0;
   bool Ended = false;
+  bool Unterminated = false; ///< the current line is the last, without its line break
 };
 
 /// The index of the element called `name`, or -1.

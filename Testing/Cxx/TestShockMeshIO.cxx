@@ -757,6 +757,22 @@ TEST(ShockMeshIO, TruncatedAndCorruptBinaryFilesGiveErrors)
 // before it), PLY colours that are not 8-bit (vtkPLYReader stores them as
 // 8-bit: 0..1 floats would turn black, 60000 would become 96), triangle strips
 // vtkPLYReader skips. The same faces in one form are read whole.
+// A truncated ASCII PLY says so; a complete one whose last line lacks its line
+// break is told that.
+TEST(ShockMeshIO, ATruncatedPlySaysTruncated)
+{
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                             "0 0 0\n1 0 0\n0 1 0\n";
+  std::string error;
+  const std::string cut = TextFile("cut.ply", header + "3 0 1");
+  EXPECT_FALSE(shockio::ReadMesh(cut, error));
+  EXPECT_EQ(error, cut + ": line 13: face 0: the file ends inside the data (truncated?)");
+  const std::string open = TextFile("open.ply", header + "3 0 1 2");
+  EXPECT_FALSE(shockio::ReadMesh(open, error));
+  EXPECT_EQ(error, open + ": line 13: face 0: the last line has no line break, which VTK's PLY reader needs");
+}
+
 TEST(ShockMeshIO, WhatTheReadersWouldDropOrChangeIsRefused)
 {
   std::string error;
