@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unistd.h>
 #include <cstdarg>
 #include <cstdio>
 #include <new>
@@ -407,6 +408,99 @@ bool WriteTiff(vtkImageData* image, const ImageFormat& format, const std::string
   return written;
 }
 
+/**
+ * libpng prints its warnings and errors on stderr itself (vtkPNGWriter installs
+ * no handler): what it prints during a write is caught here, and folded into
+ * the one error line when the write fails (given back to stderr otherwise).
+ */
+class StderrCapture
+{
+public:
+  StderrCapture()
+  {
+    std::fflush(stderr);
+    this->File = std::tmpfile();
+    this->Saved = this->File ? ::dup(STDERR_FILENO) : -1;
+    if (this->Saved < 0 || ::dup2(::fileno(this->File), STDERR_FILENO) < 0)
+    {
+      this->Restore();
+    }
+  }
+  ~StderrCapture() { this->Restore(); }
+  StderrCapture(const StderrCapture&) = delete;
+  StderrCapture& operator=(const StderrCapture&) = delete;
+
+  /// Ends the capture; what was printed meanwhile.
+  std::string Finish()
+  {
+    std::string text;
+    if (this->Saved >= 0)
+    {
+      std::fflush(stderr);
+      ::dup2(this->Saved, STDERR_FILENO);
+      std::rewind(this->File);
+      char buffer[4096];
+      size_t read = 0;
+      while ((read = std::fread(buffer, 1, sizeof(buffer), this->File)) > 0 && text.size() < 65536)
+      {
+        text.append(buffer, read);
+      }
+    }
+    this->Restore();
+    return text;
+  }
+
+private:
+  void Restore()
+  {
+    if (this->Saved >= 0)
+    {
+      std::fflush(stderr);
+      ::dup2(this->Saved, STDERR_FILENO);
+      ::close(this->Saved);
+      this->Saved = -1;
+    }
+    if (this->File)
+    {
+      std::fclose(this->File);
+      this->File = nullptr;
+    }
+  }
+  std::FILE* File = nullptr;
+  int Saved = -1;
+};
+
+bool WritePng(vtkImageData* image, const ImageFormat& format, const std::string& path, std::string& error)
+{
+  StderrCapture capture;
+  const bool written = WriteRaster<vtkPNGWriter>(image, format, path, error, [](vtkPNGWriter*) {});
+  std::string printed = capture.Finish();
+  if (!written && !printed.empty())
+  {
+    // "libpng warning: Write Error\nlibpng error: Write Error\n" -> "(libpng: Write Error)"
+    std::string said;
+    size_t at = 0;
+    while (at < printed.size())
+    {
+      const size_t end = std::min(printed.find('\n', at), printed.size());
+      std::string line = printed.substr(at, end - at);
+      at = end + 1;
+      const size_t colon = line.find(": ");
+      line = colon != std::string::npos ? line.substr(colon + 2) : line;
+      if (!line.empty() && said.find(line) == std::string::npos)
+      {
+        said += (said.empty() ? "" : "; ") + line;
+      }
+    }
+    error += " (libpng: " + said + ")";
+  }
+  else if (!printed.empty())
+  {
+    std::fputs(printed.c_str(), stderr);
+  }
+  return written;
+}
+
 } // namespace
 
 bool WriteImage(vtkImageData* image, const std::string& path, const std::string& arrayName,
@@ -443,7 +537,7 @@ bool WriteImage(vtkImageData* image, const std::string& path, const std::string&
   switch (format->id)
   {
     case ImageFormat::PNG:
-      return WriteRaster<vtkPNGWriter>(raster, *format, path, error, [](vtkPNGWriter*) {});
+      return WritePng(raster, *format, path, error);
     case ImageFormat::JPEG:
       return WriteRaster<vtkJPEGWriter>(
         raster, *format, path, error, [](vtkJPEGWriter* w) { w->SetQuality(95); });
