@@ -11,6 +11,7 @@
 
 #include "TestFilterHelpers.h"
 
+#include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkImageData.h"
 #include "vtkMultiBlockDataSet.h"
@@ -263,4 +264,36 @@ TEST(ShockInputsHonouredOrRefused, BlankedSamplesNeitherFeedNorReceive)
     surfaceChange = std::max(surfaceChange, std::abs(surfaces[0][static_cast<size_t>(p)] - before[static_cast<size_t>(p)]));
   }
   EXPECT_GT(surfaceChange, 0.05);
+}
+
+// A line or vertex cell holding a point id out of range: refused by both
+// surface filters with the cell named, never a crash (polygons were checked
+// before; lines and vertices crashed the sharpening).
+TEST(ShockInputsHonouredOrRefused, OutOfRangeIdsInLinesAndVerticesAreRefused)
+{
+  for (bool line : { true, false })
+  {
+    vtkSmartPointer<vtkPolyData> mesh = Sphere(1.0);
+    vtkNew<vtkCellArray> cells;
+    const vtkIdType ids[2] = { 0, 99999 };
+    cells->InsertNextCell(line ? 2 : 1, line ? ids : ids + 1);
+    if (line)
+    {
+      mesh->SetLines(cells);
+    }
+    else
+    {
+      mesh->SetVerts(cells);
+    }
+    vtkNew<vtkPolyDataShockSharpenFilter> sharpen;
+    sharpen->SetInputData(mesh);
+    MessageLog sharpenLog(sharpen);
+    EXPECT_FALSE(UpdateSucceeds(sharpen));
+    EXPECT_NE(sharpenLog.Errors.find(line ? "line cell" : "vertex cell"), std::string::npos) << sharpenLog.Errors;
+    vtkNew<vtkPolyDataShockAdvectionFilter> advection;
+    advection->SetInputData(mesh);
+    MessageLog advectionLog(advection);
+    EXPECT_FALSE(UpdateSucceeds(advection));
+    EXPECT_NE(advectionLog.Errors.find(line ? "line cell" : "vertex cell"), std::string::npos) << advectionLog.Errors;
+  }
 }
