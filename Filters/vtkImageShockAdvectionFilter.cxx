@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <cmath>
 #include <cstring>
@@ -78,7 +79,7 @@ std::string CheckDirection(vtkImageData* image)
       {
         dot += d->GetElement(r, a) * d->GetElement(r, b);
       }
-      if (std::abs(dot) > 1e-6 * scale[a] * scale[b])
+      if (std::abs(dot) > 1e-4 * scale[a] * scale[b]) // orientations written with 4-6 decimals pass
       {
         return "The image direction matrix shears the axes (columns " + std::to_string(a) + " and " +
           std::to_string(b) + " are not orthogonal): the filter needs a rotation, scaled per axis at most; "
@@ -90,6 +91,39 @@ std::string CheckDirection(vtkImageData* image)
 }
 bool CropByRows(vtkImageData* image, const int target[6]);
 
+/// The blanking mark of samples: HIDDENCELL for cell data, HIDDENPOINT for point data.
+unsigned char HiddenMark(bool cellData)
+{
+  return static_cast<unsigned char>(
+    cellData ? static_cast<int>(vtkDataSetAttributes::HIDDENCELL) : static_cast<int>(vtkDataSetAttributes::HIDDENPOINT));
+}
+
+/// Whether sample `t` of `image` (points, or cells for cell data) is blanked.
+bool IsHidden(vtkImageData* image, bool cellData, vtkIdType t)
+{
+  vtkUnsignedCharArray* ghosts = cellData ? image->GetCellGhostArray() : image->GetPointGhostArray();
+  return ghosts && t < ghosts->GetNumberOfTuples() && (ghosts->GetValue(t) & HiddenMark(cellData));
+}
+
+/// Whether any sample of `array` on `image` is blanked (a scan of the marks only).
+bool AnyHidden(vtkImageData* image, vtkDataArray* array, bool cellData)
+{
+  vtkUnsignedCharArray* ghosts = cellData ? image->GetCellGhostArray() : image->GetPointGhostArray();
+  if (!array || !ghosts || ghosts->GetNumberOfTuples() != array->GetNumberOfTuples())
+  {
+    return false;
+  }
+  const unsigned char mark = HiddenMark(cellData);
+  for (vtkIdType t = 0; t < ghosts->GetNumberOfTuples(); ++t)
+  {
+    if (ghosts->GetValue(t) & mark)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 /**
  * A double copy of `array` whose blanked samples (the ghost array's
  * HIDDENPOINT, or HIDDENCELL for cell data) are NaN, or nullptr when none is
@@ -97,17 +131,14 @@ bool CropByRows(vtkImageData* image, const int target[6]);
  */
 vtkSmartPointer<vtkDataArray> MaskHiddenSamples(vtkImageData* image, vtkDataArray* array, bool cellData)
 {
-  vtkUnsignedCharArray* ghosts = cellData ? image->GetCellGhostArray() : image->GetPointGhostArray();
-  const unsigned char hidden = static_cast<unsigned char>(
-    cellData ? static_cast<int>(vtkDataSetAttributes::HIDDENCELL) : static_cast<int>(vtkDataSetAttributes::HIDDENPOINT));
-  if (!ghosts || ghosts->GetNumberOfTuples() != array->GetNumberOfTuples())
+  if (!AnyHidden(image, array, cellData))
   {
     return nullptr;
   }
   vtkSmartPointer<vtkDoubleArray> masked;
   for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
   {
-    if (!(ghosts->GetValue(t) & hidden))
+    if (!IsHidden(image, cellData, t))
     {
       continue;
     }
@@ -368,23 +399,36 @@ int vtkImageShockAdvectionFilter::FilterImageArray(
   vtkSmartPointer<vtkDataArray> masked = MaskHiddenSamples(input, array, cellData);
   if (masked)
   {
-    const shock::SampleWriter typed = filtered.writer;
+    // The blanked samples' own values, read here once (the writer runs on
+    // several threads at once: it reads only these plain vectors).
     const int C = array->GetNumberOfComponents();
-    vtkDataArray* original = array;
-    vtkUnsignedCharArray* ghosts = cellData ? input->GetCellGhostArray() : input->GetPointGhostArray();
-    const unsigned char hidden = static_cast<unsigned char>(
-    cellData ? static_cast<int>(vtkDataSetAttributes::HIDDENCELL) : static_cast<int>(vtkDataSetAttributes::HIDDENPOINT));
-    filtered.writer = [typed, C, original, ghosts, hidden](std::int64_t first, std::int64_t count, const double* in) {
-      std::vector<double> values(in, in + count * C);
-      for (std::int64_t s = 0; s < count; ++s)
+    auto hiddenAt = std::make_shared<std::vector<std::int64_t>>(); // sorted sample indices
+    auto hiddenValues = std::make_shared<std::vector<double>>();
+    for (vtkIdType t = 0; t < masked->GetNumberOfTuples(); ++t)
+    {
+      if (IsHidden(input, cellData, t))
       {
-        if (ghosts->GetValue(first + s) & hidden)
+        hiddenAt->push_back(t);
+        for (int c = 0; c < C; ++c)
         {
-          for (int c = 0; c < C; ++c)
-          {
-            values[static_cast<size_t>(s * C + c)] = original->GetComponent(first + s, c);
-          }
+          hiddenValues->push_back(array->GetComponent(t, c));
         }
+      }
+    }
+    const shock::SampleWriter typed = filtered.writer;
+    filtered.writer = [typed, C, hiddenAt, hiddenValues](std::int64_t first, std::int64_t count, const double* in) {
+      auto k = std::lower_bound(hiddenAt->begin(), hiddenAt->end(), first);
+      if (k == hiddenAt->end() || *k >= first + count)
+      {
+        typed(first, count, in); // no blanked sample in this run
+        return;
+      }
+      std::vector<double> values(in, in + count * C);
+      for (; k != hiddenAt->end() && *k < first + count; ++k)
+      {
+        const size_t which = static_cast<size_t>(k - hiddenAt->begin());
+        std::copy(hiddenValues->begin() + static_cast<long>(which * C),
+          hiddenValues->begin() + static_cast<long>((which + 1) * C), values.begin() + (*k - first) * C);
       }
       typed(first, count, values.data());
     };
@@ -458,7 +502,7 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
   vtkSmartPointer<vtkDataArray> grownGhosts;
   {
     vtkUnsignedCharArray* ghosts = !array ? nullptr : (cellData ? input->GetCellGhostArray() : input->GetPointGhostArray());
-    int hidden = ghosts && MaskHiddenSamples(input, array, cellData) ? 1 : 0;
+    int hidden = AnyHidden(input, array, cellData) ? 1 : 0;
     int anyHidden = 0;
     controller->AllReduce(&hidden, &anyHidden, 1, vtkCommunicator::MAX_OP);
     if (anyHidden)

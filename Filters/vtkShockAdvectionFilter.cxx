@@ -163,8 +163,10 @@ vtkDataArray* vtkShockAdvectionFilter::GetArrayToFilter(
     selected = this->GetActiveScalarsToFilter(inputVector, association);
     if (selected)
     {
-      vtkLogF(1, "%s: this block has no array '%s': filtering its active scalars '%s'.", this->GetClassName(),
-        selection->Get(vtkDataObject::FIELD_NAME()), selected->GetName() ? selected->GetName() : "(unnamed)");
+      // Said as a warning: another array than the one named is filtered.
+      vtkWarningMacro("A block of the composite input has no array '"
+        << selection->Get(vtkDataObject::FIELD_NAME()) << "': its active scalars '"
+        << (selected->GetName() ? selected->GetName() : "(unnamed)") << "' are filtered instead.");
     }
   }
   if (!selected)

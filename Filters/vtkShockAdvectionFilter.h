@@ -288,7 +288,8 @@ protected:
    * (the default, or an empty name) the active point scalars, else the active
    * cell scalars, said at verbosity 1 (vtkLog; quiet at the default INFO).
    * A block of a composite input that lacks the named array takes its own
-   * active scalars the same way (ParaView names one array for all blocks).
+   * active scalars the same way, with a warning (ParaView names one array for
+   * all blocks).
    * Reports a vtkErrorMacro and returns nullptr when it is missing, not
    * numeric, or not point/cell data.
    */

@@ -363,7 +363,8 @@ void CopyLeadingRows(vtkAbstractArray* to, vtkAbstractArray* from, vtkIdType cou
     return;
   }
   if (target && source && target->HasStandardMemoryLayout() && source->HasStandardMemoryLayout() &&
-    target->GetDataType() == source->GetDataType() &&
+    target->GetDataType() == source->GetDataType() && source->GetDataTypeSize() > 0 && // not bits
+    target->GetDataType() != VTK_BIT &&
     target->GetNumberOfComponents() == source->GetNumberOfComponents())
   {
     std::memcpy(target->GetVoidPointer(0), source->GetVoidPointer(0),
@@ -410,7 +411,10 @@ bool ExtendAttributes(vtkDataSetAttributes* to, vtkDataSetAttributes* from, vtkI
       rowOf(r, holder, row);
       if (!holder)
       {
-        target->SetTuple(r, row, source);
+        if (row >= 0 && row < source->GetNumberOfTuples())
+        {
+          target->SetTuple(r, row, source);
+        }
         continue;
       }
       if (holder != lastHolder)

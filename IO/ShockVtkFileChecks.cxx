@@ -4,6 +4,8 @@
 #include "ShockTextWords.h"
 
 #include <algorithm>
+#include <fstream>
+#include <filesystem>
 #include <cctype>
 #include <iterator>
 #include <string_view>
@@ -211,13 +213,20 @@ std::uint64_t Unsigned(const std::string& text, size_t at, int bytes, bool bigEn
 
 bool CheckXmlCompleteness(const std::string& path, std::string& problem)
 {
-  std::string text;
-  std::string error;
-  if (!ReadFile(path, text, error))
+  // The XML part (before the appended data) is read, not the data: a large
+  // file is not held twice. It is the first few MB of any file with appended
+  // data; an inline-data file has no appended blocks to check.
+  std::ifstream file(path, std::ios::binary);
+  std::error_code code;
+  const std::uint64_t size = std::filesystem::file_size(path, code);
+  if (!file || code)
   {
     problem = "cannot be read";
     return false;
   }
+  std::string text(static_cast<size_t>(std::min<std::uint64_t>(size, 8u << 20)), '\0');
+  file.read(&text[0], static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<size_t>(file.gcount()));
   const size_t appendedTag = text.find("<AppendedData");
   const std::string_view header = std::string_view(text).substr(0, std::min(appendedTag, text.size()));
   // An image whose only piece covers part of its whole extent: VTK fills the rest with zeros.
@@ -240,18 +249,52 @@ bool CheckXmlCompleteness(const std::string& path, std::string& problem)
   }
   // Appended raw data: every array's block (its byte count, then its bytes) within the file.
   const size_t tagEnd = text.find('>', appendedTag);
-  const std::string_view appendedOpen = std::string_view(text).substr(appendedTag, tagEnd - appendedTag);
-  if (tagEnd == std::string::npos || Attribute(appendedOpen, "encoding") != "raw")
+  if (tagEnd == std::string::npos ||
+    Attribute(std::string_view(text).substr(appendedTag, tagEnd - appendedTag), "encoding") != "raw")
   {
     return true; // base64: VTK's decoder reports what is missing
   }
-  const size_t start = text.find('_', tagEnd) + 1;
-  const size_t closing = text.rfind("</AppendedData>");
-  const size_t end = closing != std::string::npos && closing >= start ? closing : text.size();
-  const std::string_view file = header.substr(0, header.find('>'));
-  const int headerBytes = Attribute(file, "header_type") == "UInt64" ? 8 : 4;
-  const bool bigEndian = Attribute(file, "byte_order") == "BigEndian";
-  const bool compressed = !Attribute(file, "compressor").empty();
+  const size_t marker = text.find('_', tagEnd);
+  if (marker == std::string::npos)
+  {
+    return true; // the reader reports the missing data
+  }
+  const std::uint64_t start = marker + 1;
+  // The data end where the closing tag begins (a truncated file has none: its end).
+  std::uint64_t end = size;
+  {
+    const std::uint64_t tail = std::min<std::uint64_t>(size, 256);
+    std::string last(static_cast<size_t>(tail), '\0');
+    file.clear();
+    file.seekg(static_cast<std::streamoff>(size - tail));
+    file.read(&last[0], static_cast<std::streamsize>(tail));
+    const size_t closing = last.rfind("</AppendedData>");
+    if (closing != std::string::npos && size - tail + closing >= start)
+    {
+      end = size - tail + closing;
+    }
+  }
+  // The attributes of the <VTKFile> element (a file may start with an <?xml ...?> declaration).
+  const size_t vtkFile = header.find("<VTKFile");
+  const std::string_view fileTag = vtkFile == std::string_view::npos
+    ? std::string_view()
+    : header.substr(vtkFile, header.find('>', vtkFile) - vtkFile);
+  const int headerBytes = Attribute(fileTag, "header_type") == "UInt64" ? 8 : 4;
+  const bool bigEndian = Attribute(fileTag, "byte_order") == "BigEndian";
+  const bool compressed = !Attribute(fileTag, "compressor").empty();
+  // One header word at `at` (false when it lies beyond the data).
+  const auto word = [&](std::uint64_t at, std::uint64_t& value) {
+    if (at > end || end - at < static_cast<std::uint64_t>(headerBytes))
+    {
+      return false;
+    }
+    std::string bytes(static_cast<size_t>(headerBytes), '\0');
+    file.clear();
+    file.seekg(static_cast<std::streamoff>(at));
+    file.read(&bytes[0], headerBytes);
+    value = Unsigned(bytes, 0, headerBytes, bigEndian);
+    return static_cast<bool>(file);
+  };
   for (size_t at = header.find("<DataArray"); at != std::string_view::npos; at = header.find("<DataArray", at + 1))
   {
     const std::string_view tag = header.substr(at, header.find('>', at) - at);
@@ -266,24 +309,33 @@ bool CheckXmlCompleteness(const std::string& path, std::string& problem)
     }
     const std::string name = Attribute(tag, "Name");
     const std::uint64_t first = start + static_cast<std::uint64_t>(offset);
-    std::uint64_t total = 0; // the array's block, its header included
-    bool fits = first + static_cast<std::uint64_t>(headerBytes) <= end;
+    // What the block needs after its first word, compared with what is left
+    // (subtractions only: a hostile size cannot wrap around).
+    std::uint64_t value = 0;
+    bool fits = word(first, value);
+    std::uint64_t left = fits ? end - first - static_cast<std::uint64_t>(headerBytes) : 0;
     if (fits && !compressed)
     {
-      total = headerBytes + Unsigned(text, first, headerBytes, bigEndian);
+      fits = value <= left;
     }
     else if (fits)
     {
       // Compressed: [blocks, block size, last block size, the blocks' compressed sizes...].
-      const std::uint64_t blocks = Unsigned(text, first, headerBytes, bigEndian);
-      fits = blocks < (1ull << 40) && first + (3 + blocks) * headerBytes <= end;
-      total = (3 + blocks) * headerBytes;
+      const std::uint64_t blocks = value;
+      fits = blocks <= left / static_cast<std::uint64_t>(headerBytes) &&
+        2 + blocks <= left / static_cast<std::uint64_t>(headerBytes);
+      if (fits)
+      {
+        left -= (2 + blocks) * static_cast<std::uint64_t>(headerBytes);
+      }
       for (std::uint64_t k = 0; fits && k < blocks; ++k)
       {
-        total += Unsigned(text, first + (3 + k) * headerBytes, headerBytes, bigEndian);
+        std::uint64_t blockBytes = 0;
+        fits = word(first + (3 + k) * static_cast<std::uint64_t>(headerBytes), blockBytes) && blockBytes <= left;
+        left -= fits ? blockBytes : 0;
       }
     }
-    if (!fits || first + total > end)
+    if (!fits)
     {
       problem = "the appended data of array '" + name + "' ends beyond the end of the file (truncated)";
       return false;

@@ -390,6 +390,10 @@ Status RunPDE(const GridShape& shape, int C, const double* input, double* output
 
   const SignalRange scan = ScanSignal(L.numSamples, C, input, threads);
   const double range = p.valueScale > 0.0 ? p.valueScale : scan.high - scan.low;
+  if (range == std::numeric_limits<double>::infinity())
+  {
+    return { ValueSpanError(scan.low, scan.high) };
+  }
   if (!(range > 0.0) || !std::isfinite(range))
   {
     // Constant (or entirely non-finite) signal: no flow, nothing moves.
