@@ -613,14 +613,50 @@ std::vector<double> PreparedMesh::FromMeshPoints(std::vector<double> values, int
 namespace
 {
 /// What PrepareMesh reads from `input`, as numbers (see MeshCache).
+/// A hash of an array's values (its bytes, 8 at a time), or its modification time when its values are not in one block.
+unsigned long long ContentHash(vtkDataArray* array)
+{
+  if (!array)
+  {
+    return 0;
+  }
+  if (!array->HasStandardMemoryLayout() || array->GetDataTypeSize() <= 0)
+  {
+    return array->GetMTime();
+  }
+  const auto* bytes = static_cast<const unsigned char*>(array->GetVoidPointer(0));
+  const size_t size = static_cast<size_t>(array->GetNumberOfValues()) * static_cast<size_t>(array->GetDataTypeSize());
+  std::uint64_t h = 0x9E3779B97F4A7C15ull ^ size;
+  size_t at = 0;
+  for (; at + 8 <= size; at += 8)
+  {
+    std::uint64_t word;
+    std::memcpy(&word, bytes + at, 8);
+    h = (h ^ word) * 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 31;
+  }
+  for (; at < size; ++at)
+  {
+    h = (h ^ bytes[at]) * 0x94D049BB133111EBull;
+  }
+  return h;
+}
+
 std::vector<unsigned long long> PreparationKey(vtkPolyData* input, bool mergeCoincidentPoints)
 {
   using Number = unsigned long long;
-  // The data set's own modification time too: coordinates or connectivity
-  // edited in place and announced with input->Modified() (VTK's idiom) leave
-  // the arrays' times as they were.
-  std::vector<Number> key{ mergeCoincidentPoints ? 1ULL : 0ULL, Number{ input->GetMTime() } };
+  // The coordinates' and the cells' contents too: edited in place and announced
+  // with input->Modified() (VTK's idiom), the arrays keep their times. (Not the
+  // data set's time: it changes whenever upstream runs again, also when only
+  // its point data changed, and the mesh would be prepared again for nothing.)
+  std::vector<Number> key{ mergeCoincidentPoints ? 1ULL : 0ULL };
   vtkPoints* points = input->GetPoints();
+  key.push_back(points ? ContentHash(points->GetData()) : 0ULL);
+  for (vtkCellArray* cells : { input->GetVerts(), input->GetLines(), input->GetPolys(), input->GetStrips() })
+  {
+    key.push_back(cells ? ContentHash(cells->GetOffsetsArray()) : 0ULL);
+    key.push_back(cells ? ContentHash(cells->GetConnectivityArray()) : 0ULL);
+  }
   key.insert(key.end(),
     { reinterpret_cast<Number>(points), points ? Number{ points->GetMTime() } : 0ULL,
       points ? static_cast<Number>(points->GetDataType()) : 0ULL,

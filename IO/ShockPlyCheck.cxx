@@ -498,22 +498,51 @@ bool CheckPlyLayout(const std::vector<PlyElement>& elements, std::string& proble
       (misdeclared->countType ? "list" : "single value") + ", which VTK's PLY reader does not take";
     return false;
   }
-  // VTK's PLY reader stores colours as 8-bit values whatever their type: 0..1
-  // floats would turn black and 16-bit values wrap (60000 -> 96).
-  for (size_t e = 0; e < elements.size() && e < 2; ++e)
-  {
-    for (const PlyProperty& property : elements[e].properties)
+  // VTK's PLY reader stores the colours it reads as 8-bit values whatever
+  // their type: 0..1 floats would turn black and 16-bit values wrap (60000 ->
+  // 96). It reads a vertex's red, green, blue (and alpha) triple, else its
+  // diffuse_red, _green, _blue triple, a face's red, green, blue triple and
+  // its intensity; those are checked, nothing it skips.
+  const auto notBytes = [&](const PlyElement& element, std::initializer_list<const char*> names,
+                          bool wholeSet) -> const PlyProperty* {
+    std::vector<const PlyProperty*> found;
+    for (const char* name : names)
     {
-      const bool colour = property.name == "red" || property.name == "green" || property.name == "blue" ||
-        property.name == "alpha" || property.name.rfind("diffuse_", 0) == 0;
-      if (colour && !property.countType && !(property.type.integer && property.type.size == 1))
+      if (const PlyProperty* property = FindPlyProperty(element, name))
       {
-        problem = "the PLY colour '" + std::string(property.name) + "' of the " + std::string(elements[e].name) +
-          " element is " + (property.type.integer ? std::to_string(8 * property.type.size) + "-bit" : "a real number") +
-          ", but VTK's PLY reader reads colours as 8-bit (0..255) values and would change them; store them as uchar";
-        return false;
+        found.push_back(property);
       }
     }
+    if (wholeSet && found.size() < 3)
+    {
+      return nullptr; // no triple: VTK reads none of them
+    }
+    for (const PlyProperty* property : found)
+    {
+      if (!property->countType && !(property->type.integer && property->type.size == 1))
+      {
+        return property;
+      }
+    }
+    return nullptr;
+  };
+  const bool vertexRgb = FindPlyProperty(elements[0], "red") && FindPlyProperty(elements[0], "green") &&
+    FindPlyProperty(elements[0], "blue");
+  const PlyProperty* wrong = vertexRgb ? notBytes(elements[0], { "red", "green", "blue", "alpha" }, true)
+                                       : notBytes(elements[0], { "diffuse_red", "diffuse_green", "diffuse_blue" }, true);
+  const PlyElement* wrongElement = &elements[0];
+  if (!wrong && faceElement == 1)
+  {
+    wrongElement = &elements[1];
+    wrong = notBytes(elements[1], { "red", "green", "blue" }, true);
+    wrong = wrong ? wrong : notBytes(elements[1], { "intensity" }, false);
+  }
+  if (wrong)
+  {
+    problem = "the PLY colour '" + std::string(wrong->name) + "' of the " + std::string(wrongElement->name) +
+      " element is " + (wrong->type.integer ? std::to_string(8 * wrong->type.size) + "-bit" : "a real number") +
+      ", but VTK's PLY reader reads colours as 8-bit (0..255) values and would change them; store them as uchar";
+    return false;
   }
   // An element of triangle strips is skipped by VTK's PLY reader: its triangles would be lost.
   const int strips = FindPlyElement(elements, "tristrips");

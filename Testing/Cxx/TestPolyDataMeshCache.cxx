@@ -100,6 +100,14 @@ TEST(PolyDataMeshCache, ChangingOnlyParametersKeepsThePreparedMesh)
   EXPECT_EQ(filter->GetNumberOfMeshPreparations(), 1);
   EXPECT_NE(Result(filter), second);
 
+  // Upstream runs again with the same points and cells (only its scalars
+  // change): the prepared mesh is kept, the result is a fresh filter's.
+  filter->SetSmoothingPasses(1); // as FreshResult's filter
+  elevation->SetHighPoint(0.5, 0.2, 0.4);
+  filter->Update();
+  EXPECT_EQ(filter->GetNumberOfMeshPreparations(), 1);
+  EXPECT_EQ(Result(filter), FreshResult(vtkPolyData::SafeDownCast(elevation->GetOutput()), 256));
+
   // An upstream change gives a new mesh: prepared again, equal to a fresh filter.
   sphere->SetThetaResolution(40);
   filter->SetSmoothingPasses(1);
