@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sys/mman.h>
 #include <unistd.h>
 #include <cstdarg>
 #include <cstdio>
@@ -419,14 +420,29 @@ public:
   StderrCapture()
   {
     std::fflush(stderr);
-    this->File = std::tmpfile();
+    // In memory (a full /tmp must not lose the messages of a full disk).
+    const int memory = ::memfd_create("shockfilter-stderr", 0);
+    this->File = memory >= 0 ? ::fdopen(memory, "w+") : std::tmpfile();
+    if (!this->File && memory >= 0)
+    {
+      ::close(memory);
+    }
     this->Saved = this->File ? ::dup(STDERR_FILENO) : -1;
     if (this->Saved < 0 || ::dup2(::fileno(this->File), STDERR_FILENO) < 0)
     {
       this->Restore();
     }
   }
-  ~StderrCapture() { this->Restore(); }
+  /// An unfinished capture (an exception) gives back what it caught.
+  ~StderrCapture()
+  {
+    if (this->Saved >= 0)
+    {
+      const std::string text = this->Finish();
+      std::fputs(text.c_str(), stderr);
+    }
+    this->Restore();
+  }
   StderrCapture(const StderrCapture&) = delete;
   StderrCapture& operator=(const StderrCapture&) = delete;
 
@@ -485,6 +501,11 @@ bool WritePng(vtkImageData* image, const ImageFormat& format, const std::string&
       const size_t end = std::min(printed.find('\n', at), printed.size());
       std::string line = printed.substr(at, end - at);
       at = end + 1;
+      if (line.rfind("libpng", 0) != 0)
+      {
+        std::fputs((line + "\n").c_str(), stderr); // not libpng's: given back as it was
+        continue;
+      }
       const size_t colon = line.find(": ");
       line = colon != std::string::npos ? line.substr(colon + 2) : line;
       if (!line.empty() && said.find(line) == std::string::npos)
@@ -492,7 +513,7 @@ bool WritePng(vtkImageData* image, const ImageFormat& format, const std::string&
         said += (said.empty() ? "" : "; ") + line;
       }
     }
-    error += " (libpng: " + said + ")";
+    error += said.empty() ? "" : " (libpng: " + said + ")";
   }
   else if (!printed.empty())
   {
