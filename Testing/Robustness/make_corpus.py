@@ -425,6 +425,14 @@ def mesh_kinds():
                        ("truncated", off(P, T)[:400])]:
         add("off_%s.off" % name, data, "sharpen", "refuse")
     add("ply_ascii_valid.ply", ply_ascii(P, T), "surface", "ok")
+    # What VTK's readers would change or drop: refused, not read wrong.
+    for kind in ("float", "ushort"):
+        add("ply_colours_%s.ply" % kind, ply_ascii(P, T).replace(b"property uchar", b"property " + kind.encode()),
+            "surface", "refuse")
+    strips = ply_ascii(P, T).replace(b"element face", b"element tristrips")
+    add("ply_tristrips.ply", strips, "sharpen", "refuse")
+    mixed = obj(P, T, extra="vn 0 0 1\n").replace(b"f 1 2 3\n", b"f 1//1 2//1 3//1\n", 1)
+    add("obj_mixed_face_forms.obj", mixed, "sharpen", "refuse")
     add("ply_binary_valid.ply", ply_binary(P, T), "sharpen", "ok")
     faces = ["3 %d %d %d" % t for t in T]
     for name, data in [("face_0_vertices", ply_ascii(P, T, face_lines=faces[:-1] + ["0"])),
