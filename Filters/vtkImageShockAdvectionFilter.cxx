@@ -1,6 +1,7 @@
 #include "vtkImageShockAdvectionFilter.h"
 
 #include "GridShockAdvection.h"
+#include "GridGradientDomain.h"
 #include "GridShockPDE.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataSet.h"
@@ -36,6 +37,11 @@ vtkStandardNewMacro(vtkImageShockAdvectionFilter);
 namespace
 {
 shock::GridShape SampleGrid(vtkImageData* image, bool cellData);
+
+/// Domain Gradients on a piece of an image (MPI, or serial streaming).
+const char* const GradientPiecesError =
+  "Domain Gradients solves one Poisson problem over the whole image and does not run on pieces; "
+  "filter the image in one piece (one process), or use Domain Values";
 
 /// The length of column `a` of the image's direction matrix: the scale it gives axis a.
 double AxisScale(vtkImageData* image, int a)
@@ -335,6 +341,11 @@ int vtkImageShockAdvectionFilter::RequestData(
     // A piece of a distributed image: its halo comes from the other processes.
     return this->FilterPieceWithHalo(controller, inputVector, outputVector);
   }
+  if (unknown && this->Domain == GRADIENTS)
+  {
+    vtkErrorMacro(<< GradientPiecesError);
+    return 0;
+  }
   // Filter the image (a piece of one with its ghost layers), then hand back what was asked for.
   const int done = this->FilterImage(inputVector, outputVector, unknown);
   if (done)
@@ -472,6 +483,10 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
   int association = -1;
   vtkDataArray* array = ok && !empty ? this->GetArrayToFilter(inputVector, association) : nullptr;
   std::string error = !ok ? "the execution could not start" : (!empty && !array ? "no array to filter (see the message above)" : "");
+  if (error.empty() && this->Domain == GRADIENTS)
+  {
+    error = GradientPiecesError; // the same on every process, before the collective steps
+  }
   std::string selection;
   if (array)
   {
@@ -592,14 +607,24 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDa
   vtkShockFilterInternals::KernelSignal signal =
     vtkShockFilterInternals::SignalForKernel(array, threads);
   shock::Status status;
+  if (this->Domain == GRADIENTS && this->Method != ADVECTION)
+  {
+    vtkErrorMacro("Domain Gradients works with Method Advection only.");
+    return false;
+  }
   if (this->Method == ADVECTION)
   {
     shock::AdvectionReport report;
     shock::AdvectionParameters parameters = vtkShockFilterInternals::MakeParameters(this);
     parameters.hierarchyLevels = this->HierarchyLevels;
+    shock::GradientDomainParameters domain;
+    domain.screening = this->GradientScreening;
     const auto advect = [&](const auto* values) {
-      return shock::AdvectGridSignal(
-        grid, components, values, output, parameters, &report, fields, progress);
+      return this->Domain == GRADIENTS
+        ? shock::AdvectGridGradients(
+            grid, components, values, output, parameters, domain, &report, fields, progress)
+        : shock::AdvectGridSignal(
+            grid, components, values, output, parameters, &report, fields, progress);
     };
     status = signal.floats ? advect(signal.floats)
                            : (signal.bytes ? advect(signal.bytes) : advect(signal.doubles));
@@ -887,6 +912,8 @@ std::string vtkImageShockAdvectionFilter::ParametersText()
   text.precision(17);
   text << this->Superclass::ParametersText()
        << "Method=" << this->Method << ";"
+       << "Domain=" << this->Domain << ";"
+       << "GradientScreening=" << this->GradientScreening << ";"
        << "HierarchyLevels=" << this->HierarchyLevels << ";"
        << "CourantNumber=" << this->CourantNumber << ";"
        << "MaximumIterations=" << this->MaximumIterations << ";";
@@ -897,6 +924,8 @@ void vtkImageShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Method: " << (this->Method == ADVECTION ? "Advection" : "PDE") << "\n";
+  os << indent << "Domain: " << (this->Domain == VALUES ? "Values" : "Gradients") << "\n";
+  os << indent << "GradientScreening: " << this->GradientScreening << "\n";
   os << indent << "HierarchyLevels: " << this->HierarchyLevels << "\n";
   os << indent << "CourantNumber: " << this->CourantNumber << "\n";
   os << indent << "MaximumIterations: " << this->MaximumIterations << "\n";

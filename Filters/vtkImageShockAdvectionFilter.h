@@ -105,6 +105,45 @@ public:
   void SetMethodToPDE() { this->SetMethod(PDE); }
   ///@}
 
+  /// What the advection carries along the flow.
+  enum Domains
+  {
+    VALUES = 0,   ///< the signal's values (the paper)
+    GRADIENTS = 1 ///< the signal's gradients, integrated back (beyond the paper: docs/gradient-domain.md)
+  };
+
+  ///@{
+  /**
+   * ADVECTION method: VALUES (default) advects the signal's values, as the
+   * paper does. GRADIENTS is the gradient-domain mode the paper's section 6
+   * proposes as future work (GridGradientDomain.h, docs/gradient-domain.md):
+   * the signal's differences are carried along the flow of its values, each
+   * grid edge keeps the advected difference where the flow stretches it (the
+   * sharpened edges) and the difference carried from the trace's end where the
+   * flow compresses it (the shading that value advection flattens), and a
+   * screened Poisson solve (GradientScreening) integrates them back into a
+   * signal. It needs the whole image in one piece (the solve couples every
+   * sample), finite values, FlowMode FIXED, and Method ADVECTION; anything else
+   * is an error. Its memory is about 8 x C x (1 + 2 x axes) bytes per sample
+   * (C components). Default VALUES.
+   */
+  vtkSetClampMacro(Domain, int, VALUES, GRADIENTS);
+  vtkGetMacro(Domain, int);
+  void SetDomainToValues() { this->SetDomain(VALUES); }
+  void SetDomainToGradients() { this->SetDomain(GRADIENTS); }
+  ///@}
+
+  ///@{
+  /**
+   * Domain GRADIENTS: the screening weight lambda of the Poisson solve, per
+   * squared mean edge length. The result keeps the input's structure longer
+   * than about 1 / sqrt(lambda) edges and takes the advected gradients below
+   * it: larger values stay closer to the input. Range [1e-6, 1e6], default 0.01.
+   */
+  vtkSetClampMacro(GradientScreening, double, 1e-6, 1e6);
+  vtkGetMacro(GradientScreening, double);
+  ///@}
+
   ///@{
   /**
    * ADVECTION method: number of resolution levels of the coarse-to-fine
@@ -199,6 +238,8 @@ protected:
   void ResetMeasurements() override;
 
   int Method = ADVECTION;
+  int Domain = VALUES;
+  double GradientScreening = 0.01;
   int HierarchyLevels = 1;
   double CourantNumber = 0.5;
   int MaximumIterations = 100000;

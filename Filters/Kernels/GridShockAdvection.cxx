@@ -134,7 +134,7 @@ void WriteSignal(std::int64_t numSamples, int C, const T* values, const SampleWr
 template <int D, typename T>
 Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter& output,
   const AdvectionParameters& p, AdvectionReport& report, GridFlowFields* fields,
-  const ProgressFunction& progress)
+  const ProgressFunction& progress, const CarriedSignal* carried = nullptr)
 {
   const Lattice<D> L(shape);
   const int threads = ThreadsForWork(p.numberOfThreads, L.numSamples);
@@ -150,9 +150,20 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
   {
     ZeroFlowFields(L.numSamples, L.numFaces, *fields);
   }
+  // What the traces sample and hand to `output`: the input, or the carried signal.
+  const auto writeUnchanged = [&] {
+    if (carried)
+    {
+      WriteSignal(L.numSamples, carried->components, carried->values, output, threads);
+    }
+    else
+    {
+      WriteSignal(L.numSamples, C, input, output, threads);
+    }
+  };
   if (!(range > 0.0) || !std::isfinite(range))
   {
-    WriteSignal(L.numSamples, C, input, output, threads);
+    writeUnchanged();
     return {}; // constant (or entirely non-finite) signal: no flow
   }
 
@@ -188,7 +199,8 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
   {
     flow.KeepPotential();
   }
-  const AdvectionContext<D> ctx{ L, C, threads, p.sampling, validSample, progress, report };
+  const AdvectionContext<D> ctx{ L, carried ? carried->components : C, threads, p.sampling,
+    validSample, progress, report };
 
   const double* previous = nullptr; // the last update's result; null: the input
   // Calls `step` with the signal of this update: the input (T) or the last result (double).
@@ -230,7 +242,10 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
     // positions, its result feeding the next flow); Naive resamples the last result.
     double* buffer = last ? nullptr : work[naive ? k % 2 : 0].get();
     const SampleWriter target = buffer ? BufferWriter(buffer, C) : output;
-    const bool completed = naive && previous
+    const bool completed = carried
+      ? AdvectUpdate<D>(ctx, flow, p, stepTime, carried->values, target, positions.get(),
+          progressStart, 0.9 / updates)
+      : naive && previous
       ? AdvectUpdate<D>(ctx, flow, p, stepTime, previous, target, positions.get(), progressStart,
           0.9 / updates)
       : AdvectUpdate<D>(ctx, flow, p, stepTime, input, target, positions.get(), progressStart,
@@ -245,7 +260,7 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
 
   if (report.aborted || !advect)
   {
-    WriteSignal(L.numSamples, C, input, output, threads);
+    writeUnchanged();
   }
   return {};
 }
@@ -254,7 +269,8 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
 template <typename T>
 Status AdvectGrid(const GridShape& shape, int components, const T* input,
   const SampleWriter& output, const AdvectionParameters& parameters, AdvectionReport* report,
-  GridFlowFields* fields, const ProgressFunction& progress)
+  GridFlowFields* fields, const ProgressFunction& progress,
+  const CarriedSignal* carried = nullptr)
 {
   const Status arguments = CheckGridShape(shape, components);
   if (!arguments.Ok())
@@ -270,6 +286,17 @@ Status AdvectGrid(const GridShape& shape, int components, const T* input,
   {
     return valid;
   }
+  if (carried)
+  {
+    if (!carried->values || carried->components < 1)
+    {
+      return { "the carried signal must be non-null, with at least one component" };
+    }
+    if (parameters.flowMode != FlowMode::Fixed)
+    {
+      return { "a carried signal follows the fixed flow only (FlowMode Fixed)" };
+    }
+  }
 
   AdvectionReport localReport;
   AdvectionReport& r = report ? *report : localReport;
@@ -277,14 +304,24 @@ Status AdvectGrid(const GridShape& shape, int components, const T* input,
   switch (shape.ActiveAxes())
   {
     case 1:
-      return RunGrid<1>(shape, components, input, output, parameters, r, fields, progress);
+      return RunGrid<1>(
+        shape, components, input, output, parameters, r, fields, progress, carried);
     case 2:
-      return RunGrid<2>(shape, components, input, output, parameters, r, fields, progress);
+      return RunGrid<2>(
+        shape, components, input, output, parameters, r, fields, progress, carried);
     case 3:
-      return RunGrid<3>(shape, components, input, output, parameters, r, fields, progress);
+      return RunGrid<3>(
+        shape, components, input, output, parameters, r, fields, progress, carried);
     default:
       // A single sample has no faces, hence no flow.
-      WriteSignal(shape.NumberOfSamples(), components, input, output, 1);
+      if (carried)
+      {
+        WriteSignal(shape.NumberOfSamples(), carried->components, carried->values, output, 1);
+      }
+      else
+      {
+        WriteSignal(shape.NumberOfSamples(), components, input, output, 1);
+      }
       if (fields)
       {
         ZeroFlowFields(shape.NumberOfSamples(), shape.NumberOfFaces(), *fields);
@@ -328,5 +365,24 @@ Status AdvectGridSignal(const GridShape& shape, int components, const unsigned c
 {
   return AdvectGrid(shape, components, input, output, parameters, report, fields, progress);
 }
+
+template <typename T>
+Status AdvectCarriedGridSignal(const GridShape& shape, int components, const T* input,
+  const CarriedSignal& carried, const SampleWriter& output, const AdvectionParameters& parameters,
+  AdvectionReport* report, GridFlowFields* fields, const ProgressFunction& progress)
+{
+  return AdvectGrid(
+    shape, components, input, output, parameters, report, fields, progress, &carried);
+}
+
+template Status AdvectCarriedGridSignal(const GridShape&, int, const double*, const CarriedSignal&,
+  const SampleWriter&, const AdvectionParameters&, AdvectionReport*, GridFlowFields*,
+  const ProgressFunction&);
+template Status AdvectCarriedGridSignal(const GridShape&, int, const float*, const CarriedSignal&,
+  const SampleWriter&, const AdvectionParameters&, AdvectionReport*, GridFlowFields*,
+  const ProgressFunction&);
+template Status AdvectCarriedGridSignal(const GridShape&, int, const unsigned char*,
+  const CarriedSignal&, const SampleWriter&, const AdvectionParameters&, AdvectionReport*,
+  GridFlowFields*, const ProgressFunction&);
 
 } // namespace shock

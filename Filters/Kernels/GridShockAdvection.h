@@ -109,6 +109,29 @@ Status AdvectGridSignal(const GridShape& shape, int components, const unsigned c
   AdvectionReport* report = nullptr, GridFlowFields* fields = nullptr,
   const ProgressFunction& progress = ProgressFunction());
 
+/// A signal that follows another's flow: `components` floats per sample, interleaved.
+struct CarriedSignal
+{
+  const float* values = nullptr;
+  int components = 0;
+};
+
+/**
+ * The advection of `carried` along the flow of `input`: the flow (steps 1-3) is
+ * computed from `input` (C = `components` channels) exactly as AdvectGridSignal
+ * does, and the traces (step 4) sample `carried` instead of `input`, handing
+ * carried.components values per sample to `output`. Samples where `input` is
+ * not finite keep their carried values. Only the fixed flow (FlowMode::Fixed):
+ * the other modes recompute the flow from advected values the carried signal
+ * does not hold. Used by the gradient domain (GridGradientDomain.h).
+ * T is double, float or unsigned char.
+ */
+template <typename T>
+Status AdvectCarriedGridSignal(const GridShape& shape, int components, const T* input,
+  const CarriedSignal& carried, const SampleWriter& output, const AdvectionParameters& parameters,
+  AdvectionReport* report = nullptr, GridFlowFields* fields = nullptr,
+  const ProgressFunction& progress = ProgressFunction());
+
 } // namespace shock
 
 #endif

@@ -89,6 +89,7 @@ struct AdvectionReport
 {
   double flowSeconds = 0.0;      ///< smoothing, potential and flow computation (all updates)
   double advectionSeconds = 0.0; ///< back-tracing and sampling (all updates)
+  double integrationSeconds = 0.0; ///< the gradient domain's screened Poisson solve (GridGradientDomain.h)
   std::uint64_t traceSteps = 0;  ///< face crossings (FaceCrossing) or delta-steps (Stepped), all traces
   std::uint64_t truncatedTraces = 0; ///< traces stopped by the step cap (a discrete cycle guard)
   bool aborted = false;          ///< the progress callback asked to stop

@@ -1,0 +1,501 @@
+#include "GridGradientDomain.h"
+#include "GridFlow.h"
+#include "Timer.h"
+
+#include <fftw3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+namespace shock
+{
+namespace
+{
+
+/// The axes with more than one sample: their lengths, strides and spacings.
+struct ActiveAxes
+{
+  int count = 0;
+  std::int64_t n[3] = { 1, 1, 1 };      ///< samples along the axis
+  std::int64_t stride[3] = { 1, 1, 1 }; ///< index step along the axis
+  double h[3] = { 1.0, 1.0, 1.0 };      ///< spacing in mean edge lengths
+
+  explicit ActiveAxes(const GridShape& shape)
+  {
+    const double unit = shape.MeanEdgeLength();
+    std::int64_t stride = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (shape.dimensions[a] > 1)
+      {
+        this->n[this->count] = shape.dimensions[a];
+        this->stride[this->count] = stride;
+        this->h[this->count] = shape.spacing[a] / unit;
+        ++this->count;
+      }
+      stride *= shape.dimensions[a];
+    }
+  }
+
+  /// The coordinate of sample s along active axis k.
+  std::int64_t Coordinate(std::int64_t s, int k) const
+  {
+    return (s / this->stride[k]) % this->n[k];
+  }
+};
+
+/// Per channel: whether every value is finite, and the middle of its range.
+struct ChannelScan
+{
+  bool allFinite = true;
+  double low = std::numeric_limits<double>::infinity();
+  double high = -std::numeric_limits<double>::infinity();
+  std::vector<double> middle;
+};
+
+template <typename T>
+ChannelScan ScanChannels(std::int64_t N, int C, const T* input, int threads)
+{
+  ChannelScan scan;
+  scan.middle.resize(static_cast<size_t>(C));
+  for (int c = 0; c < C; ++c)
+  {
+    double low = std::numeric_limits<double>::infinity();
+    double high = -low;
+    bool finite = true;
+#pragma omp parallel for schedule(static) num_threads(threads) \
+  reduction(min : low) reduction(max : high) reduction(&& : finite)
+    for (std::int64_t s = 0; s < N; ++s)
+    {
+      const double v = static_cast<double>(input[s * C + c]);
+      finite = finite && std::isfinite(v);
+      low = std::min(low, v);
+      high = std::max(high, v);
+    }
+    scan.allFinite = scan.allFinite && finite;
+    scan.low = std::min(scan.low, low);
+    scan.high = std::max(scan.high, high);
+    scan.middle[static_cast<size_t>(c)] = 0.5 * low + 0.5 * high;
+  }
+  return scan;
+}
+
+/**
+ * Step 1: per sample, its value (less its channel's mid-range, so that floats
+ * keep 7 digits of the range) and, per active axis, its forward and backward
+ * differences; C * (1 + 2 * axes) floats.
+ */
+template <typename T>
+LargeArray<float> CarriedDifferences(std::int64_t N, int C, const ActiveAxes& axes,
+  const T* input, const std::vector<double>& middle, int threads)
+{
+  const int carriedC = C * (1 + 2 * axes.count);
+  LargeArray<float> carried = AllocateLargeArray<float>(N * carriedC);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t s = 0; s < N; ++s)
+  {
+    float* out = carried.get() + s * carriedC;
+    const T* here = input + s * C;
+    for (int c = 0; c < C; ++c)
+    {
+      out[c] = static_cast<float>(static_cast<double>(here[c]) - middle[static_cast<size_t>(c)]);
+    }
+    for (int k = 0; k < axes.count; ++k)
+    {
+      const std::int64_t i = axes.Coordinate(s, k);
+      const T* next = here + axes.stride[k] * C;
+      const T* previous = here - axes.stride[k] * C;
+      float* forward = out + C * (1 + 2 * k);
+      float* backward = forward + C;
+      for (int c = 0; c < C; ++c)
+      {
+        const double v = static_cast<double>(here[c]);
+        forward[c] = i + 1 < axes.n[k] ? static_cast<float>(static_cast<double>(next[c]) - v) : 0.0f;
+        backward[c] = i > 0 ? static_cast<float>(v - static_cast<double>(previous[c])) : 0.0f;
+      }
+    }
+  }
+  return carried;
+}
+
+/**
+ * Step 3 for the edge from sample s along active axis k: the covariant
+ * difference of the advected values, or the transported carried difference,
+ * whichever is longer over the channels; written to g (C values).
+ */
+inline void TargetGradient(const float* advected, std::int64_t s, int k, std::int64_t stride,
+  int C, int carriedC, double* g)
+{
+  const float* from = advected + s * carriedC;
+  const float* to = advected + (s + stride) * carriedC;
+  const float* forward = from + C * (1 + 2 * k); // F_k at the end of s's trace
+  const float* backward = to + C * (2 + 2 * k);  // B_k at the end of (s + e_k)'s trace
+  double covariant = 0.0;
+  double transported = 0.0;
+  for (int c = 0; c < C; ++c)
+  {
+    const double dv = static_cast<double>(to[c]) - static_cast<double>(from[c]);
+    const double tv = 0.5 * (static_cast<double>(forward[c]) + static_cast<double>(backward[c]));
+    covariant += dv * dv;
+    transported += tv * tv;
+  }
+  const bool stretch = covariant >= transported;
+  for (int c = 0; c < C; ++c)
+  {
+    g[c] = stretch ? static_cast<double>(to[c]) - static_cast<double>(from[c])
+                   : 0.5 * (static_cast<double>(forward[c]) + static_cast<double>(backward[c]));
+  }
+}
+
+/**
+ * The right-hand side of step 4, channel-planar (rhs[c * N + s]):
+ * lambda I + sum_k D_k^T g_k / h_k^2, where (D^T g)(s) = g(s - e_k) - g(s)
+ * over the edges that exist.
+ */
+template <typename T>
+LargeArray<double> ScreenedRightHandSide(std::int64_t N, int C, const ActiveAxes& axes,
+  const T* input, const float* advected, double lambda, int threads)
+{
+  const int carriedC = C * (1 + 2 * axes.count);
+  LargeArray<double> rhs = AllocateLargeArray<double>(N * C);
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<double> g(static_cast<size_t>(C));
+    std::vector<double> sum(static_cast<size_t>(C));
+#pragma omp for schedule(static)
+    for (std::int64_t s = 0; s < N; ++s)
+    {
+      for (int c = 0; c < C; ++c)
+      {
+        sum[static_cast<size_t>(c)] = lambda * static_cast<double>(input[s * C + c]);
+      }
+      for (int k = 0; k < axes.count; ++k)
+      {
+        const std::int64_t i = axes.Coordinate(s, k);
+        const double weight = 1.0 / (axes.h[k] * axes.h[k]);
+        if (i > 0)
+        {
+          TargetGradient(advected, s - axes.stride[k], k, axes.stride[k], C, carriedC, g.data());
+          for (int c = 0; c < C; ++c)
+          {
+            sum[static_cast<size_t>(c)] += weight * g[static_cast<size_t>(c)];
+          }
+        }
+        if (i + 1 < axes.n[k])
+        {
+          TargetGradient(advected, s, k, axes.stride[k], C, carriedC, g.data());
+          for (int c = 0; c < C; ++c)
+          {
+            sum[static_cast<size_t>(c)] -= weight * g[static_cast<size_t>(c)];
+          }
+        }
+      }
+      for (int c = 0; c < C; ++c)
+      {
+        rhs[c * N + s] = sum[static_cast<size_t>(c)];
+      }
+    }
+  }
+  return rhs;
+}
+
+// FFTW's planner is not thread-safe; executing a plan is.
+std::mutex& PlannerMutex()
+{
+  static std::mutex mutex;
+  return mutex;
+}
+
+/// A 1D in-place real-to-real transform of one length, usable on any array.
+class CosineTransform
+{
+public:
+  CosineTransform(std::int64_t n, fftw_r2r_kind kind)
+  {
+    std::vector<double> scratch(static_cast<size_t>(n));
+    const std::lock_guard<std::mutex> lock(PlannerMutex());
+    this->Plan = fftw_plan_r2r_1d(static_cast<int>(n), scratch.data(), scratch.data(), kind,
+      FFTW_ESTIMATE | FFTW_UNALIGNED);
+  }
+  ~CosineTransform()
+  {
+    const std::lock_guard<std::mutex> lock(PlannerMutex());
+    if (this->Plan)
+    {
+      fftw_destroy_plan(this->Plan);
+    }
+  }
+  CosineTransform(const CosineTransform&) = delete;
+  CosineTransform& operator=(const CosineTransform&) = delete;
+  bool Ok() const { return this->Plan != nullptr; }
+  void Apply(double* line) const { fftw_execute_r2r(this->Plan, line, line); }
+
+private:
+  fftw_plan Plan = nullptr;
+};
+
+/// The transform along active axis k of every line of `data` (N samples).
+void TransformLines(double* data, std::int64_t N, const ActiveAxes& axes, int k,
+  const CosineTransform& transform, int threads)
+{
+  const std::int64_t n = axes.n[k];
+  const std::int64_t stride = axes.stride[k];
+  const std::int64_t outer = N / (stride * n);
+  if (stride == 1)
+  {
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::int64_t o = 0; o < outer; ++o)
+    {
+      transform.Apply(data + o * n);
+    }
+    return;
+  }
+  // Lines across memory: gathered a few adjacent ones at a time, so that the
+  // reads and writes go along rows.
+  constexpr std::int64_t Gather = 16;
+  const std::int64_t blocks = (stride + Gather - 1) / Gather;
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<double> lines(static_cast<size_t>(Gather * n));
+#pragma omp for schedule(static)
+    for (std::int64_t item = 0; item < outer * blocks; ++item)
+    {
+      const std::int64_t first = (item % blocks) * Gather;
+      const std::int64_t count = std::min(Gather, stride - first);
+      double* base = data + (item / blocks) * stride * n + first;
+      for (std::int64_t i = 0; i < n; ++i)
+      {
+        for (std::int64_t j = 0; j < count; ++j)
+        {
+          lines[static_cast<size_t>(j * n + i)] = base[i * stride + j];
+        }
+      }
+      for (std::int64_t j = 0; j < count; ++j)
+      {
+        transform.Apply(lines.data() + j * n);
+      }
+      for (std::int64_t i = 0; i < n; ++i)
+      {
+        for (std::int64_t j = 0; j < count; ++j)
+        {
+          base[i * stride + j] = lines[static_cast<size_t>(j * n + i)];
+        }
+      }
+    }
+  }
+}
+
+/// Step 4 on one channel, with the axes already resolved.
+Status SolveChannel(const ActiveAxes& axes, std::int64_t N, double lambda, double* rhs, int threads)
+{
+  std::vector<std::unique_ptr<CosineTransform>> forward;
+  std::vector<std::unique_ptr<CosineTransform>> backward;
+  for (int k = 0; k < axes.count; ++k)
+  {
+    forward.push_back(std::make_unique<CosineTransform>(axes.n[k], FFTW_REDFT10));
+    backward.push_back(std::make_unique<CosineTransform>(axes.n[k], FFTW_REDFT01));
+    if (!forward.back()->Ok() || !backward.back()->Ok())
+    {
+      return { "the cosine transform could not be planned" };
+    }
+  }
+  // DCT-II along every axis: the Neumann Laplacian's eigenbasis.
+  for (int k = 0; k < axes.count; ++k)
+  {
+    TransformLines(rhs, N, axes, k, *forward[static_cast<size_t>(k)], threads);
+  }
+  // Divide by the eigenvalues lambda + sum_k (2 - 2 cos(pi i_k / n_k)) / h_k^2, and by
+  // the 2 n_k that a DCT-II followed by a DCT-III multiplies by.
+  std::vector<std::vector<double>> eigen(static_cast<size_t>(axes.count));
+  double scale = 1.0;
+  for (int k = 0; k < axes.count; ++k)
+  {
+    const std::int64_t n = axes.n[k];
+    auto& values = eigen[static_cast<size_t>(k)];
+    values.resize(static_cast<size_t>(n));
+    for (std::int64_t i = 0; i < n; ++i)
+    {
+      const double pi = 3.14159265358979323846;
+      values[static_cast<size_t>(i)] =
+        (2.0 - 2.0 * std::cos(pi * static_cast<double>(i) / static_cast<double>(n))) /
+        (axes.h[k] * axes.h[k]);
+    }
+    scale *= 2.0 * static_cast<double>(n);
+  }
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t s = 0; s < N; ++s)
+  {
+    double denominator = lambda;
+    for (int k = 0; k < axes.count; ++k)
+    {
+      denominator += eigen[static_cast<size_t>(k)][static_cast<size_t>(axes.Coordinate(s, k))];
+    }
+    rhs[s] /= denominator * scale;
+  }
+  // DCT-III: back to samples.
+  for (int k = 0; k < axes.count; ++k)
+  {
+    TransformLines(rhs, N, axes, k, *backward[static_cast<size_t>(k)], threads);
+  }
+  return {};
+}
+
+/// Hands the channel-planar `solved` to `output`, interleaved, in parallel runs.
+void WriteInterleaved(std::int64_t N, int C, const double* solved, const SampleWriter& output,
+  int threads)
+{
+  const std::int64_t runs = (N + grid::BlockLength - 1) / grid::BlockLength;
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<double> row(static_cast<size_t>(grid::BlockLength * C));
+#pragma omp for schedule(static)
+    for (std::int64_t r = 0; r < runs; ++r)
+    {
+      const std::int64_t first = r * grid::BlockLength;
+      const std::int64_t count = std::min(grid::BlockLength, N - first);
+      for (std::int64_t j = 0; j < count; ++j)
+      {
+        for (int c = 0; c < C; ++c)
+        {
+          row[static_cast<size_t>(j * C + c)] = solved[c * N + first + j];
+        }
+      }
+      output(first, count, row.data());
+    }
+  }
+}
+
+} // namespace
+
+Status SolveScreenedPoisson(
+  const GridShape& shape, const double axisLength[3], double lambda, double* rhs, int threads)
+{
+  if (!(lambda > 0.0) || !std::isfinite(lambda))
+  {
+    return { "the screening weight must be finite and > 0" };
+  }
+  ActiveAxes axes(shape);
+  for (int a = 0, k = 0; a < 3; ++a)
+  {
+    if (shape.dimensions[a] > 1)
+    {
+      axes.h[k++] = axisLength[a];
+    }
+  }
+  return SolveChannel(axes, shape.NumberOfSamples(), lambda, rhs, ThreadsForWork(threads, shape.NumberOfSamples()));
+}
+
+template <typename T>
+Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
+  const SampleWriter& output, const AdvectionParameters& parameters,
+  const GradientDomainParameters& domain, AdvectionReport* report, GridFlowFields* fields,
+  const ProgressFunction& progress)
+{
+  const Status arguments = grid::CheckGridShape(shape, C);
+  if (!arguments.Ok())
+  {
+    return arguments;
+  }
+  if (!input || !output)
+  {
+    return { "input and output must be distinct, non-null buffers" };
+  }
+  const Status valid = CheckAdvectionParameters(parameters);
+  if (!valid.Ok())
+  {
+    return valid;
+  }
+  if (parameters.flowMode != FlowMode::Fixed)
+  {
+    return { "the gradient domain follows the fixed flow only (FlowMode Fixed)" };
+  }
+  if (!(domain.screening > 0.0) || !std::isfinite(domain.screening))
+  {
+    return { "the screening weight must be finite and > 0" };
+  }
+  AdvectionReport localReport;
+  AdvectionReport& r = report ? *report : localReport;
+  const std::int64_t N = shape.NumberOfSamples();
+  const int threads = ThreadsForWork(parameters.numberOfThreads, N);
+  const ChannelScan scan = ScanChannels(N, C, input, threads);
+  if (!scan.allFinite)
+  {
+    return { "the gradient domain needs a finite value at every sample (some are NaN, "
+             "infinite or blanked): use the value domain, or fill them first" };
+  }
+  if (scan.high - scan.low == std::numeric_limits<double>::infinity())
+  {
+    return { ValueSpanError(scan.low, scan.high) };
+  }
+  const ActiveAxes axes(shape);
+  if (!(parameters.time > 0.0) || axes.count == 0 || !(scan.high > scan.low))
+  {
+    // Nothing moves: the input itself (and the flow fields, when asked for).
+    return AdvectGridSignal(shape, C, input, output, parameters, report, fields, progress);
+  }
+
+  // Steps 1 and 2: the values and differences, carried along the flow of the values.
+  const int carriedC = C * (1 + 2 * axes.count);
+  LargeArray<float> advected = AllocateLargeArray<float>(N * carriedC);
+  {
+    const LargeArray<float> carried =
+      CarriedDifferences(N, C, axes, input, scan.middle, threads);
+    float* into = advected.get();
+    const SampleWriter keep = [into, carriedC](std::int64_t first, std::int64_t count,
+                                const double* values) {
+      std::transform(values, values + count * carriedC, into + first * carriedC,
+        [](double v) { return static_cast<float>(v); });
+    };
+    const ProgressFunction scaled = !progress
+      ? ProgressFunction()
+      : ProgressFunction([&progress](double f) { return progress(0.8 * f); });
+    const Status advectedStatus = AdvectCarriedGridSignal(shape, C, input,
+      CarriedSignal{ carried.get(), carriedC }, keep, parameters, &r, fields, scaled);
+    if (!advectedStatus.Ok())
+    {
+      return advectedStatus;
+    }
+  }
+  if (r.aborted)
+  {
+    return AdvectGridSignal(shape, C, input, output, AdvectionParameters{}, nullptr, nullptr);
+  }
+
+  // Steps 3 and 4: the target gradients, integrated.
+  const auto solveStart = Clock::now();
+  LargeArray<double> solved =
+    ScreenedRightHandSide(N, C, axes, input, advected.get(), domain.screening, threads);
+  advected.reset();
+  for (int c = 0; c < C; ++c)
+  {
+    const Status solvedStatus = SolveChannel(axes, N, domain.screening, solved.get() + c * N, threads);
+    if (!solvedStatus.Ok())
+    {
+      return solvedStatus;
+    }
+  }
+  r.integrationSeconds = SecondsSince(solveStart);
+  if (progress && !progress(0.95))
+  {
+    r.aborted = true;
+    return AdvectGridSignal(shape, C, input, output, AdvectionParameters{}, nullptr, nullptr);
+  }
+  WriteInterleaved(N, C, solved.get(), output, threads);
+  return {};
+}
+
+template Status AdvectGridGradients(const GridShape&, int, const double*, const SampleWriter&,
+  const AdvectionParameters&, const GradientDomainParameters&, AdvectionReport*, GridFlowFields*,
+  const ProgressFunction&);
+template Status AdvectGridGradients(const GridShape&, int, const float*, const SampleWriter&,
+  const AdvectionParameters&, const GradientDomainParameters&, AdvectionReport*, GridFlowFields*,
+  const ProgressFunction&);
+template Status AdvectGridGradients(const GridShape&, int, const unsigned char*,
+  const SampleWriter&, const AdvectionParameters&, const GradientDomainParameters&,
+  AdvectionReport*, GridFlowFields*, const ProgressFunction&);
+
+} // namespace shock
