@@ -483,16 +483,16 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
   int association = -1;
   vtkDataArray* array = ok && !empty ? this->GetArrayToFilter(inputVector, association) : nullptr;
   std::string error = !ok ? "the execution could not start" : (!empty && !array ? "no array to filter (see the message above)" : "");
-  if (error.empty() && this->Domain == GRADIENTS)
-  {
-    error = GradientPiecesError; // the same on every process, before the collective steps
-  }
   std::string selection;
   if (array)
   {
     error = CheckImageArray(input, array, association);
     selection = std::string("filtered ") + (association == vtkDataObject::FIELD_ASSOCIATION_CELLS ? "cell" : "point") +
       " array '" + (array->GetName() ? array->GetName() : "(unnamed)") + "';";
+  }
+  if (error.empty() && this->Domain == GRADIENTS)
+  {
+    error = GradientPiecesError; // the same on every process, before the collective steps
   }
   const std::string arrays = vtkShockParallel::ArraysFingerprintText(input);
   if (!vtkShockParallel::Agree(controller, error, this->ParametersText(), arrays.empty() ? arrays : arrays + selection, error))
@@ -609,10 +609,9 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDa
   shock::Status status;
   if (this->Domain == GRADIENTS && this->Method != ADVECTION)
   {
-    vtkErrorMacro("Domain Gradients works with Method Advection only.");
-    return false;
+    status.error = "Domain Gradients works with Method Advection only";
   }
-  if (this->Method == ADVECTION)
+  else if (this->Method == ADVECTION)
   {
     shock::AdvectionReport report;
     shock::AdvectionParameters parameters = vtkShockFilterInternals::MakeParameters(this);

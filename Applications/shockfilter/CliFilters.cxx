@@ -32,6 +32,13 @@ const std::vector<Choice>& MethodChoices()
   return choices;
 }
 
+const std::vector<Choice>& DomainChoices()
+{
+  static const std::vector<Choice> choices = { { "values", vtkImageShockAdvectionFilter::VALUES },
+    { "gradients", vtkImageShockAdvectionFilter::GRADIENTS } };
+  return choices;
+}
+
 const std::vector<Choice>& SamplingChoices()
 {
   static const std::vector<Choice> choices = { { "linear", vtkShockAdvectionFilter::LINEAR },
@@ -288,6 +295,8 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   SetIfGiven(filter.Get(), &F::SetCourantNumber, methodOptions.courantNumber);
   SetIfGiven(filter.Get(), &F::SetMaximumIterations, methodOptions.maximumIterations);
   SetIfGiven(filter.Get(), &F::SetHierarchyLevels, methodOptions.hierarchyLevels);
+  SetIfGiven(filter.Get(), &F::SetDomain, methodOptions.domain);
+  SetIfGiven(filter.Get(), &F::SetGradientScreening, methodOptions.gradientScreening);
   filter->SetInputArrayToProcess(0, 0, 0, association, arrayName.c_str());
   filter->SetInputData(input);
 
@@ -308,6 +317,7 @@ FilterRun RunImageFilter(vtkImageData* input, const std::string& arrayName,
   run.method = filter->GetMethod();
   run.iterations = filter->GetLastIterations();
   run.levels = filter->GetHierarchyLevels();
+  run.domain = filter->GetDomain();
   return run;
 }
 

@@ -29,6 +29,7 @@ namespace shockcli
 
 const std::vector<Choice>& FlowModeChoices();
 const std::vector<Choice>& MethodChoices();
+const std::vector<Choice>& DomainChoices();
 const std::vector<Choice>& SamplingChoices();
 const std::vector<Choice>& TracingChoices();
 const std::vector<Choice>& AssociationChoices();
@@ -137,6 +138,7 @@ struct FilterRun
   int method = vtkImageShockAdvectionFilter::ADVECTION; ///< image filter only
   vtkTypeInt64 iterations = 0;                           ///< PDE steps (image filter only)
   int levels = 1;                                        ///< HierarchyLevels (image filter only)
+  int domain = vtkImageShockAdvectionFilter::VALUES;     ///< Domain (image filter only)
 };
 
 /// The image filter's own parameters (the PDE baseline); unset ones keep the defaults.
@@ -146,6 +148,8 @@ struct ImageMethodOptions
   std::optional<double> courantNumber;
   std::optional<int> maximumIterations;
   std::optional<int> hierarchyLevels;
+  std::optional<int> domain;
+  std::optional<double> gradientScreening;
 };
 
 /// Filters the point array 'arrayName' of 'input'; throws "shock filter failed: ..." on error.

@@ -41,7 +41,8 @@ std::string TimingsJson(const std::string& command, vtkImageData* image, const F
     .Add("trace_steps", run.traceSteps)
     .Add("method", ChoiceName(run.method, MethodChoices()))
     .Add("iterations", run.iterations)
-    .Add("levels", run.levels);
+    .Add("levels", run.levels)
+    .Add("domain", ChoiceName(run.domain, DomainChoices()));
   return json.Text();
 }
 
@@ -97,6 +98,15 @@ std::vector<OptionSpec> ImageOptionSpecs(ImageSettings& settings)
   specs.push_back(RangeOptionSpec("--levels", "N", "advection: coarse-to-fine resolution levels",
     method.hierarchyLevels, defaults->GetHierarchyLevelsMinValue(), defaults->GetHierarchyLevelsMaxValue(),
     defaults->GetHierarchyLevels(), ", 1 = the paper's single level"));
+  specs.push_back(ChoiceOptionSpec("--domain", "DOMAIN",
+    "advection: values (the paper) | gradients (carried along the flow, integrated back;\n"
+    "    whole image, finite values, fixed flow; docs/gradient-domain.md)",
+    method.domain, DomainChoices(), defaults->GetDomain()));
+  specs.push_back(RangeOptionSpec("--gradient-screening", "W",
+    "gradients: screening weight of the Poisson solve (per squared edge length;\n"
+    "    larger stays closer to the input)",
+    method.gradientScreening, defaults->GetGradientScreeningMinValue(),
+    defaults->GetGradientScreeningMaxValue(), defaults->GetGradientScreening()));
   specs.push_back(RangeOptionSpec("--courant", "C", "pde: Courant number of the explicit step",
     method.courantNumber, defaults->GetCourantNumberMinValue(), defaults->GetCourantNumberMaxValue(),
     defaults->GetCourantNumber()));
@@ -136,13 +146,14 @@ std::string ImageHelp()
           "  Memory: about 8 bytes per pixel (12 per voxel) plus 2 to 16 per sample\n"
           "  and component (14 per pixel of a large 8-bit RGB photo, 20 per voxel of\n"
           "  a float volume); an input declaring more samples than --max-samples is\n"
-          "  refused before it is read.\n"
+          "  refused before it is read. --domain gradients needs about 8 x C x (1 + 2 x axes)\n"
+          "  bytes per sample more (C components: 120 per pixel of an RGB photo).\n"
        << TimingsHelp({ "command", "dimensions", "samples", "components", "time", "flow_mode",
                         "threads", "flow", "advection", "total", "trace_steps", "method",
-                        "iterations", "levels" },
+                        "iterations", "levels", "domain" },
             "  times in seconds, total = wall time of the filter only (no reading/writing);\n"
             "  for --method pde, advection = the explicit updates, iterations = their number;\n"
-            "  levels = --levels.\n")
+            "  levels = --levels; domain = --domain.\n")
        << "  Options:\n"
        << FormatOptions(ImageOptionSpecs(unused));
   return text.str();

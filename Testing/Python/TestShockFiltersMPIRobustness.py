@@ -1,4 +1,4 @@
-"""Parallel robustness of the surface shock filters: bad pieces, disagreeing ranks, aborts.
+"""Parallel robustness of the shock filters (surfaces, and the image filter's gradient domain): bad pieces, disagreeing ranks, aborts.
 
 Usage: mpirun -np N pvbatch --symmetric --mpi TestShockFiltersMPIRobustness.py PLUGIN_PATH OUTPUT_DIR [CASES]
 
@@ -38,6 +38,9 @@ process 0 prints a MEASURE line with what each process did and checks:
   same error (naming the mismatch), and no process outputs filtered values.
 - iterations mismatch: SolverIterations 25 and 30 on the bad process
   (sharpen): every process fails with the same error about the iterations.
+- image Domain Gradients on pieces: vtkRTAnalyticSource -> the image filter
+  with Domain Gradients, the source cutting its pieces: every process fails
+  with the same one-line error (the solve needs the whole image), empty output.
 - abort on process 0: a ProgressEvent observer on process 0 only sets
   AbortExecute during a sharpening of a 200 x 200 sphere: every process
   returns from UpdatePiece and reaches the Barrier after it.
@@ -101,7 +104,9 @@ def find_package():
 
 
 find_package()
-from shockfilters import vtkPolyDataShockAdvectionFilter, vtkPolyDataShockSharpenFilter  # noqa: E402
+from shockfilters import (vtkImageShockAdvectionFilter, vtkPolyDataShockAdvectionFilter,  # noqa: E402
+                          vtkPolyDataShockSharpenFilter)
+from vtkmodules.vtkImagingCore import vtkRTAnalyticSource  # noqa: E402
 
 controller = vtkMultiProcessController.GetGlobalController()
 RANK = controller.GetLocalProcessId() if controller else 0
@@ -539,6 +544,35 @@ def iterations_case(bad):
     return local, judge
 
 
+def gradient_domain_case():
+    label = "image Domain Gradients on pieces np=%d" % PROCESSES
+
+    def local():
+        # The image filter on the source's own pieces, as pvbatch runs it.
+        source = vtkRTAnalyticSource()
+        source.SetWholeExtent(0, 39, 0, 29, 0, 0)
+        algorithm = vtkImageShockAdvectionFilter()
+        algorithm.SetController(controller)
+        algorithm.SetNumberOfThreads(1)
+        algorithm.SetFlowTime(64)
+        algorithm.SetDomainToGradients()
+        algorithm.SetInputConnection(source.GetOutputPort())
+        messages.take()
+        start = time.time()
+        rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
+        output = algorithm.GetOutput()
+        return {"rank": RANK, "rc": rc, "errors": messages.take(), "seconds": time.time() - start,
+                "points": output.GetNumberOfPoints(), "cells": output.GetNumberOfCells()}
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        check_agreed_failure(label, records, lambda t: "Domain Gradients" in t and "pieces" in t,
+                             "that Domain Gradients does not run on pieces", one_line=True)
+        check(all(r["points"] == 0 for r in records), "%s: a failed execution leaves an empty output" % label)
+
+    return local, judge
+
+
 def abort_case():
     label = "abort on rank 0 np=%d" % PROCESSES
 
@@ -579,6 +613,7 @@ def all_cases():
             for cell in ("triangle", "line", "vertex"):
                 cases.append(("bad_cell_id.%s.%s.bad%d" % (kind, cell, bad), bad_cell_id_case(kind, cell, bad)))
         cases.append(("array_name.bad%d" % bad, array_name_case(bad)))
+    cases.append(("gradient_domain", gradient_domain_case()))
     # Those that may hang today last: a hang ends the whole run.
     for bad in bad_ranks():
         cases.append(("iterations.bad%d" % bad, iterations_case(bad)))

@@ -142,8 +142,8 @@ EXPECTED_NAMES["SurfaceShockSharpen"] = (EXPECTED_NAMES["ImageShockAdvection"] -
     "LastMaxDisplacement"}
 # The image filter alone offers the PDE baseline.
 EXPECTED_NAMES["ImageShockAdvection"] = EXPECTED_NAMES["ImageShockAdvection"] | {
-    "Method", "HierarchyLevels", "CourantNumber", "MaximumIterations", "LastIterations",
-    "LastReachedTime"}
+    "Method", "Domain", "GradientScreening", "HierarchyLevels", "CourantNumber", "MaximumIterations",
+    "LastIterations", "LastReachedTime"}
 
 # The panel order, computed as pqProxyWidget::createPropertyWidgets does it:
 # XML order, properties of groups with the same label placed together.
@@ -432,6 +432,22 @@ pde.UpdatePropertyInformation()
 check(pde.LastIterations == 2 and 0.0 < pde.LastReachedTime < 1024.0,
       "image pde: stops at MaximumIterations, reached %s" % pde.LastReachedTime)
 Delete(pde)
+
+# Domain Gradients (beyond the paper): the differences carried along the same
+# flow and integrated back; an edge sharpens, the values stay near the input's.
+check(image.Domain == "Values", "image: Values is the default domain")
+gradients = ImageShockAdvection(Input=step, FlowTime=1024.0, Domain="Gradients")
+gradients.InputArray = ["POINTS", "Step"]
+g_out = point_array(fetch(gradients), "Step")
+check(band(g_out) < 0.75 * band(s_in), "image gradients: band %.3f -> %.3f" % (band(s_in), band(g_out)))
+check(not np.array_equal(g_out, s_out), "image gradients: not the value advection's result")
+span = float(s_in.max() - s_in.min())
+check(within(g_out, s_in.min(), s_in.max(), 0.1 * span), "image gradients: within 10 %% of the input's range")
+gradients.GradientScreening = 1e6  # the input's structure everywhere: back to the input
+g_close = point_array(fetch(gradients), "Step")
+check(float(np.max(np.abs(g_close - s_in))) < 1e-3 * span,
+      "image gradients: a huge screening keeps the input, max change %.2g" % float(np.max(np.abs(g_close - s_in))))
+Delete(gradients)
 
 # Cell data on the grid of cell centres.
 cells = PointDatatoCellData(Input=wavelet)
