@@ -10,6 +10,42 @@ that is gone makes the mutant "stale".
 K = "Filters/Kernels/"
 
 MUTANTS = [
+    # --- gradient domain (beyond the paper: GridGradientDomain.cxx) -----------
+    dict(id="gradient-backward-as-forward", file=K + "GridGradientDomain.cxx",
+         original="  const float* backward = to + C * (2 + 2 * k);  // B_k at the end of (s + e_k)'s trace",
+         replacement="  const float* backward = to + C * (1 + 2 * k);  // B_k at the end of (s + e_k)'s trace",
+         bug="the transported difference reads the far sample's forward difference (a shifted edge)"),
+    dict(id="gradient-always-covariant", file=K + "GridGradientDomain.cxx",
+         original="  const bool stretch = covariant >= transported;",
+         replacement="  const bool stretch = true;",
+         bug="the target is always the advected difference (the transported one never wins)"),
+    dict(id="gradient-shorter-wins", file=K + "GridGradientDomain.cxx",
+         original="  const bool stretch = covariant >= transported;",
+         replacement="  const bool stretch = covariant <= transported;",
+         bug="the shorter of the two differences is kept instead of the longer"),
+    dict(id="gradient-isotropic-weights", file=K + "GridGradientDomain.cxx",
+         original="        const double weight = 1.0 / (axes.h[k] * axes.h[k]);",
+         replacement="        const double weight = 1.0;",
+         bug="the Poisson energy ignores the spacing (anisotropic grids integrated as square)"),
+    dict(id="gradient-dct-eigen-dirichlet", file=K + "GridGradientDomain.cxx",
+         original="(2.0 - 2.0 * std::cos(pi * static_cast<double>(i) / static_cast<double>(n))) /",
+         replacement="(2.0 - 2.0 * std::cos(pi * static_cast<double>(i + 1) / static_cast<double>(n + 1))) /",
+         bug="the Laplacian's eigenvalues of Dirichlet borders used with the cosine (Neumann) basis"),
+    dict(id="gradient-no-screening-of-input", file=K + "GridGradientDomain.cxx",
+         original="        sum[static_cast<size_t>(c)] = lambda * static_cast<double>(input[s * C + c]);",
+         replacement="        sum[static_cast<size_t>(c)] = lambda * 0.0;",
+         bug="the screening pulls toward zero instead of toward the input"),
+    dict(id="gradient-carried-follows-no-flow", file=K + "GridShockAdvection.cxx",
+         original="""    const bool completed = carried
+      ? AdvectUpdate<D>(ctx, flow, p, stepTime, carried->values, target, positions.get(),
+          progressStart, 0.9 / updates)""",
+         replacement="""    const bool completed = carried
+      ? (WriteSignal(L.numSamples, carried->components, carried->values, target, threads), true)""",
+         bug="the carried signal is handed back unadvected (the differences never follow the flow)"),
+    dict(id="gradient-pieces-allowed", file="Filters/vtkImageShockAdvectionFilter.cxx",
+         original="  if (error.empty() && this->Domain == GRADIENTS)",
+         replacement="  if (false)",
+         bug="Domain Gradients runs on MPI pieces: each piece solved alone, seams and a wrong result"),
     # --- grid: smoothing -------------------------------------------------
     dict(id="grid-smooth-weight-not-squared", file=K + "GridFlow.h",
          original="alpha[d] = std::exp(-L.h2[d]);",
