@@ -20,8 +20,8 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
-#include "vtkShockFilterInternals.h"
-#include "vtkShockParallel.h"
+#include "ShockFilterInternals.h"
+#include "ShockParallel.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
@@ -403,7 +403,7 @@ int vtkImageShockAdvectionFilter::FilterImageArray(
   // kernel reads the array in place when it is float or double, and writes its
   // results straight into a new array of the input's type.
   output->ShallowCopy(input);
-  vtkShockFilterInternals::KernelOutput filtered = vtkShockFilterInternals::OutputForKernel(array);
+  ShockFilterInternals::KernelOutput filtered = ShockFilterInternals::OutputForKernel(array);
   // Blanked samples (vtkGhostType HIDDENPOINT, or HIDDENCELL for cell data)
   // neither feed nor receive values: the kernel sees them as NaN (a sample
   // that carries no flow and is never interpolated) and they keep their own.
@@ -459,7 +459,7 @@ int vtkImageShockAdvectionFilter::FilterImageArray(
 
   vtkDataSetAttributes* attributes =
     cellData ? static_cast<vtkDataSetAttributes*>(output->GetCellData()) : output->GetPointData();
-  vtkShockFilterInternals::ReplaceArray(attributes, array, filtered.array);
+  ShockFilterInternals::ReplaceArray(attributes, array, filtered.array);
   if (this->GenerateFlowArrays)
   {
     AttachFlowArrays(output, cellData, grid, fields);
@@ -494,8 +494,8 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
   {
     error = GradientPiecesError; // the same on every process, before the collective steps
   }
-  const std::string arrays = vtkShockParallel::ArraysFingerprintText(input);
-  if (!vtkShockParallel::Agree(controller, error, this->ParametersText(), arrays.empty() ? arrays : arrays + selection, error))
+  const std::string arrays = ShockParallel::ArraysFingerprintText(input);
+  if (!ShockParallel::Agree(controller, error, this->ParametersText(), arrays.empty() ? arrays : arrays + selection, error))
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -511,7 +511,7 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
   int grown[6];
   vtkLogStartScope(TRACE, "shock: image halo exchange");
   vtkSmartPointer<vtkDataArray> grownArray =
-    vtkShockParallel::GrowImageSamples(controller, array, extent, this->GhostLevels, grown);
+    ShockParallel::GrowImageSamples(controller, array, extent, this->GhostLevels, grown);
   // Blanked samples: their marks travel with the halo when any piece has some
   // (decided together: the exchange is collective).
   vtkSmartPointer<vtkDataArray> grownGhosts;
@@ -530,7 +530,7 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
         ghosts = none;
       }
       int grownAgain[6];
-      grownGhosts = vtkShockParallel::GrowImageSamples(controller, array ? ghosts : nullptr, extent,
+      grownGhosts = ShockParallel::GrowImageSamples(controller, array ? ghosts : nullptr, extent,
         this->GhostLevels, grownAgain);
     }
   }
@@ -585,7 +585,7 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
       vtkAbstractArray* result = from->GetAbstractArray(k);
       if (result == from->GetScalars() && result != nullptr)
       {
-        vtkShockFilterInternals::ReplaceArray(to, array, vtkDataArray::SafeDownCast(result));
+        ShockFilterInternals::ReplaceArray(to, array, vtkDataArray::SafeDownCast(result));
       }
       else if (result)
       {
@@ -597,15 +597,15 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
 }
 
 bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDataArray* array,
-  const vtkShockFilterInternals::KernelOutput& filtered, shock::GridFlowFields* fields,
+  const ShockFilterInternals::KernelOutput& filtered, shock::GridFlowFields* fields,
   bool& aborted)
 {
   const shock::SampleWriter& output = filtered.writer;
   const auto progress = [this](double fraction) { return this->ReportProgress(fraction); };
   const int components = array->GetNumberOfComponents();
   const int threads = this->NumberOfThreads;
-  vtkShockFilterInternals::KernelSignal signal =
-    vtkShockFilterInternals::SignalForKernel(array, threads);
+  ShockFilterInternals::KernelSignal signal =
+    ShockFilterInternals::SignalForKernel(array, threads);
   shock::Status status;
   if (this->Domain == GRADIENTS && this->Method != ADVECTION)
   {
@@ -614,7 +614,7 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDa
   else if (this->Method == ADVECTION)
   {
     shock::AdvectionReport report;
-    shock::AdvectionParameters parameters = vtkShockFilterInternals::MakeParameters(this);
+    shock::AdvectionParameters parameters = ShockFilterInternals::MakeParameters(this);
     parameters.hierarchyLevels = this->HierarchyLevels;
     shock::GradientDomainParameters domain;
     domain.screening = this->GradientScreening;
@@ -826,7 +826,7 @@ int vtkImageShockAdvectionFilter::RequestUpdateExtent(
   {
     return 1;
   }
-  if (vtkShockParallel::UpstreamIsComposite(this))
+  if (ShockParallel::UpstreamIsComposite(this))
   {
     return 1; // composite input: each block as it comes (no ghost layers, no crop)
   }

@@ -76,7 +76,7 @@ namespace shock
 struct GridShape;
 struct GridFlowFields;
 }
-namespace vtkShockFilterInternals
+namespace ShockFilterInternals
 {
 struct KernelOutput;
 }
@@ -229,7 +229,7 @@ protected:
   /**
    * A piece of a distributed image (collective on `controller`): every process
    * checks its piece and they agree, the piece gets GhostLevels samples of halo
-   * from the processes that hold them (vtkShockParallel::GrowImageSamples),
+   * from the processes that hold them (ShockParallel::GrowImageSamples),
    * is filtered with it, and the output is the piece with the filtered rows.
    */
   int FilterPieceWithHalo(vtkMultiProcessController* controller, vtkInformationVector** inputVector,
@@ -250,7 +250,7 @@ private:
   /// Run the selected method on the array's samples, results to `output`; false (with
   /// vtkErrorMacro) on failure.
   bool RunKernel(const shock::GridShape& grid, vtkDataArray* array,
-    const vtkShockFilterInternals::KernelOutput& output, shock::GridFlowFields* fields,
+    const ShockFilterInternals::KernelOutput& output, shock::GridFlowFields* fields,
     bool& aborted);
 
   vtkImageShockAdvectionFilter(const vtkImageShockAdvectionFilter&) = delete;

@@ -13,9 +13,9 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkShockFilterInternals.h"
-#include "vtkShockParallel.h"
-#include "vtkShockPolyDataInternals.h"
+#include "ShockFilterInternals.h"
+#include "ShockParallel.h"
+#include "ShockPolyDataInternals.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
@@ -39,7 +39,7 @@ vtkPolyData* vtkPolyDataShockAdvectionFilter::GetOutput(int port)
 }
 
 vtkPolyDataShockAdvectionFilter::vtkPolyDataShockAdvectionFilter()
-  : PreparedMeshes(new vtkShockPolyDataInternals::MeshCache)
+  : PreparedMeshes(new ShockPolyDataInternals::MeshCache)
 {
   // Default array: the active point scalars.
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS,
@@ -63,14 +63,14 @@ int vtkPolyDataShockAdvectionFilter::FillInputPortInformation(int, vtkInformatio
 int vtkPolyDataShockAdvectionFilter::RequestDataObject(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  return vtkShockPolyDataInternals::EnsurePolyDataOutput(inputVector, outputVector)
+  return ShockPolyDataInternals::EnsurePolyDataOutput(inputVector, outputVector)
     ? 1
     : this->Superclass::RequestDataObject(request, inputVector, outputVector);
 }
 
 bool vtkPolyDataShockAdvectionFilter::FiltersType(vtkDataObject* input)
 {
-  return vtkShockPolyDataInternals::IsSurfaceType(input);
+  return ShockPolyDataInternals::IsSurfaceType(input);
 }
 
 int vtkPolyDataShockAdvectionFilter::RequestData(
@@ -108,10 +108,10 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     return array || surface->GetNumberOfPoints() == 0 ? "" : "no array to filter (see the message above)";
   };
   vtkSmartPointer<vtkPolyData> input;
-  vtkShockParallel::SurfacePiece piece;
+  ShockParallel::SurfacePiece piece;
   std::string error;
   vtkLogStartScope(TRACE, "shock: input, agreement and ghost rings");
-  const bool begun = vtkShockPolyDataInternals::BeginSurface(inputVector, controller, this->GhostLevels,
+  const bool begun = ShockPolyDataInternals::BeginSurface(inputVector, controller, this->GhostLevels,
     findArray, this->ParametersText(), &selection, input, piece, error);
   vtkLogEndScope("shock: input, agreement and ghost rings");
   if (!begun)
@@ -128,7 +128,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   // pieces, lengths in the unit of the whole surface (collective).
   vtkLogStartScope(TRACE, "shock: global scales");
   this->ParallelValueScale = this->GlobalValueScale(piece.controller, inputVector);
-  const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work, this->NumberOfThreads);
+  const double unit = ShockPolyDataInternals::MeshUnit(piece.controller, piece.work, this->NumberOfThreads);
   this->ParallelLengthScale = this->GlobalMeanEdgeLength(piece.controller, piece.work) / (unit > 0.0 ? unit : 1.0);
   vtkLogEndScope("shock: global scales");
   if (input->GetNumberOfPoints() == 0)
@@ -150,7 +150,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     return 0;
   }
   vtkLogScopeF(TRACE, "shock: output of the owned cells");
-  output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(filtered, piece.owned, input).GetPointer()
+  output->ShallowCopy(piece.controller ? ShockParallel::OwnedPiece(filtered, piece.owned, input).GetPointer()
                                        : filtered.GetPointer());
   return 1;
 }
@@ -232,12 +232,12 @@ double vtkPolyDataShockAdvectionFilter::GlobalMeanEdgeLength(
   double sums[2] = { 0.0, 0.0 }; // edge lengths, edges
   if (piece && TriangleEdgeSums(piece, sums))
   {
-    vtkShockParallel::Sum(controller, sums, 2);
+    ShockParallel::Sum(controller, sums, 2);
     return sums[1] > 0.0 && sums[0] > 0.0 ? sums[0] / sums[1] : 0.0;
   }
-  vtkShockPolyDataInternals::Triangles triangles;
+  ShockPolyDataInternals::Triangles triangles;
   std::string error;
-  if (piece && vtkShockPolyDataInternals::ExtractTriangles(piece, triangles, error))
+  if (piece && ShockPolyDataInternals::ExtractTriangles(piece, triangles, error))
   {
     vtkUnsignedCharArray* ghosts = piece->GetCellGhostArray();
     for (size_t f = 0; f < triangles.sourceCell.size(); ++f)
@@ -249,7 +249,7 @@ double vtkPolyDataShockAdvectionFilter::GlobalMeanEdgeLength(
       }
     }
   }
-  vtkShockParallel::Sum(controller, sums, 2);
+  ShockParallel::Sum(controller, sums, 2);
   return sums[1] > 0.0 && sums[0] > 0.0 ? sums[0] / sums[1] : 0.0;
 }
 
@@ -274,14 +274,14 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
 
   // The mesh as prepared for the last execution, unless the points or cells changed.
   std::string error;
-  const vtkShockPolyDataInternals::PreparedMesh* prepared =
+  const ShockPolyDataInternals::PreparedMesh* prepared =
     this->PreparedMeshes->Get(input, false, this->NumberOfThreads, error, &this->LastSetupSeconds, unit, true);
   if (!prepared)
   {
     vtkErrorMacro(<< error);
     return false;
   }
-  const vtkShockPolyDataInternals::Triangles& triangles = prepared->triangles;
+  const ShockPolyDataInternals::Triangles& triangles = prepared->triangles;
   const shock::TriangleMesh& mesh = prepared->mesh;
   if (cellData && triangles.nonTriangleCells > 0)
   {
@@ -302,7 +302,7 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
 
   const int components = array->GetNumberOfComponents();
   std::vector<double> values(static_cast<size_t>(array->GetNumberOfValues()));
-  vtkShockFilterInternals::ToDoubles(
+  ShockFilterInternals::ToDoubles(
     array, values.data(), shock::ThreadsForWork(this->NumberOfThreads, array->GetNumberOfTuples()));
   // Blanked samples (vtkGhostType HIDDENPOINT, or HIDDENCELL for cell data)
   // neither feed nor receive values: NaN for the kernel (no flow, never
@@ -349,7 +349,7 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   shock::AdvectionReport report;
   shock::MeshFlowFields fields;
   const shock::Status status = shock::AdvectMeshSignal(mesh, meshSignal, filtered.data(),
-    vtkShockFilterInternals::MakeParameters(this), &report, this->GenerateFlowArrays ? &fields : nullptr,
+    ShockFilterInternals::MakeParameters(this), &report, this->GenerateFlowArrays ? &fields : nullptr,
     [this](double fraction) { return this->ReportProgress(fraction); });
   if (!status.Ok())
   {
@@ -381,13 +381,13 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   }
   vtkDataSetAttributes* attributes =
     cellData ? static_cast<vtkDataSetAttributes*>(output->GetCellData()) : output->GetPointData();
-  vtkShockFilterInternals::ReplaceArray(
-    attributes, array, vtkShockFilterInternals::FromDoubles(array, filtered.data(),
+  ShockFilterInternals::ReplaceArray(
+    attributes, array, ShockFilterInternals::FromDoubles(array, filtered.data(),
       shock::ThreadsForWork(this->NumberOfThreads, array->GetNumberOfTuples())));
   if (this->GenerateFlowArrays)
   {
     fields.potential = prepared->FromMeshPoints(std::move(fields.potential), 1, this->NumberOfThreads);
-    vtkShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, fields);
+    ShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, fields);
   }
   return true;
 }

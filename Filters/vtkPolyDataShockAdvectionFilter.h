@@ -59,7 +59,7 @@
  *
  * The prepared mesh (triangles, connectivity, geometry) is kept between
  * executions and prepared again only when the input's points or cells change
- * (vtkShockPolyDataInternals::MeshCache): changing only a parameter (e.g.
+ * (ShockPolyDataInternals::MeshCache): changing only a parameter (e.g.
  * FlowTime) and updating again skips the preparation
  * (GetNumberOfMeshPreparations counts them).
  *
@@ -80,7 +80,7 @@
 
 class vtkDataArray;
 class vtkPolyData;
-namespace vtkShockPolyDataInternals
+namespace ShockPolyDataInternals
 {
 class MeshCache;
 }
@@ -123,7 +123,7 @@ protected:
   double GlobalMeanEdgeLength(vtkMultiProcessController* controller, vtkPolyData* piece);
 
   /// Filter `selected` (as chosen on the input) on `input` (lengths in `unit`, see
-  /// vtkShockPolyDataInternals::MeshUnit) into `output`; false after vtkErrorMacro.
+  /// ShockPolyDataInternals::MeshUnit) into `output`; false after vtkErrorMacro.
   bool FilterSurface(vtkPolyData* input, vtkDataArray* selected, int association, vtkPolyData* output,
     double unit = 1.0);
 
@@ -137,7 +137,7 @@ private:
   void operator=(const vtkPolyDataShockAdvectionFilter&) = delete;
 
   /// The prepared mesh of the last input, kept between executions.
-  std::unique_ptr<vtkShockPolyDataInternals::MeshCache> PreparedMeshes;
+  std::unique_ptr<ShockPolyDataInternals::MeshCache> PreparedMeshes;
 };
 
 #endif

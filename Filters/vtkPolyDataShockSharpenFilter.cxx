@@ -12,9 +12,9 @@
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkShockFilterInternals.h"
-#include "vtkShockParallel.h"
-#include "vtkShockPolyDataInternals.h"
+#include "ShockFilterInternals.h"
+#include "ShockParallel.h"
+#include "ShockPolyDataInternals.h"
 #include "vtkSmartPointer.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkMultiProcessController.h"
@@ -42,7 +42,7 @@ vtkSmartPointer<vtkDataArray> SingleValue(const char* name, T value)
 }
 
 /// Unit normal of every cell of `output` with its new points: the normalised sum of its triangles' area vectors.
-std::vector<double> CellNormals(vtkPolyData* output, const vtkShockPolyDataInternals::Triangles& triangles,
+std::vector<double> CellNormals(vtkPolyData* output, const ShockPolyDataInternals::Triangles& triangles,
   const shock::TriangleMesh& mesh, const std::vector<double>& positions)
 {
   std::vector<double> normals(static_cast<size_t>(3 * output->GetNumberOfCells()), 0.0);
@@ -93,7 +93,7 @@ void SetNewPoints(vtkPolyData* output, vtkPolyData* input, const std::vector<std
   vtkNew<vtkPoints> points;
   if (prototype->GetDataType() == VTK_FLOAT || prototype->GetDataType() == VTK_DOUBLE)
   {
-    vtkSmartPointer<vtkDataArray> data = vtkShockFilterInternals::FromDoubles(prototype,
+    vtkSmartPointer<vtkDataArray> data = ShockFilterInternals::FromDoubles(prototype,
       positions.data(), shock::ThreadsForWork(threads, 3 * input->GetNumberOfPoints()));
     data->SetName("Points"); // as vtkPoints names its own arrays
     points->SetData(data);
@@ -154,7 +154,7 @@ void ReportRun(vtkPolyDataShockSharpenFilter* self, const shock::SharpeningRepor
  * cells' unit normals, point normals the normalised sum of the unit normals of
  * the cells around each point (points without cells keep theirs).
  */
-void RecomputeActiveNormals(vtkPolyData* output, const vtkShockPolyDataInternals::Triangles& triangles,
+void RecomputeActiveNormals(vtkPolyData* output, const ShockPolyDataInternals::Triangles& triangles,
   const shock::TriangleMesh& mesh, const std::vector<double>& positions)
 {
   vtkDataArray* pointNormals = output->GetPointData()->GetNormals();
@@ -211,7 +211,7 @@ void RecomputeActiveNormals(vtkPolyData* output, const vtkShockPolyDataInternals
 }
 
 vtkPolyDataShockSharpenFilter::vtkPolyDataShockSharpenFilter()
-  : PreparedMeshes(new vtkShockPolyDataInternals::MeshCache)
+  : PreparedMeshes(new ShockPolyDataInternals::MeshCache)
   , KernelCache(new shock::SharpeningCache)
 {
 }
@@ -223,10 +223,10 @@ int vtkPolyDataShockSharpenFilter::GetNumberOfMeshPreparations() const
   return this->PreparedMeshes->GetNumberOfPreparations();
 }
 
-const vtkShockPolyDataInternals::PreparedMesh* vtkPolyDataShockSharpenFilter::Prepare(
+const ShockPolyDataInternals::PreparedMesh* vtkPolyDataShockSharpenFilter::Prepare(
   vtkPolyData* input, double unit, std::string& error)
 {
-  const vtkShockPolyDataInternals::PreparedMesh* prepared = this->PreparedMeshes->Get(input,
+  const ShockPolyDataInternals::PreparedMesh* prepared = this->PreparedMeshes->Get(input,
     this->MergeCoincidentPoints, this->NumberOfThreads, error, &this->LastSetupSeconds, unit, true);
   const int preparation = this->PreparedMeshes->GetNumberOfPreparations();
   if (!prepared || preparation != this->KernelCachePreparation)
@@ -257,7 +257,7 @@ int vtkPolyDataShockSharpenFilter::FillInputPortInformation(int, vtkInformation*
 int vtkPolyDataShockSharpenFilter::RequestDataObject(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  return vtkShockPolyDataInternals::EnsurePolyDataOutput(inputVector, outputVector)
+  return ShockPolyDataInternals::EnsurePolyDataOutput(inputVector, outputVector)
     ? 1
     : this->Superclass::RequestDataObject(request, inputVector, outputVector);
 }
@@ -268,7 +268,7 @@ namespace
 struct Distribution
 {
   shock::MeshPartition partition;
-  vtkShockParallel::PointExchange exchange;
+  ShockParallel::PointExchange exchange;
   double meanEdgeLength = 0.0;
 };
 
@@ -279,12 +279,12 @@ struct Distribution
  * keyed by global point ids, and the mean edge length over all pieces.
  */
 void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
-  const vtkShockPolyDataInternals::PreparedMesh& prepared, Distribution& out)
+  const ShockPolyDataInternals::PreparedMesh& prepared, Distribution& out)
 {
   const shock::TriangleMesh& mesh = prepared.mesh;
   const std::int64_t np = mesh.NumberOfPoints();
   const std::int64_t nt = mesh.NumberOfTriangles();
-  vtkUnsignedCharArray* pointGhosts = vtkShockParallel::PointGhosts(piece);
+  vtkUnsignedCharArray* pointGhosts = ShockParallel::PointGhosts(piece);
   vtkUnsignedCharArray* cellGhosts = piece->GetCellGhostArray();
   shock::MeshPartition& partition = out.partition;
   partition.ownedPoints.assign(static_cast<size_t>(np), 1);
@@ -322,7 +322,7 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
       lengths[1] += 3.0;
     }
   }
-  vtkShockParallel::Sum(controller, lengths, 2);
+  ShockParallel::Sum(controller, lengths, 2);
   out.meanEdgeLength = lengths[1] > 0.0 ? lengths[0] / lengths[1] : 0.0;
   vtkDataArray* ids = piece->GetPointData()->GetGlobalIds();
   std::vector<vtkIdType> globalIds(static_cast<size_t>(np), -1);
@@ -347,16 +347,16 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
     static_cast<long long>(nt), static_cast<long long>(24 * out.exchange.SentPoints()),
     static_cast<long long>(24 * out.exchange.ReceivedPoints()));
   partition.globalSum = [controller](double* values, int count) {
-    vtkShockParallel::Sum(controller, values, count);
+    ShockParallel::Sum(controller, values, count);
   };
   partition.exchangePoints = [&out](double* values) { out.exchange.Exchange(values); };
-  partition.anyStopped = [controller](bool stopped) { return vtkShockParallel::Count(controller, stopped) > 0; };
+  partition.anyStopped = [controller](bool stopped) { return ShockParallel::Count(controller, stopped) > 0; };
 }
 }
 
 bool vtkPolyDataShockSharpenFilter::FiltersType(vtkDataObject* input)
 {
-  return vtkShockPolyDataInternals::IsSurfaceType(input);
+  return ShockPolyDataInternals::IsSurfaceType(input);
 }
 
 int vtkPolyDataShockSharpenFilter::RequestData(
@@ -388,10 +388,10 @@ int vtkPolyDataShockSharpenFilter::RequestData(
       : "";
   };
   vtkSmartPointer<vtkPolyData> input;
-  vtkShockParallel::SurfacePiece piece;
+  ShockParallel::SurfacePiece piece;
   std::string error;
   vtkLogStartScope(TRACE, "shock: input, agreement and ghost rings");
-  const bool begun = vtkShockPolyDataInternals::BeginSurface(inputVector, controller,
+  const bool begun = ShockPolyDataInternals::BeginSurface(inputVector, controller,
     std::max(1, this->GhostLevels), wholeOrPieces, this->ParametersText(), nullptr, input, piece, error);
   vtkLogEndScope("shock: input, agreement and ghost rings");
   if (!begun)
@@ -413,19 +413,19 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   // The triangle mesh of the piece (with its ghost cells), in the whole mesh's
   // length unit, kept between executions.
   vtkLogStartScope(TRACE, "shock: unit and mesh");
-  const double unit = vtkShockPolyDataInternals::MeshUnit(piece.controller, piece.work, this->NumberOfThreads);
+  const double unit = ShockPolyDataInternals::MeshUnit(piece.controller, piece.work, this->NumberOfThreads);
   const bool empty = piece.work->GetNumberOfPoints() == 0;
-  const vtkShockPolyDataInternals::PreparedMesh* kept =
+  const ShockPolyDataInternals::PreparedMesh* kept =
     empty ? nullptr : this->Prepare(piece.work, unit, error);
   const bool ok = empty || kept;
   vtkLogEndScope("shock: unit and mesh");
-  if (piece.controller ? vtkShockParallel::AnyFailed(piece.controller, !ok, error) : !ok)
+  if (piece.controller ? ShockParallel::AnyFailed(piece.controller, !ok, error) : !ok)
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  const vtkShockPolyDataInternals::PreparedMesh none;
-  const vtkShockPolyDataInternals::PreparedMesh& prepared = kept ? *kept : none;
+  const ShockPolyDataInternals::PreparedMesh none;
+  const ShockPolyDataInternals::PreparedMesh& prepared = kept ? *kept : none;
   if (!piece.controller && (empty || prepared.mesh.NumberOfTriangles() == 0))
   {
     output->ShallowCopy(input);
@@ -450,7 +450,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   bool sharpened = this->Sharpen(prepared.mesh, piece.controller ? &distribution.partition : nullptr,
     distribution.meanEdgeLength, !prepared.pointOrder.empty(), positions, normals, report, fields, error);
   vtkLogEndScope("shock: sharpen the piece");
-  if (piece.controller ? vtkShockParallel::AnyFailed(piece.controller, !sharpened, error) : !sharpened)
+  if (piece.controller ? ShockParallel::AnyFailed(piece.controller, !sharpened, error) : !sharpened)
   {
     vtkErrorMacro("Geometry sharpening failed: " << error);
     return 0;
@@ -468,7 +468,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   vtkLogScopeF(TRACE, "shock: output");
   vtkNew<vtkPolyData> result;
   this->BuildOutput(piece.work, prepared, positions, normals, fields, report, result);
-  output->ShallowCopy(piece.controller ? vtkShockParallel::OwnedPiece(result, piece.owned, input).GetPointer()
+  output->ShallowCopy(piece.controller ? ShockParallel::OwnedPiece(result, piece.owned, input).GetPointer()
                                        : result.GetPointer());
   return 1;
 }
@@ -479,7 +479,7 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   shock::MeshFlowFields& fields, std::string& error)
 {
   shock::SharpeningParameters parameters;
-  parameters.advection = vtkShockFilterInternals::MakeParameters(this);
+  parameters.advection = ShockFilterInternals::MakeParameters(this);
   parameters.normalSmoothingPasses = this->NormalSmoothingPasses;
   parameters.featureAngle = this->FeatureAngle;
   parameters.fit.target = static_cast<shock::FitTarget>(this->FitTarget);
@@ -535,12 +535,12 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
 }
 
 void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
-  const vtkShockPolyDataInternals::PreparedMesh& prepared, std::vector<double>& positions,
+  const ShockPolyDataInternals::PreparedMesh& prepared, std::vector<double>& positions,
   const std::vector<double>& normals, const shock::MeshFlowFields& fields,
   const shock::SharpeningReport& report, vtkPolyData* output)
 {
   const shock::TriangleMesh& mesh = prepared.mesh;
-  const vtkShockPolyDataInternals::Triangles& triangles = prepared.triangles;
+  const ShockPolyDataInternals::Triangles& triangles = prepared.triangles;
   output->ShallowCopy(input);
   // `positions` are the mesh's points; a renumbered mesh's go back to the input's numbering.
   std::vector<double> renumbered;
@@ -554,7 +554,7 @@ void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
   ReportRun(this, report, input, output);
   if (this->GenerateSharpenedNormals)
   {
-    auto cells = vtkShockPolyDataInternals::TrianglesToCells(
+    auto cells = ShockPolyDataInternals::TrianglesToCells(
       NormalsArrayName(), input->GetNumberOfCells(), mesh, triangles, normals);
     for (vtkIdType c = 0; c < cells->GetNumberOfTuples(); ++c)
     {
@@ -576,7 +576,7 @@ void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
     {
       inputFields.potential[p] = inputFields.potential[static_cast<size_t>(prepared.representative[p])];
     }
-    vtkShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, inputFields);
+    ShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, inputFields);
   }
 }
 

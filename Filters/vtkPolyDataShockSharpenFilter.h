@@ -101,7 +101,7 @@ struct SharpeningCache;
 struct SharpeningReport;
 struct MeshFlowFields;
 }
-namespace vtkShockPolyDataInternals
+namespace ShockPolyDataInternals
 {
 class MeshCache;
 struct PreparedMesh;
@@ -303,10 +303,10 @@ protected:
   /// The prepared mesh of `input` in the length unit `unit` (MeshUnit), kept between
   /// executions (the kernels' cache goes with it), renumbered for locality (a
   /// piece's exchanges map the mesh's points back to the piece's through pointOrder).
-  const vtkShockPolyDataInternals::PreparedMesh* Prepare(vtkPolyData* input, double unit, std::string& error);
+  const ShockPolyDataInternals::PreparedMesh* Prepare(vtkPolyData* input, double unit, std::string& error);
 
   /// `input` with the new positions, the field data of the run and the requested arrays.
-  void BuildOutput(vtkPolyData* input, const vtkShockPolyDataInternals::PreparedMesh& prepared,
+  void BuildOutput(vtkPolyData* input, const ShockPolyDataInternals::PreparedMesh& prepared,
     std::vector<double>& positions, const std::vector<double>& normals,
     const shock::MeshFlowFields& fields, const shock::SharpeningReport& report, vtkPolyData* output);
 
@@ -335,7 +335,7 @@ private:
   void operator=(const vtkPolyDataShockSharpenFilter&) = delete;
 
   /// The prepared mesh of the last input, and what the kernels kept for it.
-  std::unique_ptr<vtkShockPolyDataInternals::MeshCache> PreparedMeshes;
+  std::unique_ptr<ShockPolyDataInternals::MeshCache> PreparedMeshes;
   std::unique_ptr<shock::SharpeningCache> KernelCache;
   int KernelCachePreparation = -1; ///< the preparation the kernel cache belongs to
   int FitAssemblies = 0;

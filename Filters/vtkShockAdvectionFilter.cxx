@@ -16,7 +16,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkCellData.h"
 #include "vtkMultiProcessController.h"
-#include "vtkShockParallel.h"
+#include "ShockParallel.h"
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
@@ -231,7 +231,7 @@ void vtkShockAdvectionFilter::SetController(vtkMultiProcessController* controlle
 vtkMultiProcessController* vtkShockAdvectionFilter::PieceController(
   vtkInformationVector* outputVector, bool& unknown)
 {
-  return vtkShockParallel::PieceController(
+  return ShockParallel::PieceController(
     this, this->Controller, outputVector->GetInformationObject(0), unknown);
 }
 
@@ -247,7 +247,7 @@ double vtkShockAdvectionFilter::GlobalValueScale(
     : nullptr;
   double range[2] = { 0.0, 0.0 };
   const bool has = input && input->GetNumberOfPoints() > 0 && this->LocalValueRange(inputVector, range);
-  return vtkShockParallel::GlobalRangeWidth(controller, has, range);
+  return ShockParallel::GlobalRangeWidth(controller, has, range);
 }
 
 bool vtkShockAdvectionFilter::LocalValueRange(vtkInformationVector** inputVector, double range[2])

@@ -300,7 +300,7 @@ protected:
   /**
    * The controller of this execution's collectives, or nullptr when the
    * output request is not for one of several pieces (see
-   * vtkShockParallel::PieceController); `unknown` flags a piece request that
+   * ShockParallel::PieceController); `unknown` flags a piece request that
    * no controller matches.
    */
   vtkMultiProcessController* PieceController(vtkInformationVector* outputVector, bool& unknown);

@@ -1,4 +1,4 @@
-#include "vtkShockParallel.h"
+#include "ShockParallel.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkAbstractArray.h"
@@ -29,7 +29,7 @@
 #include <numeric>
 #include <unordered_map>
 
-namespace vtkShockParallel
+namespace ShockParallel
 {
 namespace
 {

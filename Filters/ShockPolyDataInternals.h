@@ -1,9 +1,9 @@
 /**
- * @file vtkShockPolyDataInternals.h
+ * @file ShockPolyDataInternals.h
  * @brief Private glue between vtkPolyData and the VTK-free triangle-mesh kernels.
  */
-#ifndef vtkShockPolyDataInternals_h
-#define vtkShockPolyDataInternals_h
+#ifndef ShockPolyDataInternals_h
+#define ShockPolyDataInternals_h
 
 #include "MeshShockAdvection.h"
 #include "TriangleMesh.h"
@@ -17,7 +17,7 @@
 class vtkDataObject;
 class vtkDataSet;
 class vtkMultiProcessController;
-namespace vtkShockParallel
+namespace ShockParallel
 {
 struct SurfacePiece;
 }
@@ -26,7 +26,7 @@ class vtkMultiProcessController;
 class vtkDoubleArray;
 class vtkPolyData;
 
-namespace vtkShockPolyDataInternals
+namespace ShockPolyDataInternals
 {
 /**
  * The triangles of a vtkPolyData's polygons and strips as plain arrays.
@@ -147,10 +147,10 @@ vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error);
  * the input as a surface (AsSurface), the filter's own checks on it
  * (`check` returns an error message, or "" when the surface is usable; it is
  * not called without a surface, nor when ValidateSurface refuses it), then,
- * with a `controller`, the agreement of every process (vtkShockParallel::Agree
+ * with a `controller`, the agreement of every process (ShockParallel::Agree
  * on the error, on `parameters` and `*selection`, the filtered array as
  * `check` chose it) and the piece's ghost layers
- * (vtkShockParallel::PrepareSurfacePiece, collective: call it on every
+ * (ShockParallel::PrepareSurfacePiece, collective: call it on every
  * process). Returns false with a one-sentence `error` to report; on success,
  * `piece.skip` says the output stays empty (replicated data: process 0
  * filters it) and `piece.work` is what to filter.
@@ -158,7 +158,7 @@ vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error);
 bool BeginSurface(vtkInformationVector** inputVector, vtkMultiProcessController* controller,
   int ghostLevels, const std::function<std::string(vtkPolyData* surface)>& check,
   const std::string& parameters, const std::string* selection, vtkSmartPointer<vtkPolyData>& input,
-  vtkShockParallel::SurfacePiece& piece, std::string& error);
+  ShockParallel::SurfacePiece& piece, std::string& error);
 
 /**
  * The checks every surface filter makes before anything reads the mesh: the

@@ -1,5 +1,5 @@
 /**
- * @file vtkShockGhostCells.cxx
+ * @file ShockGhostCells.cxx
  * @brief Global point ids and ghost-cell rings of a distributed surface, grown
  * with the piece's own connectivity, one exchange per ring.
  *
@@ -25,7 +25,7 @@
  *    one round of requests and one of answers (the cells with their points,
  *    point data and cell data, as vtkPolyData).
  */
-#include "vtkShockParallel.h"
+#include "ShockParallel.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
@@ -53,7 +53,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-namespace vtkShockParallel
+namespace ShockParallel
 {
 namespace
 {

@@ -1,5 +1,5 @@
 #include "vtkLogger.h"
-#include "vtkShockPolyDataInternals.h"
+#include "ShockPolyDataInternals.h"
 
 #include "MeshOrder.h"
 
@@ -21,8 +21,8 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolygon.h"
-#include "vtkShockFilterInternals.h"
-#include "vtkShockParallel.h"
+#include "ShockFilterInternals.h"
+#include "ShockParallel.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 
@@ -120,7 +120,7 @@ bool OnlyTriangles(vtkPolyData* input, shock::IdVector& triangles,
 }
 }
 
-namespace vtkShockPolyDataInternals
+namespace ShockPolyDataInternals
 {
 
 shock::TriangleMeshView Triangles::View() const
@@ -224,7 +224,7 @@ bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error)
   if (points && points->GetNumberOfPoints() > 0)
   {
     out.points.resize(static_cast<size_t>(3 * points->GetNumberOfPoints()));
-    vtkShockFilterInternals::ToDoubles(
+    ShockFilterInternals::ToDoubles(
       points->GetData(), out.points.data(), shock::ThreadsForWork(0, points->GetNumberOfPoints()));
   }
   if (OnlyTriangles(input, out.triangles, out.sourceCell))
@@ -890,7 +890,7 @@ std::string ValidateSurface(vtkPolyData* surface)
 bool BeginSurface(vtkInformationVector** inputVector, vtkMultiProcessController* controller,
   int ghostLevels, const std::function<std::string(vtkPolyData* surface)>& check,
   const std::string& parameters, const std::string* selection, vtkSmartPointer<vtkPolyData>& input,
-  vtkShockParallel::SurfacePiece& piece, std::string& error)
+  ShockParallel::SurfacePiece& piece, std::string& error)
 {
   error.clear();
   input = AsSurface(vtkDataSet::GetData(inputVector[0]), error);
@@ -904,7 +904,7 @@ bool BeginSurface(vtkInformationVector** inputVector, vtkMultiProcessController*
     error = check(input);
   }
   // In parallel: every process agrees (on failure, parameters and arrays), then gets ghost cells (collective).
-  return vtkShockParallel::PrepareSurfacePiece(controller, input, error, parameters,
+  return ShockParallel::PrepareSurfacePiece(controller, input, error, parameters,
     selection ? *selection : std::string(), ghostLevels, piece, error);
 }
 

@@ -1,11 +1,11 @@
 /**
- * @file vtkShockFilterInternals.h
+ * @file ShockFilterInternals.h
  * @brief Private glue between the vtkShock* filters and the VTK-free kernels.
  *
  * Not installed: the kernels' types stay out of the module's public headers.
  */
-#ifndef vtkShockFilterInternals_h
-#define vtkShockFilterInternals_h
+#ifndef ShockFilterInternals_h
+#define ShockFilterInternals_h
 
 #include "GridShockAdvection.h"
 #include "ShockTypes.h"
@@ -17,7 +17,7 @@ class vtkDataArray;
 class vtkDataSetAttributes;
 class vtkShockAdvectionFilter;
 
-namespace vtkShockFilterInternals
+namespace ShockFilterInternals
 {
 /// The filter's parameters in the kernels' form.
 shock::AdvectionParameters MakeParameters(vtkShockAdvectionFilter* filter);

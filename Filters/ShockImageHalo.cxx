@@ -1,9 +1,9 @@
 /**
- * @file vtkShockImageHalo.cxx
+ * @file ShockImageHalo.cxx
  * @brief The halo of an image piece: the samples around it that other
- * processes hold, exchanged point to point (vtkShockParallel::GrowImageSamples).
+ * processes hold, exchanged point to point (ShockParallel::GrowImageSamples).
  */
-#include "vtkShockParallel.h"
+#include "ShockParallel.h"
 
 #include "vtkDataArray.h"
 #include "vtkMultiProcessController.h"
@@ -13,7 +13,7 @@
 #include <cstring>
 #include <vector>
 
-namespace vtkShockParallel
+namespace ShockParallel
 {
 namespace
 {

@@ -1,4 +1,4 @@
-#include "vtkShockFilterInternals.h"
+#include "ShockFilterInternals.h"
 
 #include "vtkAOSDataArrayTemplate.h"
 #include "vtkArrayDispatch.h"
@@ -168,7 +168,7 @@ struct CopyFromDoubles
 };
 }
 
-namespace vtkShockFilterInternals
+namespace ShockFilterInternals
 {
 shock::AdvectionParameters MakeParameters(vtkShockAdvectionFilter* filter)
 {

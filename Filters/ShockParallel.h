@@ -1,5 +1,5 @@
 /**
- * @file vtkShockParallel.h
+ * @file ShockParallel.h
  * @brief Private MPI helpers of the shock filters, each on an explicit controller.
  *
  * VTK's convention (the vtkP* classes): the serial filters hold no MPI code;
@@ -7,8 +7,8 @@
  * Every function here is collective: all processes of the controller call it,
  * in the same order, or none does.
  */
-#ifndef vtkShockParallel_h
-#define vtkShockParallel_h
+#ifndef ShockParallel_h
+#define ShockParallel_h
 
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
@@ -25,7 +25,7 @@ class vtkMultiProcessController;
 class vtkPolyData;
 class vtkUnsignedCharArray;
 
-namespace vtkShockParallel
+namespace ShockParallel
 {
 /**
  * The controller a filter's execution runs its collectives on, or nullptr for
@@ -45,7 +45,7 @@ vtkMultiProcessController* PieceController(
 vtkUnsignedCharArray* PointGhosts(vtkDataSet* data);
 
 /**
- * The halo exchange of an image piece (vtkShockImageHalo.cxx, collective):
+ * The halo exchange of an image piece (ShockImageHalo.cxx, collective):
  * `array` holds the samples of `extent` (a sample extent: points, or cells);
  * the result holds those of `grown`, `extent` with `layers` more samples on
  * every axis the pieces together span, clamped to the box around all pieces
@@ -94,7 +94,7 @@ vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* owne
 
 /**
  * `piece` (without ghost cells) with `layers` rings of its neighbours' cells
- * (vtkShockGhostCells.cxx): point global ids (the input's, else made from the
+ * (ShockGhostCells.cxx): point global ids (the input's, else made from the
  * coordinates of the points on the pieces' borders: coincident points of
  * different pieces are one point), each ring fetched from the processes that
  * hold its points in one exchange. The result holds the piece's points and
