@@ -43,7 +43,7 @@ fi
 if [[ " $stages " == *" sanitize "* ]]; then
   stage "sanitize: build-asan with $sanitizers"
   cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
-    -DSHOCK_ENABLE_PARAVIEW=OFF -DVTK_DIR="$vtk_dir" \
+    -DSHOCK_ENABLE_PARAVIEW=OFF -DVTK_DIR="$vtk_dir" -DSHOCK_ENABLE_AVX2=ON \
     -DCMAKE_CXX_FLAGS="$sanitizers -fno-sanitize-recover=all" -DCMAKE_C_FLAGS="$sanitizers" \
     -DCMAKE_EXE_LINKER_FLAGS="$sanitizers" -DCMAKE_SHARED_LINKER_FLAGS="$sanitizers"
   cmake --build "$root/build-asan" --parallel "$jobs"

@@ -1,4 +1,5 @@
 #include "ShockTypes.h"
+#include "MachineChoices.h"
 
 #include <omp.h>
 #ifdef __linux__
@@ -7,7 +8,6 @@
 #endif
 
 #ifdef __linux__
-#include <dirent.h>
 #include <sys/mman.h>
 #endif
 
@@ -109,67 +109,6 @@ Status CheckAdvectionParameters(const AdvectionParameters& parameters)
   return {};
 }
 
-namespace
-{
-/// The processes an MPI launcher started on this node, or 0 when none says.
-int LocalProcesses()
-{
-  for (const char* name : { "OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS", "MV2_COMM_WORLD_LOCAL_SIZE" })
-  {
-    if (const char* value = std::getenv(name))
-    {
-      return std::atoi(value);
-    }
-  }
-  return 0;
-}
-}
-
-bool UseTheWholeNodeWhenAlone()
-{
-  // Open MPI binds each process to one core when it starts two or fewer, so
-  // `mpirun -np 1` would run every thread on one core. A process alone on its
-  // node takes the node's cores back, once, for itself and its OpenMP threads
-  // (SHOCK_KEEP_BINDING=1 keeps the launcher's binding).
-#ifndef __linux__
-  return false; // the affinity calls below are Linux's
-#else
-  static const bool widened = []() {
-    const char* keep = std::getenv("SHOCK_KEEP_BINDING");
-    if ((keep && std::strcmp(keep, "1") == 0) || LocalProcesses() != 1)
-    {
-      return false;
-    }
-    cpu_set_t current;
-    CPU_ZERO(&current);
-    if (sched_getaffinity(0, sizeof(current), &current) != 0 ||
-      CPU_COUNT(&current) >= sysconf(_SC_NPROCESSORS_ONLN))
-    {
-      return false;
-    }
-    cpu_set_t all;
-    CPU_ZERO(&all);
-    for (long cpu = 0; cpu < sysconf(_SC_NPROCESSORS_ONLN) && cpu < CPU_SETSIZE; ++cpu)
-    {
-      CPU_SET(cpu, &all);
-    }
-    if (sched_setaffinity(0, sizeof(all), &all) != 0)
-    {
-      return false;
-    }
-    // OpenMP threads made before keep the mask they were made with: widen theirs too
-    // (as many as any later team may use).
-    const int cores = std::max({ 1, CPU_COUNT(&all), omp_get_max_threads(), omp_get_num_procs() });
-#pragma omp parallel num_threads(cores)
-    {
-      sched_setaffinity(0, sizeof(all), &all);
-    }
-    return true;
-  }();
-  return widened;
-#endif
-}
-
 std::string ValueSpanError(double low, double high)
 {
   std::ostringstream text;
@@ -222,53 +161,6 @@ std::size_t HugePageMultiple(std::size_t bytes)
   return (bytes + HugePage - 1) / HugePage * HugePage;
 }
 
-// Whether a virtio balloon reports free pages to the host (feature bit 5,
-// VIRTIO_BALLOON_F_REPORTING; sysfs lists the feature bits as a string of 0/1).
-bool HostTakesBackFreePages()
-{
-  const char* const drivers = "/sys/bus/virtio/drivers/virtio_balloon";
-  DIR* directory = opendir(drivers);
-  if (!directory)
-  {
-    return false;
-  }
-  bool reporting = false;
-  while (const dirent* entry = readdir(directory))
-  {
-    if (std::strncmp(entry->d_name, "virtio", 6) != 0)
-    {
-      continue;
-    }
-    std::ifstream file(std::string(drivers) + "/" + entry->d_name + "/features");
-    std::string bits;
-    if (file >> bits && bits.size() > 5 && bits[5] == '1')
-    {
-      reporting = true;
-    }
-  }
-  closedir(directory);
-  return reporting;
-}
-}
-
-bool UseHugePages()
-{
-  static const bool use = [] {
-    if (const char* setting = std::getenv("SHOCK_HUGE_PAGES"))
-    {
-      if (std::strcmp(setting, "0") == 0 || std::strcmp(setting, "1") == 0)
-      {
-        return setting[0] == '1';
-      }
-    }
-    return !HostTakesBackFreePages();
-  }();
-  return use;
-}
-#else
-bool UseHugePages()
-{
-  return false;
 }
 #endif
 

@@ -125,15 +125,6 @@ std::string ValueSpanError(double low, double high);
  */
 int ResolveThreadCount(int requested);
 
-/**
- * When an MPI launcher says this is the only process on its node and bound it
- * to fewer cores than the node has (Open MPI binds to one core when it starts
- * two or fewer processes), widen the affinity of the process's threads to the
- * whole node, once; SHOCK_KEEP_BINDING=1 keeps the binding. Called by
- * ResolveThreadCount; returns whether it widened.
- */
-bool UseTheWholeNodeWhenAlone();
-
 /// Work units (samples, vertices, faces, trace starts) below which a second thread
 /// costs more to start and synchronise than it saves (measured in Benchmarks/RESULTS.md).
 constexpr std::int64_t MinimumWorkPerThread = 16384;
@@ -168,24 +159,11 @@ void RoundAndClampBytes(const double* in, std::int64_t count, unsigned char* out
 /**
  * Uninitialised storage for the large arrays of the kernels and filters (signals,
  * potentials, flows), released with FreeLarge and the same size. On Linux, blocks
- * of 2 MiB and more are mapped on their own, aligned to and advised for
- * transparent huge pages: the first touch of a buffer then takes one page fault
- * per 2 MiB instead of one per 4 KiB, which on a multi-megapixel image otherwise
- * costs a good part of the run time. Throws std::bad_alloc on failure.
- * The huge-page advice is given when UseHugePages() says so.
+ * of 2 MiB and more are mapped on their own, aligned to 2 MiB; with the build
+ * option SHOCK_HUGE_PAGES (off by default, MachineChoices.h) they are also
+ * advised for transparent huge pages. Throws std::bad_alloc on failure.
  */
 void* AllocateLarge(std::size_t bytes);
-
-/**
- * Whether AllocateLarge advises transparent huge pages. Yes on Linux, except in a
- * virtual machine whose virtio balloon reports free pages to the host: there the
- * host takes back free huge blocks, and touching a huge page it took back costs
- * several times more than touching small pages (Benchmarks/RESULTS.md, "Cold
- * start": 3.2 s per GiB against 0.4-0.8 s, while a huge page still backed costs
- * 0.15 s). The environment variable SHOCK_HUGE_PAGES=1 or =0 overrides the choice.
- * Decided once per process.
- */
-bool UseHugePages();
 void FreeLarge(void* block, std::size_t bytes) noexcept;
 
 /// Deleter of LargeArray: FreeLarge needs the size.

@@ -10,6 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <string>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -1049,11 +1052,23 @@ TEST(GridSteps, EveryComponentIsAdvectedAsIfAlone)
 
 namespace
 {
+/// SHOCK_TEST_PORTABLE=1 (the test GridKernels.PortableBuild, with the build
+/// option SHOCK_ENABLE_AVX2): the whole program runs the portable build.
+const bool WholeRunPortable = [] {
+  const char* setting = std::getenv("SHOCK_TEST_PORTABLE");
+  const bool portable = setting && std::string(setting) == "1";
+  if (portable)
+  {
+    AllowAvx2(false);
+  }
+  return portable;
+}();
+
 /// Forbids the AVX2 build for its lifetime (the portable build runs).
 struct PortableBuild
 {
   PortableBuild() { AllowAvx2(false); }
-  ~PortableBuild() { AllowAvx2(true); }
+  ~PortableBuild() { AllowAvx2(!WholeRunPortable); }
   PortableBuild(const PortableBuild&) = delete;
   PortableBuild& operator=(const PortableBuild&) = delete;
 };
@@ -1113,7 +1128,7 @@ TEST(GridSteps, TheAvx2ImageTracerTakesThePortablePathsBitForBit)
   // build: Trace<true> is the portable one there.)
   if (!UsesAvx2())
   {
-    GTEST_SKIP() << "this processor has no AVX2: only the portable build runs";
+    GTEST_SKIP() << "no AVX2 build (SHOCK_ENABLE_AVX2 is off) or no AVX2 here: only the portable build runs";
   }
   EXPECT_GT(Avx2TracesAreThePortableOnes<2>(RefGrid{ { 11, 9, 1 }, { 1.0, 1.7, 1.0 } }, 15), 100);
   EXPECT_GT(Avx2TracesAreThePortableOnes<2>(RefGrid{ { 5, 13, 1 }, { 0.6, 1.0, 1.0 } }, 16), 100);
@@ -1130,7 +1145,7 @@ TEST(GridSteps, TheAvx2AdvectionGivesThePortableValuesBitForBit)
   // sanitizers' build would see a read past the array).
   if (!UsesAvx2())
   {
-    GTEST_SKIP() << "this processor has no AVX2: only the portable build runs";
+    GTEST_SKIP() << "no AVX2 build (SHOCK_ENABLE_AVX2 is off) or no AVX2 here: only the portable build runs";
   }
   const RefGrid image{ { 23, 17, 1 }, { 1.0, 1.4, 1.0 } };
   const RefGrid volume{ { 9, 7, 6 }, { 1.0, 0.8, 1.2 } };
@@ -1197,7 +1212,7 @@ TEST(GridSteps, TheAvx2ByteReadsLeaveTheLastCellToThePortableOnes)
 #ifdef SHOCK_GRID_AVX2
   if (!UsesAvx2())
   {
-    GTEST_SKIP() << "this processor has no AVX2";
+    GTEST_SKIP() << "no AVX2 build (SHOCK_ENABLE_AVX2 is off) or no AVX2 here";
   }
   const RefGrid image{ { 6, 5, 1 }, { 1.0, 1.0, 1.0 } };
   const Lattice<2> L(image.Shape());
@@ -1250,7 +1265,7 @@ TEST(GridSteps, TheAvx2ByteReadsLeaveTheLastCellToThePortableOnes)
     EXPECT_EQ(CombineByteReadsAvx2<true>(L, hood, bytes.data(), corner, C, lastLower, weights, inside, 0, untouched), C == 4);
   }
 #else
-  GTEST_SKIP() << "built without the AVX2 build (not x86-64)";
+  GTEST_SKIP() << "no AVX2 build (SHOCK_ENABLE_AVX2 is off, or not x86-64)";
 #endif
 }
 
