@@ -4,6 +4,7 @@
 // dimensions, random values. The references below loop over (i, j, k)
 // coordinates and never use the kernel's strides, blocks or buffers.
 #include "GridAdvect.h"
+#include "GridShockAdvection.h"
 #include "GridFlow.h"
 #include "GridLattice.h"
 #include "GridTrace.h"

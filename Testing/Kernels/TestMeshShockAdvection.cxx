@@ -1,4 +1,4 @@
-// Tests of the VTK-free triangle-mesh shock filter (Filters/Kernels/MeshShockAdvection).
+// Tests of the VTK-free triangle-mesh shock filter (Filters/Kernels/Mesh/MeshShockAdvection).
 #include "GridShockAdvection.h"
 #include "MeshShockAdvection.h"
 #include "TestMeshes.h"

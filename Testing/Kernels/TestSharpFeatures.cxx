@@ -1,4 +1,4 @@
-// Tests of what geometry sharpening keeps (Filters/Kernels/SharpFeatures, the fit
+// Tests of what geometry sharpening keeps (Filters/Kernels/Mesh/SharpFeatures, the fit
 // targets of ScreenedPoissonFit, MeshSharpening): repeated triangles, feature edges,
 // the target gradients against their geometric definitions, sharp shapes kept,
 // rounded shapes moved towards their sharp originals.

@@ -78,6 +78,8 @@ def main():
     parser.add_argument("--timeout", type=float, default=900.0, help="seconds per mutant's tests")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--list", action="store_true", help="list the mutants and exit")
+    parser.add_argument("--check", action="store_true",
+                        help="exit 1 when a mutant's snippet is not in its file exactly once (stale)")
     parser.add_argument("--skip-baseline", action="store_true",
                         help="do not first check that the unmutated tree passes its tests")
     parser.add_argument("--kernel-baseline", action="store_true",
@@ -92,6 +94,16 @@ def main():
         for m in mutants:
             print(f"{m['id']:28s} {m['file']}: {m['bug']}")
         return 0
+    if args.check:
+        stale = []
+        for m in mutants:
+            path = os.path.join(ROOT, m["file"])
+            text = open(path).read() if os.path.exists(path) else ""
+            if text.count(m["original"]) != 1:
+                stale.append(m["id"])
+                print("stale: %s (%s: the snippet occurs %d times)" % (m["id"], m["file"], text.count(m["original"])))
+        print("%d mutants, %d stale" % (len(mutants), len(stale)))
+        return 1 if stale else 0
 
     work = os.path.abspath(args.work)
     os.makedirs(work, exist_ok=True)

@@ -8,7 +8,9 @@
 #define ShockFitSolve_h
 
 #include "MeshPartition.h"
-#include "ScreenedPoissonFit.h"
+#include "FitParameters.h"
+#include "FitSystem.h"
+#include "TriangleMesh.h"
 #include "ShockTypes.h"
 #include "Vec3.h"
 

@@ -8,7 +8,8 @@
 #ifndef GridLattice_h
 #define GridLattice_h
 
-#include "GridShockAdvection.h"
+#include "GridShape.h"
+#include "ShockTypes.h"
 
 #include <algorithm>
 #include <array>

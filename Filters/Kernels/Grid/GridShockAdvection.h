@@ -24,6 +24,7 @@
 #ifndef GridShockAdvection_h
 #define GridShockAdvection_h
 
+#include "GridShape.h"
 #include "ShockTypes.h"
 
 #include <array>
@@ -34,39 +35,6 @@
 namespace shock
 {
 
-/// Shape of a regular grid of samples.
-struct GridShape
-{
-  std::array<int, 3> dimensions{ { 1, 1, 1 } };        ///< samples per axis, each >= 1
-  std::array<double, 3> spacing{ { 1.0, 1.0, 1.0 } };  ///< distance between samples per axis, > 0
-
-  std::int64_t NumberOfSamples() const;
-  /// Faces per axis: dimensions - 1 on axes with more than one sample, 1 on flat axes.
-  std::int64_t NumberOfFaces() const;
-  /// Number of axes with more than one sample (0 to 3).
-  int ActiveAxes() const;
-  /// Mean length of the grid's edges (the paper's l-bar); 0 when there is no edge.
-  double MeanEdgeLength() const;
-};
-
-/// Optional outputs describing the flow of the last flow computation.
-struct GridFlowFields
-{
-  /// Potential P per sample (|grad I|^2 averaged to samples, then smoothed), normalised units.
-  std::vector<double> potential;
-  /// Flow u = 1/2 grad P per face, 3 components (x, y, z grid axes), normalised units.
-  std::vector<double> flow;
-};
-
-/**
- * Receives a kernel's results: `count` samples from sample index `first`, C
- * interleaved values each, valid only during the call. Called from several
- * threads at once for disjoint runs of samples, in no particular order, so that
- * results can go straight into the caller's storage type without a full-size
- * double buffer.
- */
-using SampleWriter =
-  std::function<void(std::int64_t first, std::int64_t count, const double* values)>;
 
 /**
  * Run the shock filter on a grid signal.

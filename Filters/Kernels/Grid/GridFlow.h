@@ -21,7 +21,8 @@
 #define GridFlow_h
 
 #include "GridLattice.h"
-#include "GridShockAdvection.h"
+#include "GridShape.h"
+#include "ShockTypes.h"
 
 #include <algorithm>
 #include <array>
