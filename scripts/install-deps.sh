@@ -14,7 +14,7 @@ PACKAGES=(
   # ParaView 5.11 SDK (carries VTK 9.2) and what its CMake config probes
   paraview paraview-dev python3-paraview
   python3-dev   # headers for the Python wrapping (package shockfilters)
-  libeigen3-dev libfftw3-dev qtbase5-dev qttools5-dev libqt5svg5-dev libqt5opengl5-dev
+  libeigen3-dev qtbase5-dev qttools5-dev libqt5svg5-dev libqt5opengl5-dev
   qtxmlpatterns5-dev-tools libqt5x11extras5-dev qtmultimedia5-dev
   libhdf5-mpi-dev libutfcpp-dev libnetcdf-dev libexpat1-dev
   libdouble-conversion-dev liblz4-dev libjpeg-dev libpng-dev libtiff-dev

@@ -243,22 +243,35 @@ TEST(ImageGradientDomain, RefusesWhatItCannotDoWithAClearError)
   }
 }
 
-TEST(ImageGradientDomain, HonoursAbort)
+TEST(ImageGradientDomain, HonoursAbortDuringTheAdvectionAndTheSolve)
 {
   vtkNew<vtkFloatArray> values;
-  auto image = MakeImage(values, 300, 200, 1, 1, 1.0);
-  auto filter = GradientFilter(image, 1000.0);
-  int calls = 0;
-  vtkNew<vtkCallbackCommand> onAbort;
-  onAbort->SetClientData(&calls);
-  onAbort->SetCallback([](vtkObject* caller, unsigned long, void* client, void*) {
-    ++*static_cast<int*>(client);
-    static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
-  });
-  filter->AddObserver(vtkCommand::ProgressEvent, onAbort);
-  filter->Update();
-  EXPECT_LE(calls, 3);
-  EXPECT_EQ(Values(filter->GetOutput()->GetPointData()->GetScalars()), Values(values));
+  auto image = MakeImage(values, 300, 200, 1, 3, 1.0);
+  // Abort at the first report at or past `at`: 0 (the advection) and 0.8 (the solve).
+  for (const double at : { 0.0, 0.8 })
+  {
+    auto filter = GradientFilter(image, 1000.0);
+    struct Abort
+    {
+      double at;
+      double abortedAt = -1.0;
+    } abort{ at };
+    vtkNew<vtkCallbackCommand> onAbort;
+    onAbort->SetClientData(&abort);
+    onAbort->SetCallback([](vtkObject* caller, unsigned long, void* client, void* data) {
+      auto* a = static_cast<Abort*>(client);
+      const double progress = *static_cast<double*>(data);
+      if (a->abortedAt < 0.0 && progress > 0.0 && progress >= a->at)
+      {
+        a->abortedAt = progress;
+        static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+      }
+    });
+    filter->AddObserver(vtkCommand::ProgressEvent, onAbort);
+    filter->Update();
+    EXPECT_GE(abort.abortedAt, at) << "no progress report to abort at from " << at;
+    EXPECT_EQ(Values(filter->GetOutput()->GetPointData()->GetScalars()), Values(values)) << "aborted at " << abort.abortedAt;
+  }
 }
 
 } // namespace

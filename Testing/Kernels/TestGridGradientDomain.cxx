@@ -348,16 +348,21 @@ TEST(GridGradientDomain, InvariantToRangeOffsetAndSpacingScale)
     p.time = 300.0;
     const std::vector<double> base = Gradients(shape, 1, input, p);
     EXPECT_GT(MaxAbsDifference(base, input), 0.01);
-    // Values a x + b: the result a R + b (float rounding of the carried values).
-    std::vector<double> scaled(input);
-    for (double& v : scaled)
+    // Values a x + b: the result a R + b (float rounding of the carried
+    // values), down to denormal-float scales and up to beyond a float's range.
+    for (const double a : { 1000.0, 1e-40, 1e39, 1e300 })
     {
-      v = 1000.0 * v - 7.0;
-    }
-    const std::vector<double> scaledOut = Gradients(shape, 1, scaled, p);
-    for (size_t s = 0; s < base.size(); ++s)
-    {
-      EXPECT_NEAR(scaledOut[s], 1000.0 * base[s] - 7.0, 2e-6 * 1000.0);
+      const double b = -7.0 * a;
+      std::vector<double> scaled(input);
+      for (double& v : scaled)
+      {
+        v = a * v + b;
+      }
+      const std::vector<double> scaledOut = Gradients(shape, 1, scaled, p);
+      for (size_t s = 0; s < base.size(); ++s)
+      {
+        ASSERT_NEAR(scaledOut[s] / a, base[s] - 7.0, 2e-6) << "scale " << a << ", sample " << s;
+      }
     }
     // Every spacing times 3.7: lengths are in mean edge lengths.
     GridShape stretched = shape;
@@ -390,9 +395,20 @@ TEST(GridGradientDomain, SharpensABlurredEdge)
   }
 }
 
+TEST(GridGradientDomain, ConstantAndSingleSampleSignalsComeBackUnchanged)
+{
+  AdvectionParameters p;
+  p.time = 500.0;
+  const std::vector<double> constant(7 * 5 * 2, 0.25);
+  EXPECT_EQ(Gradients(Grid(7, 5), 2, constant, p), constant);
+  const std::vector<double> one = { 3.5, -1.0 };
+  EXPECT_EQ(Gradients(Grid(1, 1), 2, one, p), one);
+}
+
 TEST(GridGradientDomain, SameResultOnAnyNumberOfThreads)
 {
-  const GridShape shape = Shape(37, 29, 3, 1.0, 1.2, 0.8);
+  // Large enough for two threads (ThreadsForWork: one per 16384 samples).
+  const GridShape shape = Shape(64, 64, 9, 1.0, 1.2, 0.8);
   const std::vector<double> input = Noisy(Bumps(shape, 2, 0.1), 0.02, 17);
   AdvectionParameters p;
   p.time = 40.0;

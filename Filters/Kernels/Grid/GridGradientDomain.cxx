@@ -2,13 +2,13 @@
 #include "GridFlow.h"
 #include "Timer.h"
 
-#include <fftw3.h>
+#include <unsupported/Eigen/FFT>
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <vector>
 
 namespace shock
@@ -85,13 +85,14 @@ ChannelScan ScanChannels(std::int64_t N, int C, const T* input, int threads)
 }
 
 /**
- * Step 1: per sample, its value (less its channel's mid-range, so that floats
- * keep 7 digits of the range) and, per active axis, its forward and backward
- * differences; C * (1 + 2 * axes) floats.
+ * Step 1: per sample, its value and, per active axis, its forward and backward
+ * differences; C * (1 + 2 * axes) floats. All are divided by the data range
+ * `range` (the value less its channel's mid-range first), so that floats keep 7
+ * digits of the range on data of any scale.
  */
 template <typename T>
 LargeArray<float> CarriedDifferences(std::int64_t N, int C, const ActiveAxes& axes,
-  const T* input, const std::vector<double>& middle, int threads)
+  const T* input, const std::vector<double>& middle, double range, int threads)
 {
   const int carriedC = C * (1 + 2 * axes.count);
   LargeArray<float> carried = AllocateLargeArray<float>(N * carriedC);
@@ -102,20 +103,23 @@ LargeArray<float> CarriedDifferences(std::int64_t N, int C, const ActiveAxes& ax
     const T* here = input + s * C;
     for (int c = 0; c < C; ++c)
     {
-      out[c] = static_cast<float>(static_cast<double>(here[c]) - middle[static_cast<size_t>(c)]);
+      out[c] = static_cast<float>((static_cast<double>(here[c]) - middle[static_cast<size_t>(c)]) / range);
     }
     for (int k = 0; k < axes.count; ++k)
     {
       const std::int64_t i = axes.Coordinate(s, k);
-      const T* next = here + axes.stride[k] * C;
-      const T* previous = here - axes.stride[k] * C;
+      const std::int64_t step = axes.stride[k] * C;
       float* forward = out + C * (1 + 2 * k);
       float* backward = forward + C;
       for (int c = 0; c < C; ++c)
       {
         const double v = static_cast<double>(here[c]);
-        forward[c] = i + 1 < axes.n[k] ? static_cast<float>(static_cast<double>(next[c]) - v) : 0.0f;
-        backward[c] = i > 0 ? static_cast<float>(v - static_cast<double>(previous[c])) : 0.0f;
+        forward[c] = i + 1 < axes.n[k]
+          ? static_cast<float>((static_cast<double>(input[s * C + step + c]) - v) / range)
+          : 0.0f;
+        backward[c] = i > 0
+          ? static_cast<float>((v - static_cast<double>(input[s * C - step + c])) / range)
+          : 0.0f;
       }
     }
   }
@@ -154,11 +158,11 @@ inline void TargetGradient(const float* advected, std::int64_t s, int k, std::in
 /**
  * The right-hand side of step 4, channel-planar (rhs[c * N + s]):
  * lambda I + sum_k D_k^T g_k / h_k^2, where (D^T g)(s) = g(s - e_k) - g(s)
- * over the edges that exist.
+ * over the edges that exist; g is in units of the range (`range` scales it back).
  */
 template <typename T>
 LargeArray<double> ScreenedRightHandSide(std::int64_t N, int C, const ActiveAxes& axes,
-  const T* input, const float* advected, double lambda, int threads)
+  const T* input, const float* advected, double lambda, double range, int threads)
 {
   const int carriedC = C * (1 + 2 * axes.count);
   LargeArray<double> rhs = AllocateLargeArray<double>(N * C);
@@ -176,7 +180,7 @@ LargeArray<double> ScreenedRightHandSide(std::int64_t N, int C, const ActiveAxes
       for (int k = 0; k < axes.count; ++k)
       {
         const std::int64_t i = axes.Coordinate(s, k);
-        const double weight = 1.0 / (axes.h[k] * axes.h[k]);
+        const double weight = range / (axes.h[k] * axes.h[k]);
         if (i > 0)
         {
           TargetGradient(advected, s - axes.stride[k], k, axes.stride[k], C, carriedC, g.data());
@@ -203,54 +207,102 @@ LargeArray<double> ScreenedRightHandSide(std::int64_t N, int C, const ActiveAxes
   return rhs;
 }
 
-// FFTW's planner is not thread-safe; executing a plan is.
-std::mutex& PlannerMutex()
-{
-  static std::mutex mutex;
-  return mutex;
-}
-
-/// A 1D in-place real-to-real transform of one length, usable on any array.
+/**
+ * The discrete cosine transform of one line length, through a complex FFT of
+ * the same length (Makhoul's reordering; Eigen's FFT). Forward is the DCT-II
+ * X_k = sum_n x_n cos(pi k (n + 1/2) / n), the Neumann Laplacian's eigenbasis;
+ * Inverse is its exact inverse. One object per thread (the FFT keeps state).
+ */
 class CosineTransform
 {
 public:
-  CosineTransform(std::int64_t n, fftw_r2r_kind kind)
+  explicit CosineTransform(std::int64_t n)
+    : N(n)
+    , Reordered(static_cast<size_t>(n))
+    , Spectrum(static_cast<size_t>(n))
+    , Twiddle(static_cast<size_t>(n))
   {
-    std::vector<double> scratch(static_cast<size_t>(n));
-    const std::lock_guard<std::mutex> lock(PlannerMutex());
-    this->Plan = fftw_plan_r2r_1d(static_cast<int>(n), scratch.data(), scratch.data(), kind,
-      FFTW_ESTIMATE | FFTW_UNALIGNED);
-  }
-  ~CosineTransform()
-  {
-    const std::lock_guard<std::mutex> lock(PlannerMutex());
-    if (this->Plan)
+    const double pi = 3.14159265358979323846;
+    for (std::int64_t k = 0; k < n; ++k)
     {
-      fftw_destroy_plan(this->Plan);
+      this->Twiddle[static_cast<size_t>(k)] =
+        std::polar(1.0, -pi * static_cast<double>(k) / (2.0 * static_cast<double>(n)));
     }
   }
-  CosineTransform(const CosineTransform&) = delete;
-  CosineTransform& operator=(const CosineTransform&) = delete;
-  bool Ok() const { return this->Plan != nullptr; }
-  void Apply(double* line) const { fftw_execute_r2r(this->Plan, line, line); }
+
+  void Forward(double* x)
+  {
+    const std::int64_t n = this->N;
+    for (std::int64_t k = 0; 2 * k < n; ++k)
+    {
+      this->Reordered[static_cast<size_t>(k)] = x[2 * k];
+    }
+    for (std::int64_t k = 0; 2 * k + 1 < n; ++k)
+    {
+      this->Reordered[static_cast<size_t>(n - 1 - k)] = x[2 * k + 1];
+    }
+    this->Fft.fwd(this->Spectrum, this->Reordered);
+    for (std::int64_t k = 0; k < n; ++k)
+    {
+      x[k] = (this->Twiddle[static_cast<size_t>(k)] * this->Spectrum[static_cast<size_t>(k)]).real();
+    }
+  }
+
+  void Inverse(double* c)
+  {
+    const std::int64_t n = this->N;
+    for (std::int64_t k = 0; k < n; ++k)
+    {
+      const double mirrored = k > 0 ? c[n - k] : 0.0;
+      this->Spectrum[static_cast<size_t>(k)] =
+        std::conj(this->Twiddle[static_cast<size_t>(k)]) * std::complex<double>(c[k], -mirrored);
+    }
+    this->Fft.inv(this->Reordered, this->Spectrum); // scaled by 1/n
+    for (std::int64_t k = 0; 2 * k < n; ++k)
+    {
+      c[2 * k] = this->Reordered[static_cast<size_t>(k)].real();
+    }
+    for (std::int64_t k = 0; 2 * k + 1 < n; ++k)
+    {
+      c[2 * k + 1] = this->Reordered[static_cast<size_t>(n - 1 - k)].real();
+    }
+  }
 
 private:
-  fftw_plan Plan = nullptr;
+  std::int64_t N;
+  std::vector<std::complex<double>> Reordered;
+  std::vector<std::complex<double>> Spectrum;
+  std::vector<std::complex<double>> Twiddle;
+  Eigen::FFT<double> Fft;
 };
 
 /// The transform along active axis k of every line of `data` (N samples).
-void TransformLines(double* data, std::int64_t N, const ActiveAxes& axes, int k,
-  const CosineTransform& transform, int threads)
+void TransformLines(double* data, std::int64_t N, const ActiveAxes& axes, int k, bool forward,
+  int threads)
 {
   const std::int64_t n = axes.n[k];
   const std::int64_t stride = axes.stride[k];
   const std::int64_t outer = N / (stride * n);
+  const auto apply = [forward](CosineTransform& transform, double* line) {
+    if (forward)
+    {
+      transform.Forward(line);
+    }
+    else
+    {
+      transform.Inverse(line);
+    }
+  };
   if (stride == 1)
   {
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (std::int64_t o = 0; o < outer; ++o)
+#pragma omp parallel num_threads(threads)
     {
-      transform.Apply(data + o * n);
+      CosineTransform transform(n);
+#pragma omp for schedule(static)
+      for (std::int64_t o = 0; o < outer; ++o)
+      {
+        apply(transform, data + o * n);
+      }
     }
     return;
   }
@@ -260,6 +312,7 @@ void TransformLines(double* data, std::int64_t N, const ActiveAxes& axes, int k,
   const std::int64_t blocks = (stride + Gather - 1) / Gather;
 #pragma omp parallel num_threads(threads)
   {
+    CosineTransform transform(n);
     std::vector<double> lines(static_cast<size_t>(Gather * n));
 #pragma omp for schedule(static)
     for (std::int64_t item = 0; item < outer * blocks; ++item)
@@ -276,7 +329,7 @@ void TransformLines(double* data, std::int64_t N, const ActiveAxes& axes, int k,
       }
       for (std::int64_t j = 0; j < count; ++j)
       {
-        transform.Apply(lines.data() + j * n);
+        apply(transform, lines.data() + j * n);
       }
       for (std::int64_t i = 0; i < n; ++i)
       {
@@ -290,28 +343,15 @@ void TransformLines(double* data, std::int64_t N, const ActiveAxes& axes, int k,
 }
 
 /// Step 4 on one channel, with the axes already resolved.
-Status SolveChannel(const ActiveAxes& axes, std::int64_t N, double lambda, double* rhs, int threads)
+void SolveChannel(const ActiveAxes& axes, std::int64_t N, double lambda, double* rhs, int threads)
 {
-  std::vector<std::unique_ptr<CosineTransform>> forward;
-  std::vector<std::unique_ptr<CosineTransform>> backward;
-  for (int k = 0; k < axes.count; ++k)
-  {
-    forward.push_back(std::make_unique<CosineTransform>(axes.n[k], FFTW_REDFT10));
-    backward.push_back(std::make_unique<CosineTransform>(axes.n[k], FFTW_REDFT01));
-    if (!forward.back()->Ok() || !backward.back()->Ok())
-    {
-      return { "the cosine transform could not be planned" };
-    }
-  }
   // DCT-II along every axis: the Neumann Laplacian's eigenbasis.
   for (int k = 0; k < axes.count; ++k)
   {
-    TransformLines(rhs, N, axes, k, *forward[static_cast<size_t>(k)], threads);
+    TransformLines(rhs, N, axes, k, true, threads);
   }
-  // Divide by the eigenvalues lambda + sum_k (2 - 2 cos(pi i_k / n_k)) / h_k^2, and by
-  // the 2 n_k that a DCT-II followed by a DCT-III multiplies by.
+  // Divide by the eigenvalues lambda + sum_k (2 - 2 cos(pi i_k / n_k)) / h_k^2.
   std::vector<std::vector<double>> eigen(static_cast<size_t>(axes.count));
-  double scale = 1.0;
   for (int k = 0; k < axes.count; ++k)
   {
     const std::int64_t n = axes.n[k];
@@ -324,7 +364,6 @@ Status SolveChannel(const ActiveAxes& axes, std::int64_t N, double lambda, doubl
         (2.0 - 2.0 * std::cos(pi * static_cast<double>(i) / static_cast<double>(n))) /
         (axes.h[k] * axes.h[k]);
     }
-    scale *= 2.0 * static_cast<double>(n);
   }
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::int64_t s = 0; s < N; ++s)
@@ -334,14 +373,13 @@ Status SolveChannel(const ActiveAxes& axes, std::int64_t N, double lambda, doubl
     {
       denominator += eigen[static_cast<size_t>(k)][static_cast<size_t>(axes.Coordinate(s, k))];
     }
-    rhs[s] /= denominator * scale;
+    rhs[s] /= denominator;
   }
-  // DCT-III: back to samples.
+  // Back to samples.
   for (int k = 0; k < axes.count; ++k)
   {
-    TransformLines(rhs, N, axes, k, *backward[static_cast<size_t>(k)], threads);
+    TransformLines(rhs, N, axes, k, false, threads);
   }
-  return {};
 }
 
 /// Hands the channel-planar `solved` to `output`, interleaved, in parallel runs.
@@ -369,6 +407,26 @@ void WriteInterleaved(std::int64_t N, int C, const double* solved, const SampleW
   }
 }
 
+/// Hands the input itself to `output` (an aborted run), in parallel runs.
+template <typename T>
+void WriteInput(std::int64_t N, int C, const T* input, const SampleWriter& output, int threads)
+{
+  const std::int64_t runs = (N + grid::BlockLength - 1) / grid::BlockLength;
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<double> row(static_cast<size_t>(grid::BlockLength * C));
+#pragma omp for schedule(static)
+    for (std::int64_t r = 0; r < runs; ++r)
+    {
+      const std::int64_t first = r * grid::BlockLength;
+      const std::int64_t count = std::min(grid::BlockLength, N - first);
+      std::transform(input + first * C, input + (first + count) * C, row.begin(),
+        [](T v) { return static_cast<double>(v); });
+      output(first, count, row.data());
+    }
+  }
+}
+
 } // namespace
 
 Status SolveScreenedPoisson(
@@ -386,7 +444,8 @@ Status SolveScreenedPoisson(
       axes.h[k++] = axisLength[a];
     }
   }
-  return SolveChannel(axes, shape.NumberOfSamples(), lambda, rhs, ThreadsForWork(threads, shape.NumberOfSamples()));
+  SolveChannel(axes, shape.NumberOfSamples(), lambda, rhs, ThreadsForWork(threads, shape.NumberOfSamples()));
+  return {};
 }
 
 template <typename T>
@@ -432,7 +491,8 @@ Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
     return { ValueSpanError(scan.low, scan.high) };
   }
   const ActiveAxes axes(shape);
-  if (!(parameters.time > 0.0) || axes.count == 0 || !(scan.high > scan.low))
+  const double range = scan.high - scan.low;
+  if (!(parameters.time > 0.0) || axes.count == 0 || !(range > 0.0))
   {
     // Nothing moves: the input itself (and the flow fields, when asked for).
     return AdvectGridSignal(shape, C, input, output, parameters, report, fields, progress);
@@ -443,7 +503,7 @@ Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
   LargeArray<float> advected = AllocateLargeArray<float>(N * carriedC);
   {
     const LargeArray<float> carried =
-      CarriedDifferences(N, C, axes, input, scan.middle, threads);
+      CarriedDifferences(N, C, axes, input, scan.middle, range, threads);
     float* into = advected.get();
     const SampleWriter keep = [into, carriedC](std::int64_t first, std::int64_t count,
                                 const double* values) {
@@ -462,27 +522,31 @@ Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
   }
   if (r.aborted)
   {
-    return AdvectGridSignal(shape, C, input, output, AdvectionParameters{}, nullptr, nullptr);
+    WriteInput(N, C, input, output, threads);
+    return {};
   }
 
   // Steps 3 and 4: the target gradients, integrated.
   const auto solveStart = Clock::now();
   LargeArray<double> solved =
-    ScreenedRightHandSide(N, C, axes, input, advected.get(), domain.screening, threads);
+    ScreenedRightHandSide(N, C, axes, input, advected.get(), domain.screening, range, threads);
   advected.reset();
   for (int c = 0; c < C; ++c)
   {
-    const Status solvedStatus = SolveChannel(axes, N, domain.screening, solved.get() + c * N, threads);
-    if (!solvedStatus.Ok())
+    if (progress && !progress(0.8 + 0.15 * c / C))
     {
-      return solvedStatus;
+      r.aborted = true;
+      WriteInput(N, C, input, output, threads);
+      return {};
     }
+    SolveChannel(axes, N, domain.screening, solved.get() + c * N, threads);
   }
   r.integrationSeconds = SecondsSince(solveStart);
   if (progress && !progress(0.95))
   {
     r.aborted = true;
-    return AdvectGridSignal(shape, C, input, output, AdvectionParameters{}, nullptr, nullptr);
+    WriteInput(N, C, input, output, threads);
+    return {};
   }
   WriteInterleaved(N, C, solved.get(), output, threads);
   return {};

@@ -33,8 +33,9 @@
  *  4. ScreenedPoisson: the signal J minimising
  *       sum over edges |J(s + e_a) - J(s) - g|^2 / h_a^2 + lambda sum over samples |J - I|^2
  *     (h_a the spacing in mean edge lengths, lambda the screening weight),
- *     solved exactly with the discrete cosine transform, which diagonalises
- *     the grid Laplacian with Neumann borders: O(N log N).
+ *     solved exactly with the discrete cosine transform (through Eigen's
+ *     FFT), which diagonalises the grid Laplacian with Neumann borders:
+ *     O(N log N).
  */
 #ifndef GridGradientDomain_h
 #define GridGradientDomain_h
