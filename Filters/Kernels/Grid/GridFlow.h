@@ -701,6 +701,23 @@ inline Status CheckGridShape(const GridShape& shape, int components)
   return {};
 }
 
+/// The checks every grid run makes first: the shape, the buffers, the parameters.
+template <typename T>
+Status CheckGridRun(const GridShape& shape, int components, const T* input,
+  const SampleWriter& output, const AdvectionParameters& parameters)
+{
+  const Status arguments = CheckGridShape(shape, components);
+  if (!arguments.Ok())
+  {
+    return arguments;
+  }
+  if (!input || !output)
+  {
+    return { "input and output must be distinct, non-null buffers" };
+  }
+  return CheckAdvectionParameters(parameters);
+}
+
 /// The argument checks shared by the grid kernels' entry points; an empty Status when valid.
 inline Status CheckGridArguments(
   const GridShape& shape, int components, const double* input, const double* output)

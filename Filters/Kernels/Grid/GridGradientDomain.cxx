@@ -407,26 +407,6 @@ void WriteInterleaved(std::int64_t N, int C, const double* solved, const SampleW
   }
 }
 
-/// Hands the input itself to `output` (an aborted run), in parallel runs.
-template <typename T>
-void WriteInput(std::int64_t N, int C, const T* input, const SampleWriter& output, int threads)
-{
-  const std::int64_t runs = (N + grid::BlockLength - 1) / grid::BlockLength;
-#pragma omp parallel num_threads(threads)
-  {
-    std::vector<double> row(static_cast<size_t>(grid::BlockLength * C));
-#pragma omp for schedule(static)
-    for (std::int64_t r = 0; r < runs; ++r)
-    {
-      const std::int64_t first = r * grid::BlockLength;
-      const std::int64_t count = std::min(grid::BlockLength, N - first);
-      std::transform(input + first * C, input + (first + count) * C, row.begin(),
-        [](T v) { return static_cast<double>(v); });
-      output(first, count, row.data());
-    }
-  }
-}
-
 } // namespace
 
 Status SolveScreenedPoisson(
@@ -454,16 +434,7 @@ Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
   const GradientDomainParameters& domain, AdvectionReport* report, GridFlowFields* fields,
   const ProgressFunction& progress)
 {
-  const Status arguments = grid::CheckGridShape(shape, C);
-  if (!arguments.Ok())
-  {
-    return arguments;
-  }
-  if (!input || !output)
-  {
-    return { "input and output must be distinct, non-null buffers" };
-  }
-  const Status valid = CheckAdvectionParameters(parameters);
+  const Status valid = grid::CheckGridRun(shape, C, input, output, parameters);
   if (!valid.Ok())
   {
     return valid;
@@ -522,7 +493,7 @@ Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
   }
   if (r.aborted)
   {
-    WriteInput(N, C, input, output, threads);
+    grid::WriteSignal(N, C, input, output, threads);
     return {};
   }
 
@@ -536,7 +507,7 @@ Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
     if (progress && !progress(0.8 + 0.15 * c / C))
     {
       r.aborted = true;
-      WriteInput(N, C, input, output, threads);
+      grid::WriteSignal(N, C, input, output, threads);
       return {};
     }
     SolveChannel(axes, N, domain.screening, solved.get() + c * N, threads);
@@ -545,7 +516,7 @@ Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
   if (progress && !progress(0.95))
   {
     r.aborted = true;
-    WriteInput(N, C, input, output, threads);
+    grid::WriteSignal(N, C, input, output, threads);
     return {};
   }
   WriteInterleaved(N, C, solved.get(), output, threads);

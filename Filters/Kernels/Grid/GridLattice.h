@@ -334,6 +334,27 @@ struct ValidityMasks
   const unsigned char* Faces() const { return this->faces.empty() ? nullptr : this->faces.data(); }
 };
 
+/// Hands `values` (the whole signal) to `output`, in parallel runs.
+template <typename T>
+void WriteSignal(std::int64_t numSamples, int C, const T* values, const SampleWriter& output,
+  int threads)
+{
+  const std::int64_t run = BlockLength;
+  const std::int64_t runs = (numSamples + run - 1) / run;
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<double> row(static_cast<size_t>(run * C));
+#pragma omp for schedule(static)
+    for (std::int64_t r = 0; r < runs; ++r)
+    {
+      const std::int64_t first = r * run;
+      const std::int64_t count = std::min(run, numSamples - first);
+      std::copy(values + first * C, values + (first + count) * C, row.data());
+      output(first, count, row.data());
+    }
+  }
+}
+
 } // namespace grid
 } // namespace shock
 

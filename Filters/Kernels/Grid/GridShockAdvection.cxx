@@ -61,27 +61,6 @@ SampleWriter BufferWriter(double* buffer, int C)
   };
 }
 
-/// Hands `values` (the whole signal) to `output`, in parallel runs.
-template <typename T>
-void WriteSignal(std::int64_t numSamples, int C, const T* values, const SampleWriter& output,
-  int threads)
-{
-  const std::int64_t run = BlockLength;
-  const std::int64_t runs = (numSamples + run - 1) / run;
-#pragma omp parallel num_threads(threads)
-  {
-    std::vector<double> row(static_cast<size_t>(run * C));
-#pragma omp for schedule(static)
-    for (std::int64_t r = 0; r < runs; ++r)
-    {
-      const std::int64_t first = r * run;
-      const std::int64_t count = std::min(run, numSamples - first);
-      std::copy(values + first * C, values + (first + count) * C, row.data());
-      output(first, count, row.data());
-    }
-  }
-}
-
 /**
  * The grid run on a signal stored as T (float, double or 8-bit). The updates before the
  * last (Composed and Naive flows) keep their results in double buffers; the
@@ -228,16 +207,7 @@ Status AdvectGrid(const GridShape& shape, int components, const T* input,
   GridFlowFields* fields, const ProgressFunction& progress,
   const CarriedSignal* carried = nullptr)
 {
-  const Status arguments = CheckGridShape(shape, components);
-  if (!arguments.Ok())
-  {
-    return arguments;
-  }
-  if (!input || !output)
-  {
-    return { "input and output must be distinct, non-null buffers" };
-  }
-  const Status valid = CheckAdvectionParameters(parameters);
+  const Status valid = CheckGridRun(shape, components, input, output, parameters);
   if (!valid.Ok())
   {
     return valid;
