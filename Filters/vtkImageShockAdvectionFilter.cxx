@@ -601,7 +601,13 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDa
   bool& aborted)
 {
   const shock::SampleWriter& output = filtered.writer;
-  const auto progress = [this](double fraction) { return this->ReportProgress(fraction); };
+  // The phase a fraction belongs to (the gradient domain solves after 0.8).
+  const bool gradients = this->Domain == GRADIENTS && this->Method == ADVECTION;
+  const char* const tracing = this->Method == PDE ? "integrating the shock PDE" : "tracing the flow lines";
+  const auto progress = [this, gradients, tracing](double fraction) {
+    return this->ReportProgress(
+      fraction, gradients && fraction >= 0.8 ? "integrating the advected gradients" : tracing);
+  };
   const int components = array->GetNumberOfComponents();
   const int threads = this->NumberOfThreads;
   ShockFilterInternals::KernelSignal signal =

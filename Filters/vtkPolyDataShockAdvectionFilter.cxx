@@ -350,7 +350,7 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   shock::MeshFlowFields fields;
   const shock::Status status = shock::AdvectMeshSignal(mesh, meshSignal, filtered.data(),
     ShockFilterInternals::MakeParameters(this), &report, this->GenerateFlowArrays ? &fields : nullptr,
-    [this](double fraction) { return this->ReportProgress(fraction); });
+    [this](double fraction) { return this->ReportProgress(fraction, "tracing the flow lines on the surface"); });
   if (!status.Ok())
   {
     vtkErrorMacro("Shock filter failed: " << status.error);

@@ -510,7 +510,11 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
     status = shock::SharpenMeshGeometry(mesh, parameters, positions.data(),
       normals.empty() ? nullptr : normals.data(),
       &report, this->GenerateFlowArrays ? &fields : nullptr,
-      [this](double fraction) { return this->ReportProgress(0.8 * fraction); },
+      [this](double fraction) {
+        // The advection reports up to 1; the fit follows.
+        return this->ReportProgress(
+          0.8 * fraction, fraction < 1.0 ? "advecting the face normals" : "fitting the positions to the normals");
+      },
       partition ? nullptr : this->KernelCache.get());
   }
   this->FitAssemblies += report.advection.aborted || report.fit.reusedSystem ? 0 : 1;

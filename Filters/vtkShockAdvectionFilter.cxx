@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -47,6 +48,7 @@ void vtkShockAdvectionFilter::ResetMeasurements()
 
 bool vtkShockAdvectionFilter::BeginExecution()
 {
+  this->SetProgressText(nullptr);
   this->ResetMeasurements();
   return this->ValidateParameters();
 }
@@ -62,6 +64,10 @@ vtkTypeBool vtkShockAdvectionFilter::ProcessRequest(
     this->CompositeInput = composite;
   }
   const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+  {
+    this->SetProgressText(nullptr); // the phases were this execution's
+  }
   if (!result && request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
   {
     // A failed execution leaves nothing that looks like a result (the output
@@ -108,8 +114,13 @@ bool vtkShockAdvectionFilter::PassForeignBlock(
   return true;
 }
 
-bool vtkShockAdvectionFilter::ReportProgress(double fraction)
+bool vtkShockAdvectionFilter::ReportProgress(double fraction, const char* phase)
 {
+  // The phase, for ParaView's progress bar ("<filter>: <phase>"); set only when it changes.
+  if (phase && (!this->GetProgressText() || std::strcmp(this->GetProgressText(), phase) != 0))
+  {
+    this->SetProgressText(phase);
+  }
   this->UpdateProgress(fraction);
   return !this->GetAbortExecute();
 }

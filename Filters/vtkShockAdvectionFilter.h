@@ -280,7 +280,7 @@ protected:
   bool PassForeignBlock(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
   /// Progress/abort bridge for the kernels: UpdateProgress, then false once AbortExecute is set.
-  bool ReportProgress(double fraction);
+  bool ReportProgress(double fraction, const char* phase = nullptr);
 
   /**
    * The array chosen with SetInputArrayToProcess (index 0), with its association
