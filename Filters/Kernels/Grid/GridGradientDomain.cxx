@@ -9,6 +9,7 @@
 #include <complex>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace shock
@@ -428,17 +429,12 @@ Status SolveScreenedPoisson(
   return {};
 }
 
-template <typename T>
-Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
-  const SampleWriter& output, const AdvectionParameters& parameters,
-  const GradientDomainParameters& domain, AdvectionReport* report, GridFlowFields* fields,
-  const ProgressFunction& progress)
+namespace
 {
-  const Status valid = grid::CheckGridRun(shape, C, input, output, parameters);
-  if (!valid.Ok())
-  {
-    return valid;
-  }
+
+/// The checks of a gradient-domain run beyond those of every grid run.
+Status CheckGradientRun(const AdvectionParameters& parameters, const GradientDomainParameters& domain)
+{
   if (parameters.flowMode != FlowMode::Fixed)
   {
     return { "the gradient domain follows the fixed flow only (FlowMode Fixed)" };
@@ -446,6 +442,80 @@ Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
   if (!(domain.screening > 0.0) || !std::isfinite(domain.screening))
   {
     return { "the screening weight must be finite and > 0" };
+  }
+  return {};
+}
+
+/**
+ * Steps 1 and 2: the values and differences (in units of `range`), carried
+ * along the flow of the values; progress 0 to 0.8. Empty when aborted.
+ */
+template <typename T>
+LargeArray<float> AdvectDifferences(const GridShape& shape, int C, const T* input,
+  const ActiveAxes& axes, const ChannelScan& scan, double range,
+  const AdvectionParameters& parameters, AdvectionReport& report, GridFlowFields* fields,
+  const ProgressFunction& progress, int threads, Status& status)
+{
+  const std::int64_t N = shape.NumberOfSamples();
+  const int carriedC = C * (1 + 2 * axes.count);
+  LargeArray<float> advected = AllocateLargeArray<float>(N * carriedC);
+  const LargeArray<float> carried = CarriedDifferences(N, C, axes, input, scan.middle, range, threads);
+  float* into = advected.get();
+  const SampleWriter keep = [into, carriedC](std::int64_t first, std::int64_t count, const double* values) {
+    std::transform(values, values + count * carriedC, into + first * carriedC,
+      [](double v) { return static_cast<float>(v); });
+  };
+  const ProgressFunction scaled = !progress
+    ? ProgressFunction()
+    : ProgressFunction([&progress](double f) { return progress(0.8 * f); });
+  status = AdvectCarriedGridSignal(
+    shape, C, input, CarriedSignal{ carried.get(), carriedC }, keep, parameters, &report, fields, scaled);
+  if (!status.Ok() || report.aborted)
+  {
+    advected.reset();
+  }
+  return advected;
+}
+
+/**
+ * Steps 3 and 4: the target gradients of `advected`, integrated channel by
+ * channel (channel-planar result); progress 0.8 to 0.95. Empty when aborted.
+ */
+template <typename T>
+LargeArray<double> IntegrateTargets(std::int64_t N, int C, const T* input, const ActiveAxes& axes,
+  LargeArray<float> advected, double range, double lambda, const ProgressFunction& progress,
+  int threads)
+{
+  LargeArray<double> solved = ScreenedRightHandSide(N, C, axes, input, advected.get(), lambda, range, threads);
+  advected.reset();
+  for (int c = 0; c < C; ++c)
+  {
+    if (progress && !progress(0.8 + 0.15 * c / C))
+    {
+      return {};
+    }
+    SolveChannel(axes, N, lambda, solved.get() + c * N, threads);
+  }
+  if (progress && !progress(0.95))
+  {
+    return {};
+  }
+  return solved;
+}
+
+} // namespace
+
+template <typename T>
+Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
+  const SampleWriter& output, const AdvectionParameters& parameters,
+  const GradientDomainParameters& domain, AdvectionReport* report, GridFlowFields* fields,
+  const ProgressFunction& progress)
+{
+  Status valid = grid::CheckGridRun(shape, C, input, output, parameters);
+  valid = valid.Ok() ? CheckGradientRun(parameters, domain) : valid;
+  if (!valid.Ok())
+  {
+    return valid;
   }
   AdvectionReport localReport;
   AdvectionReport& r = report ? *report : localReport;
@@ -457,65 +527,32 @@ Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
     return { "the gradient domain needs a finite value at every sample (some are NaN, "
              "infinite or blanked): use the value domain, or fill them first" };
   }
-  if (scan.high - scan.low == std::numeric_limits<double>::infinity())
+  const double range = scan.high - scan.low;
+  if (range == std::numeric_limits<double>::infinity())
   {
     return { ValueSpanError(scan.low, scan.high) };
   }
   const ActiveAxes axes(shape);
-  const double range = scan.high - scan.low;
   if (!(parameters.time > 0.0) || axes.count == 0 || !(range > 0.0))
   {
     // Nothing moves: the input itself (and the flow fields, when asked for).
     return AdvectGridSignal(shape, C, input, output, parameters, report, fields, progress);
   }
-
-  // Steps 1 and 2: the values and differences, carried along the flow of the values.
-  const int carriedC = C * (1 + 2 * axes.count);
-  LargeArray<float> advected = AllocateLargeArray<float>(N * carriedC);
+  Status status;
+  LargeArray<float> advected =
+    AdvectDifferences(shape, C, input, axes, scan, range, parameters, r, fields, progress, threads, status);
+  if (!status.Ok())
   {
-    const LargeArray<float> carried =
-      CarriedDifferences(N, C, axes, input, scan.middle, range, threads);
-    float* into = advected.get();
-    const SampleWriter keep = [into, carriedC](std::int64_t first, std::int64_t count,
-                                const double* values) {
-      std::transform(values, values + count * carriedC, into + first * carriedC,
-        [](double v) { return static_cast<float>(v); });
-    };
-    const ProgressFunction scaled = !progress
-      ? ProgressFunction()
-      : ProgressFunction([&progress](double f) { return progress(0.8 * f); });
-    const Status advectedStatus = AdvectCarriedGridSignal(shape, C, input,
-      CarriedSignal{ carried.get(), carriedC }, keep, parameters, &r, fields, scaled);
-    if (!advectedStatus.Ok())
-    {
-      return advectedStatus;
-    }
+    return status;
   }
-  if (r.aborted)
-  {
-    grid::WriteSignal(N, C, input, output, threads);
-    return {};
-  }
-
-  // Steps 3 and 4: the target gradients, integrated.
   const auto solveStart = Clock::now();
-  LargeArray<double> solved =
-    ScreenedRightHandSide(N, C, axes, input, advected.get(), domain.screening, range, threads);
-  advected.reset();
-  for (int c = 0; c < C; ++c)
-  {
-    if (progress && !progress(0.8 + 0.15 * c / C))
-    {
-      r.aborted = true;
-      grid::WriteSignal(N, C, input, output, threads);
-      return {};
-    }
-    SolveChannel(axes, N, domain.screening, solved.get() + c * N, threads);
-  }
+  const LargeArray<double> solved = advected
+    ? IntegrateTargets(N, C, input, axes, std::move(advected), range, domain.screening, progress, threads)
+    : LargeArray<double>();
   r.integrationSeconds = SecondsSince(solveStart);
-  if (progress && !progress(0.95))
+  if (!solved)
   {
-    r.aborted = true;
+    r.aborted = true; // the input, unfiltered
     grid::WriteSignal(N, C, input, output, threads);
     return {};
   }
