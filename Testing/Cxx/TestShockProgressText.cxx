@@ -31,8 +31,10 @@ std::vector<std::string> ProgressTexts(vtkAlgorithm* algorithm)
       seen->push_back(text);
     }
   });
-  algorithm->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  // Removed after the update: the algorithm keeps the command, whose client data is `texts`.
+  const unsigned long tag = algorithm->AddObserver(vtkCommand::ProgressEvent, onProgress);
   algorithm->Update();
+  algorithm->RemoveObserver(tag);
   return texts;
 }
 
