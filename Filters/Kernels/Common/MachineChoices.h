@@ -8,13 +8,12 @@
  *
  *  - SHOCK_ENABLE_AVX2 (OFF): a second build of the image advection for AVX2,
  *    chosen at run time where the processor has AVX2 (GridAvx2.h). It gives
- *    the same values bit for bit. On the AMD EPYC guest it was measured at 1 to
- *    3 % of a whole run, within the noise, and it was never measured on another
- *    kind.
+ *    the same values bit for bit. Its gain was within the noise on the one
+ *    machine kind it was measured on.
  *  - SHOCK_HUGE_PAGES (OFF): large buffers are advised for transparent huge
  *    pages (AllocateLarge). This helps where the host leaves free huge pages
  *    backed, and costs several times more per page where a virtio balloon
- *    reports free pages to the host. On an Intel guest it made no clear
+ *    reports free pages to the host; on another kind it made no clear
  *    difference.
  *  - SHOCK_WIDEN_MPI_BINDING (ON): a process alone on its node under mpirun
  *    takes the node's cores back for its OpenMP threads (Open MPI binds a

@@ -457,8 +457,7 @@ void BackTraceVelocity(const Lattice<D>& L, const double* potential,
  * an image's slab stays in the thread's cache, no step waits for the other
  * threads, and each thread writes only its own few megabytes again and again
  * (when the threads shared each slab, the steps that write the shared slab
- * buffer ran at times at half speed for a whole run: Benchmarks/RESULTS.md,
- * "Issue 18, session 11"). A grid of fewer than two slabs per thread (a thin
+ * buffer ran at times at half speed for a whole run). A grid of fewer than two slabs per thread (a thin
  * volume) has the threads work on each slab in turn, in one workspace.
  */
 template <int D>

@@ -140,10 +140,8 @@ double StayingFraction(const Lattice<D>& L, const float* velocity, double time)
  * start face (TraceWithinFace, reads gathered on the neighbourhood) before the
  * tracer. On lines and images, when fewer than a third of the traces stay
  * (large t), that try costs more than it saves, and every trace goes through
- * the tracer (measured on a photo: the two roads take the same time at
- * t = 64, where a third stay; at t = 1024, 17 % stay, and the tracer alone is
- * 6 % faster; at t = 4, 53 % stay, and it is 17 % slower). Volumes always try:
- * most of their traces stay.
+ * the tracer: a third is where the two roads took the same time on a photo.
+ * Volumes always try: most of their traces stay.
  */
 template <int D>
 bool TriesWithinFaceFirst(const Lattice<D>& L, const GridTracer<D>& tracer, double time)

@@ -9,8 +9,7 @@
  * puts neighbours far apart, and these reads then wait on memory. Points
  * sorted along a Morton (Z-order) curve of their positions, and triangles by
  * their first corner in that order, put them close: the surface filter runs on
- * the renumbered mesh and maps its results back (Benchmarks/RESULTS.md, issue
- * 18, session 9). The numbering changes no result beyond the rounding of sums
+ * the renumbered mesh and maps its results back. The numbering changes no result beyond the rounding of sums
  * taken in another order.
  */
 #ifndef ShockMeshOrder_h
