@@ -1,0 +1,604 @@
+/**
+ * @file ShockGhostNumbering.cxx
+ * @brief Steps 1 and 2 of the ghost rings (ShockGhostCells.h): the border
+ * points of a piece, their keys gathered from every piece, and the global ids
+ * and owners of the piece's points.
+ */
+#include "ShockGhostCells.h"
+#include "ShockParallel.h"
+
+#include "vtkCellArray.h"
+#include "vtkCommunicator.h"
+#include "vtkDataArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkLogger.h"
+#include "vtkMultiProcessController.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace ShockParallel
+{
+namespace ghost
+{
+namespace
+{
+/// The offsets and connectivity of `cells` appended to `to` as cells of kind `k`.
+template <typename Offset>
+void AppendKind(unsigned char k, vtkIdType n, const Offset* offsets, const Offset* connectivity, Cells& to)
+{
+  const vtkIdType base = static_cast<vtkIdType>(to.points.size());
+  to.kind.insert(to.kind.end(), static_cast<size_t>(n), k);
+  for (vtkIdType c = 1; c <= n; ++c)
+  {
+    to.offsets.push_back(base + static_cast<vtkIdType>(offsets[c]));
+  }
+  to.points.insert(to.points.end(), connectivity, connectivity + offsets[n]);
+}
+
+/**
+ * Whether point p may be shared with another piece: it is on a vertex or line
+ * cell, or on an edge that exactly one of its polygons (or strip triangles) has.
+ */
+bool OnBorder(const Cells& cells, const std::vector<vtkIdType>& start, const std::vector<vtkIdType>& list,
+  vtkIdType p, std::vector<vtkIdType>& scratch)
+{
+  scratch.clear();
+  for (vtkIdType k = start[static_cast<size_t>(p)]; k < start[static_cast<size_t>(p) + 1]; ++k)
+  {
+    const vtkIdType c = list[static_cast<size_t>(k)];
+    const vtkIdType* ids = &cells.points[static_cast<size_t>(cells.offsets[static_cast<size_t>(c)])];
+    const vtkIdType n = cells.offsets[static_cast<size_t>(c) + 1] - cells.offsets[static_cast<size_t>(c)];
+    const unsigned char kind = cells.kind[static_cast<size_t>(c)];
+    if (kind < 2 || n < 3)
+    {
+      return true;
+    }
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      if (ids[i] != p)
+      {
+        continue;
+      }
+      if (kind == 2) // polygon: the neighbours along its loop
+      {
+        scratch.push_back(ids[i + 1 == n ? 0 : i + 1]);
+        scratch.push_back(ids[i == 0 ? n - 1 : i - 1]);
+      }
+      else // strip: the edges of the triangles (j, j+1, j+2) that hold i
+      {
+        for (vtkIdType j = std::max<vtkIdType>(0, i - 2); j <= std::min(i, n - 3); ++j)
+        {
+          for (vtkIdType q = j; q < j + 3; ++q)
+          {
+            if (q != i)
+            {
+              scratch.push_back(ids[q]);
+            }
+          }
+        }
+      }
+    }
+  }
+  // Few entries (two per polygon around p): an insertion sort beats std::sort here.
+  if (scratch.size() > 64)
+  {
+    std::sort(scratch.begin(), scratch.end());
+  }
+  for (size_t i = 1; i < scratch.size(); ++i)
+  {
+    const vtkIdType value = scratch[i];
+    size_t j = i;
+    for (; j > 0 && scratch[j - 1] > value; --j)
+    {
+      scratch[j] = scratch[j - 1];
+    }
+    scratch[j] = value;
+  }
+  for (size_t k = 0; k < scratch.size();)
+  {
+    size_t end = k;
+    while (end < scratch.size() && scratch[end] == scratch[k])
+    {
+      ++end;
+    }
+    if (end - k == 1 && scratch[k] != p)
+    {
+      return true;
+    }
+    k = end;
+  }
+  return false;
+}
+
+Key CoordinateKey(const double x[3])
+{
+  Key key;
+  // +0.0 and -0.0 are the same point.
+  const double y[3] = { x[0] == 0.0 ? 0.0 : x[0], x[1] == 0.0 ? 0.0 : x[1], x[2] == 0.0 ? 0.0 : x[2] };
+  std::memcpy(&key.a, &y[0], 8);
+  std::memcpy(&key.b, &y[1], 8);
+  std::memcpy(&key.c, &y[2], 8);
+  return key;
+}
+
+/// Everyone's `mine` (`width` values per item), concatenated in process order; items per process.
+template <typename T>
+std::vector<T> GatherItems(vtkMultiProcessController* controller, const std::vector<T>& mine, int width,
+  std::vector<vtkIdType>& items)
+{
+  const int processes = controller->GetNumberOfProcesses();
+  std::vector<vtkIdType> counts(static_cast<size_t>(processes)), offsets(static_cast<size_t>(processes), 0);
+  vtkIdType count = static_cast<vtkIdType>(mine.size());
+  controller->AllGather(&count, counts.data(), 1);
+  for (int r = 1; r < processes; ++r)
+  {
+    offsets[static_cast<size_t>(r)] = offsets[static_cast<size_t>(r - 1)] + counts[static_cast<size_t>(r - 1)];
+  }
+  std::vector<T> all(static_cast<size_t>(offsets.back() + counts.back()) + 1);
+  controller->AllGatherV(mine.data(), all.data(), count, counts.data(), offsets.data());
+  all.pop_back();
+  items.resize(static_cast<size_t>(processes));
+  for (int r = 0; r < processes; ++r)
+  {
+    items[static_cast<size_t>(r)] = counts[static_cast<size_t>(r)] / width;
+  }
+  return all;
+}
+
+/// The keys of gathered global ids (3 words per item, the id first).
+std::vector<Key> GivenKeys(const std::vector<std::uint64_t>& all)
+{
+  std::vector<Key> keys(all.size() / 3);
+  for (size_t k = 0; k < keys.size(); ++k)
+  {
+    keys[k] = Key{ all[3 * k], all[3 * k + 1], all[3 * k + 2] };
+  }
+  return keys;
+}
+
+/**
+ * The keys of gathered coordinates (3 doubles' bits per item): each item takes
+ * the key of the first item (in gathered order) within `relativeTolerance` of
+ * the largest coordinate magnitude in every axis, else its own. The same on
+ * every process.
+ */
+std::vector<Key> MergedCoordinateKeys(const std::vector<std::uint64_t>& all, double relativeTolerance)
+{
+  const size_t n = all.size() / 3;
+  std::vector<double> x(all.size());
+  std::memcpy(x.data(), all.data(), 8 * all.size());
+  double largest = 0.0;
+  for (double v : x)
+  {
+    largest = std::max(largest, std::abs(v));
+  }
+  const double tolerance = largest > 0.0 ? relativeTolerance * largest : std::numeric_limits<double>::min();
+  // Items by grid cell of the tolerance's size: a match lies in one of the 27 cells around.
+  struct Cell
+  {
+    std::int64_t i, j, k;
+    bool operator==(const Cell& o) const { return i == o.i && j == o.j && k == o.k; }
+  };
+  struct CellHash
+  {
+    size_t operator()(const Cell& c) const
+    {
+      return static_cast<size_t>((static_cast<std::uint64_t>(c.i) * 73856093u) ^
+        (static_cast<std::uint64_t>(c.j) * 19349663u) ^ (static_cast<std::uint64_t>(c.k) * 83492791u));
+    }
+  };
+  std::unordered_map<Cell, std::vector<size_t>, CellHash> grid;
+  std::vector<Key> keys(n);
+  for (size_t item = 0; item < n; ++item)
+  {
+    const double* p = &x[3 * item];
+    const Cell cell{ static_cast<std::int64_t>(std::floor(p[0] / tolerance)),
+      static_cast<std::int64_t>(std::floor(p[1] / tolerance)), static_cast<std::int64_t>(std::floor(p[2] / tolerance)) };
+    size_t match = item;
+    for (std::int64_t di = -1; di <= 1 && match == item; ++di)
+    {
+      for (std::int64_t dj = -1; dj <= 1 && match == item; ++dj)
+      {
+        for (std::int64_t dk = -1; dk <= 1 && match == item; ++dk)
+        {
+          const auto found = grid.find(Cell{ cell.i + di, cell.j + dj, cell.k + dk });
+          if (found == grid.end())
+          {
+            continue;
+          }
+          for (size_t other : found->second)
+          {
+            const double* q = &x[3 * other];
+            if (std::abs(p[0] - q[0]) <= tolerance && std::abs(p[1] - q[1]) <= tolerance &&
+              std::abs(p[2] - q[2]) <= tolerance)
+            {
+              match = other;
+              break;
+            }
+          }
+        }
+      }
+    }
+    if (match == item)
+    {
+      grid[cell].push_back(item);
+      keys[item] = CoordinateKey(p);
+    }
+    else
+    {
+      keys[item] = keys[match];
+    }
+  }
+  return keys;
+}
+
+/// What steps 1 and 2 pass on: the gathered border points of every piece.
+struct Gathered
+{
+  std::vector<vtkIdType> borderCounts; ///< border points per process
+  std::vector<vtkIdType> pointCounts;  ///< points per process
+  std::vector<std::uint64_t> words;    ///< 3 words per border point, in process order
+  std::vector<Key> keys;               ///< the key of each gathered border point
+  std::vector<char> shared;            ///< the piece's first occurrence of its key
+  std::unordered_map<Key, vtkIdType, KeyHash> sharedIds; ///< key -> global id (coordinate keys)
+  std::vector<vtkIdType> firstId;      ///< the first global id each process makes
+};
+
+/**
+ * Point global ids count when every piece with points has them (one
+ * reduction: some with and some without is an error on every process).
+ */
+bool GivenIdsAgree(vtkMultiProcessController* controller, const Numbering& n, std::string& error)
+{
+  const int local[2] = { n.np > 0 && n.givenIds ? 1 : 0, n.np > 0 && !n.givenIds ? 1 : 0 };
+  int global[2] = { 0, 0 };
+  controller->AllReduce(local, global, 2, vtkCommunicator::MAX_OP);
+  if (global[0] && global[1])
+  {
+    error = "some pieces have point global ids and others do not: give every piece its ids, or none";
+    return false; // the same decision on every process
+  }
+  return true;
+}
+
+/**
+ * The key of own point p: its given global id, with the point's coordinates
+ * rounded to float (to check that the ids mean the same points), or its
+ * coordinates.
+ */
+Key KeyOf(vtkPolyData* piece, vtkDataArray* givenIds, vtkIdType p)
+{
+  double x[3];
+  piece->GetPoint(p, x);
+  if (!givenIds)
+  {
+    return CoordinateKey(x);
+  }
+  Key key;
+  key.a = static_cast<std::uint64_t>(static_cast<vtkIdType>(givenIds->GetTuple1(p)));
+  float rounded[3] = { static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2]) };
+  for (float& v : rounded)
+  {
+    v = v == 0.0f ? 0.0f : v; // -0 is +0
+  }
+  std::uint32_t bits[3];
+  std::memcpy(bits, rounded, sizeof(bits));
+  key.b = (static_cast<std::uint64_t>(bits[0]) << 32) | bits[1];
+  key.c = bits[2];
+  return key;
+}
+
+/// Step 1: the piece's border points, and every piece's border keys and point counts.
+void GatherBorders(vtkMultiProcessController* controller, vtkPolyData* piece, Numbering& n, Gathered& g)
+{
+  std::vector<vtkIdType> scratch;
+  for (vtkIdType p = 0; p < n.np; ++p)
+  {
+    if (n.linkStart[static_cast<size_t>(p) + 1] > n.linkStart[static_cast<size_t>(p)] &&
+      OnBorder(n.own, n.linkStart, n.links, p, scratch))
+    {
+      n.border.push_back(p);
+    }
+  }
+  std::vector<std::uint64_t> mine;
+  mine.reserve(3 * n.border.size());
+  for (vtkIdType p : n.border)
+  {
+    const Key key = KeyOf(piece, n.givenIds, p);
+    mine.insert(mine.end(), { key.a, key.b, key.c });
+  }
+  // The uint64 keys travel as doubles' bits (the controller has no uint64 gather of this form).
+  std::vector<double> mineBits(mine.size());
+  std::memcpy(mineBits.data(), mine.data(), 8 * mine.size());
+  const std::vector<double> allBits = GatherItems(controller, mineBits, 3, g.borderCounts);
+  g.words.resize(allBits.size());
+  std::memcpy(g.words.data(), allBits.data(), 8 * allBits.size());
+  g.pointCounts.resize(static_cast<size_t>(n.processes));
+  vtkIdType count = n.np;
+  controller->AllGather(&count, g.pointCounts.data(), 1);
+}
+
+/**
+ * The key of each gathered item: its global id, or the first gathered point
+ * within a tolerance of its coordinates (pieces a source or reader cut itself
+ * may compute their shared points to the last bit differently). The
+ * tolerance: 1e-12 of the largest coordinate magnitude, or 4 units in the
+ * last place of a float when any piece holds float points (they round there).
+ */
+bool MatchKeys(vtkMultiProcessController* controller, vtkPolyData* piece, const Numbering& n, Gathered& g,
+  std::string& error)
+{
+  int floatPoints = piece->GetPoints()->GetDataType() == VTK_FLOAT && n.np > 0 ? 1 : 0;
+  int any = 0;
+  controller->AllReduce(&floatPoints, &any, 1, vtkCommunicator::MAX_OP);
+  g.keys = n.givenIds ? GivenKeys(g.words) : MergedCoordinateKeys(g.words, any ? 4.0 * 0x1p-23 : 1e-12);
+  if (!n.givenIds)
+  {
+    return true;
+  }
+  // One global id, one point: every process sees the same gathered borders, so all decide alike.
+  std::unordered_map<std::uint64_t, const Key*> pointOf;
+  for (const Key& key : g.keys)
+  {
+    const auto inserted = pointOf.emplace(key.a, &key);
+    if (!inserted.second && !(*inserted.first->second == key))
+    {
+      error = "the pieces' point global ids disagree: global id " + std::to_string(static_cast<vtkIdType>(key.a)) +
+        " names points at different coordinates on different pieces (remove the point global ids to have them made)";
+      return false;
+    }
+  }
+  return true;
+}
+
+/**
+ * Step 2a: holders and owners. A key repeated within one piece (coincident
+ * points of that piece) is shared through its first occurrence only; the
+ * others are points of their own. Each process owns all its points but the
+ * shared ones a lower process holds, and numbers them after the processes
+ * before it.
+ */
+void FindOwners(Numbering& n, Gathered& g)
+{
+  g.shared.assign(g.words.size() / 3, 0);
+  size_t item = 0;
+  for (int r = 0; r < n.processes; ++r)
+  {
+    for (vtkIdType k = 0; k < g.borderCounts[static_cast<size_t>(r)]; ++k, ++item)
+    {
+      Holders& h = n.holders[g.keys[item]];
+      if (h.empty() || h.back() != r)
+      {
+        h.push_back(r);
+        g.shared[item] = 1;
+      }
+    }
+  }
+  g.firstId.assign(static_cast<size_t>(n.processes) + 1, 0);
+  item = 0;
+  for (int r = 0; r < n.processes; ++r)
+  {
+    vtkIdType owned = g.pointCounts[static_cast<size_t>(r)];
+    vtkIdType ownedBorder = 0;
+    for (vtkIdType k = 0; k < g.borderCounts[static_cast<size_t>(r)]; ++k, ++item)
+    {
+      const Key& key = g.keys[item];
+      const bool mineToOwn = !g.shared[item] || n.holders[key].front() == r;
+      if (!mineToOwn)
+      {
+        --owned;
+      }
+      else if (g.shared[item] && !n.givenIds)
+      {
+        g.sharedIds[key] = g.firstId[static_cast<size_t>(r)] + ownedBorder;
+      }
+      ownedBorder += mineToOwn ? 1 : 0;
+    }
+    g.firstId[static_cast<size_t>(r) + 1] = g.firstId[static_cast<size_t>(r)] + owned;
+  }
+}
+
+/// Step 2b: this piece's global ids and owners: owned border points first (in border order), then the rest.
+void AssignGlobalIds(Numbering& n, Gathered& g)
+{
+  n.gid.assign(static_cast<size_t>(n.np), -1);
+  n.ownerOf.assign(static_cast<size_t>(n.np), n.me);
+  size_t item = 0;
+  for (int r = 0; r < n.me; ++r)
+  {
+    item += static_cast<size_t>(g.borderCounts[static_cast<size_t>(r)]);
+  }
+  vtkIdType next = g.firstId[static_cast<size_t>(n.me)];
+  std::vector<char> isBorder(static_cast<size_t>(n.np), 0);
+  for (size_t k = 0; k < n.border.size(); ++k, ++item)
+  {
+    const vtkIdType p = n.border[k];
+    isBorder[static_cast<size_t>(p)] = 1;
+    const Key& key = g.keys[item];
+    const int owner = g.shared[item] ? n.holders[key].front() : n.me;
+    n.ownerOf[static_cast<size_t>(p)] = owner;
+    if (n.givenIds)
+    {
+      n.gid[static_cast<size_t>(p)] = static_cast<vtkIdType>(key.a);
+    }
+    else if (owner == n.me)
+    {
+      n.gid[static_cast<size_t>(p)] = next++;
+    }
+    else
+    {
+      n.gid[static_cast<size_t>(p)] = g.sharedIds[key];
+    }
+  }
+  for (vtkIdType p = 0; p < n.np; ++p)
+  {
+    if (!isBorder[static_cast<size_t>(p)])
+    {
+      n.gid[static_cast<size_t>(p)] = n.givenIds ? static_cast<vtkIdType>(n.givenIds->GetTuple1(p)) : next++;
+    }
+  }
+}
+
+/// Step 2c: the holders of the points shared by several pieces, by global id (for the points the rings bring).
+void IndexHolders(Numbering& n, Gathered& g)
+{
+  size_t item = 0;
+  for (int r = 0; r < n.processes; ++r)
+  {
+    for (vtkIdType k = 0; k < g.borderCounts[static_cast<size_t>(r)]; ++k, ++item)
+    {
+      if (!g.shared[item])
+      {
+        continue;
+      }
+      const Key& key = g.keys[item];
+      const Holders& h = n.holders[key];
+      if (h.size() > 1)
+      {
+        n.holdersById.emplace(n.givenIds ? static_cast<vtkIdType>(key.a) : g.sharedIds[key], &h);
+      }
+    }
+  }
+}
+}
+
+Cells ReadCells(vtkPolyData* piece)
+{
+  Cells cells;
+  vtkCellArray* arrays[4] = { piece->GetVerts(), piece->GetLines(), piece->GetPolys(), piece->GetStrips() };
+  size_t size = 0, count = 0;
+  for (vtkCellArray* array : arrays)
+  {
+    size += array ? static_cast<size_t>(array->GetNumberOfConnectivityIds()) : 0;
+    count += array ? static_cast<size_t>(array->GetNumberOfCells()) : 0;
+  }
+  cells.kind.reserve(count);
+  cells.offsets.reserve(count + 1);
+  cells.points.reserve(size);
+  for (unsigned char k = 0; k < 4; ++k)
+  {
+    vtkCellArray* array = arrays[k];
+    const vtkIdType n = array ? array->GetNumberOfCells() : 0;
+    if (n == 0)
+    {
+      continue;
+    }
+    // The cell array's own offsets and connectivity, read in place.
+    if (array->IsStorage64Bit())
+    {
+      AppendKind(k, n, array->GetOffsetsArray64()->GetPointer(0), array->GetConnectivityArray64()->GetPointer(0),
+        cells);
+    }
+    else
+    {
+      AppendKind(k, n, array->GetOffsetsArray32()->GetPointer(0), array->GetConnectivityArray32()->GetPointer(0),
+        cells);
+    }
+  }
+  return cells;
+}
+
+/// Point -> cells (CSR) of `cells` over `np` points.
+void PointLinks(const Cells& cells, vtkIdType np, std::vector<vtkIdType>& start, std::vector<vtkIdType>& list)
+{
+  start.assign(static_cast<size_t>(np) + 1, 0);
+  for (vtkIdType p : cells.points)
+  {
+    ++start[static_cast<size_t>(p) + 1];
+  }
+  for (size_t p = 0; p < static_cast<size_t>(np); ++p)
+  {
+    start[p + 1] += start[p];
+  }
+  list.resize(cells.points.size());
+  std::vector<vtkIdType> fill(start.begin(), start.end() - 1);
+  for (vtkIdType c = 0; c < cells.Size(); ++c)
+  {
+    for (vtkIdType k = cells.offsets[static_cast<size_t>(c)]; k < cells.offsets[static_cast<size_t>(c) + 1]; ++k)
+    {
+      list[static_cast<size_t>(fill[static_cast<size_t>(cells.points[static_cast<size_t>(k)])]++)] = c;
+    }
+  }
+}
+
+bool LocalPoints::Build(const std::vector<vtkIdType>& gid, bool madeIds, vtkIdType first, vtkIdType end)
+{
+  this->First = madeIds ? first : 0;
+  this->Table.assign(madeIds ? static_cast<size_t>(end - first) : 0, -1);
+  bool unique = true;
+  for (size_t p = 0; p < gid.size(); ++p)
+  {
+    const vtkIdType id = gid[p];
+    if (madeIds && id >= first && id < end)
+    {
+      vtkIdType& slot = this->Table[static_cast<size_t>(id - first)];
+      unique = unique && slot < 0;
+      slot = static_cast<vtkIdType>(p);
+    }
+    else
+    {
+      unique = this->Others.emplace(id, static_cast<vtkIdType>(p)).second && unique;
+    }
+  }
+  return unique;
+}
+
+vtkIdType LocalPoints::Find(vtkIdType id, vtkIdType next, bool& added)
+{
+  added = false;
+  const vtkIdType own = this->Own(id);
+  if (own >= 0)
+  {
+    return own;
+  }
+  const auto inserted = this->Ghosts.emplace(id, next);
+  added = inserted.second;
+  return inserted.first->second;
+}
+
+bool NumberPoints(vtkMultiProcessController* controller, vtkPolyData* piece, Numbering& n, std::string& error)
+{
+  n.me = controller->GetLocalProcessId();
+  n.processes = controller->GetNumberOfProcesses();
+  n.np = piece->GetNumberOfPoints();
+  {
+    vtkLogScopeF(TRACE, "shock: cells and links");
+    n.own = ReadCells(piece);
+    PointLinks(n.own, n.np, n.linkStart, n.links);
+  }
+  Gathered g;
+  {
+    vtkLogScopeF(TRACE, "shock: border points");
+    n.givenIds = n.np > 0 ? piece->GetPointData()->GetGlobalIds() : nullptr;
+    if (!GivenIdsAgree(controller, n, error))
+    {
+      return false;
+    }
+    GatherBorders(controller, piece, n, g);
+  }
+  vtkLogScopeF(TRACE, "shock: global ids");
+  if (!MatchKeys(controller, piece, n, g, error))
+  {
+    return false;
+  }
+  FindOwners(n, g);
+  AssignGlobalIds(n, g);
+  IndexHolders(n, g);
+  const bool duplicateIds = !n.local.Build(
+    n.gid, !n.givenIds, g.firstId[static_cast<size_t>(n.me)], g.firstId[static_cast<size_t>(n.me) + 1]);
+  if (duplicateIds)
+  {
+    error = "the piece's point global ids are not unique";
+  }
+  return !AnyFailed(controller, duplicateIds, error);
+}
+}
+}
