@@ -18,6 +18,14 @@ exchange and every reduction are inside the time.
       Weak scaling on 1, 2, 4, 8 ranks (oversubscribed beyond 2): per-rank
       work, ghost fraction, bytes exchanged per CG iteration, time per owned
       sample.
+  /usr/bin/python3 Benchmarks/mpi_scaling.py ceiling PLUGIN DIR [RUNS]
+      What two processes can do on this machine without any MPI step: each
+      work's two pieces (the meshes as RedistributeDataSet cuts them for 2
+      ranks, without ghost rings; the volume's halves with their halo of
+      Ghost Levels samples) filtered by two 1-thread processes at once, each
+      by itself (the VTK class on its file, no collective step, started at a
+      barrier), against one process filtering the whole and one filtering a
+      piece alone. The pieces are written into DIR/pieces once.
   pvbatch [--symmetric --mpi] Benchmarks/mpi_scaling.py run PLUGIN WORK INPUT
       One run (what the two commands above start); every rank prints one
       "RANKRESULT {json}" line.
@@ -254,6 +262,139 @@ def weak(plugin, directory, runs):
                 1e6 * seconds * share / max(owned, 1)), flush=True)
 
 
+def split(path, outdir):
+    """Under `mpirun -np 2 pvbatch --symmetric --mpi`: write each rank's piece of
+    the mesh `path` as RedistributeDataSet gives it (a surface, no ghost cells)."""
+    from paraview import simple
+    from vtkmodules.vtkParallelCore import vtkMultiProcessController
+    from vtkmodules.vtkFiltersGeometry import vtkGeometryFilter
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+    controller = vtkMultiProcessController.GetGlobalController()
+    rank = controller.GetLocalProcessId()
+    spread = simple.RedistributeDataSet(Input=simple.XMLPolyDataReader(FileName=[path]))
+    spread.UpdatePipeline()
+    surface = vtkGeometryFilter()
+    surface.SetInputData(spread.GetClientSideObject().GetOutputDataObject(0))
+    surface.Update()
+    writer = vtkXMLPolyDataWriter()
+    writer.SetInputData(surface.GetOutput())
+    writer.SetFileName(piece_path(outdir, os.path.basename(path), rank))
+    writer.SetDataModeToAppended()
+    writer.EncodeAppendedDataOff()
+    writer.Write()
+
+
+def piece_path(outdir, name, rank):
+    stem, extension = os.path.splitext(name)
+    return os.path.join(outdir, "%s.piece%d%s" % (stem, rank, extension))
+
+
+def split_image(path, outdir, layers=16):
+    """The two pieces of a volume as ParaView's extent translator cuts them for
+    2 ranks, each grown by `layers` samples (the filter's default Ghost Levels)
+    within the whole extent: what each rank of the MPI run filters."""
+    from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter
+    from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
+    from vtkmodules.vtkImagingCore import vtkExtractVOI
+    reader = vtkXMLImageDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    whole = reader.GetOutput().GetExtent()
+    for rank in range(2):
+        translator = vtkExtentTranslator()
+        translator.SetWholeExtent(whole)
+        translator.SetNumberOfPieces(2)
+        translator.SetPiece(rank)
+        translator.SetGhostLevel(0)
+        translator.PieceToExtent()
+        extent = list(translator.GetExtent())
+        for a in range(3):
+            extent[2 * a] = max(whole[2 * a], extent[2 * a] - layers)
+            extent[2 * a + 1] = min(whole[2 * a + 1], extent[2 * a + 1] + layers)
+        voi = vtkExtractVOI()
+        voi.SetInputConnection(reader.GetOutputPort())
+        voi.SetVOI(extent)
+        writer = vtkXMLImageDataWriter()
+        writer.SetInputConnection(voi.GetOutputPort())
+        writer.SetFileName(piece_path(outdir, os.path.basename(path), rank))
+        writer.SetDataModeToAppended()
+        writer.EncodeAppendedDataOff()
+        writer.Write()
+
+
+def alone(plugin, work, pattern):
+    """Under `mpirun -np N pvbatch --symmetric --mpi`: every rank filters the file
+    `pattern % rank` by itself (the VTK class, one piece: no collective step),
+    all starting at one barrier; every rank prints its RANKRESULT."""
+    site = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(plugin)))),
+                        "python%d.%d" % sys.version_info[:2], "site-packages")
+    sys.path.insert(0, site)
+    import shockfilters
+    from vtkmodules.vtkParallelCore import vtkMultiProcessController
+    from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPolyDataReader
+    controller = vtkMultiProcessController.GetGlobalController()
+    rank = controller.GetLocalProcessId()
+    reader = vtkXMLImageDataReader() if work == "image" else vtkXMLPolyDataReader()
+    reader.SetFileName(pattern % rank if "%d" in pattern else pattern)
+    reader.Update()
+    if work == "image":
+        filtered, time_ = shockfilters.vtkImageShockAdvectionFilter(), 64
+    elif work == "sharpen":
+        filtered, time_ = shockfilters.vtkPolyDataShockSharpenFilter(), 2048
+    else:
+        filtered, time_ = shockfilters.vtkPolyDataShockAdvectionFilter(), 4096
+    filtered.SetFlowTime(time_)
+    filtered.SetInputConnection(reader.GetOutputPort())
+    controller.Barrier()
+    start = time.perf_counter()
+    filtered.Update()
+    seconds = time.perf_counter() - start
+    controller.Barrier()
+    print("RANKRESULT " + json.dumps(dict(rank=rank, seconds=seconds)), flush=True)
+
+
+def concurrent(plugin, work, pattern, processes):
+    """`processes` 1-thread ranks filtering `pattern % rank` each by itself; their RANKRESULTs."""
+    command = MPIRUN + ["-np", str(processes), "pvbatch", "--symmetric", "--mpi", os.path.abspath(__file__),
+                        "alone", plugin, work, pattern]
+    out = subprocess.run(command, env=dict(os.environ, OMP_NUM_THREADS="1"), stdout=subprocess.PIPE,
+                         stderr=subprocess.STDOUT, universal_newlines=True, timeout=1800)
+    results = [json.loads(m) for m in re.findall(r"RANKRESULT (\{[^}]*\})", out.stdout)]
+    if out.returncode != 0 or len(results) != processes:
+        sys.stderr.write(out.stdout[-3000:])
+        raise SystemExit("run failed: %s" % " ".join(command))
+    return results
+
+
+def ceiling(plugin, directory, runs):
+    """Two processes without MPI against one: this machine's ceiling for the strong-scaling ratio."""
+    pieces = os.path.join(directory, "pieces")
+    os.makedirs(pieces, exist_ok=True)
+    print("| work | 1 process, whole | 1 process, piece 0 alone | 2 processes at once, pieces 0 and 1 "
+          "(the slower) | at once / alone | at once / whole |")
+    print("|---|---|---|---|---|---|")
+    for work, name in WORKS:
+        path = os.path.join(directory, name)
+        parts = [piece_path(pieces, name, rank) for rank in range(2)]
+        if not all(os.path.exists(p) for p in parts):
+            if work == "image":
+                split_image(path, pieces)
+            else:
+                subprocess.run(MPIRUN + ["-np", "2", "pvbatch", "--symmetric", "--mpi", os.path.abspath(__file__),
+                                         "split", path, pieces], check=True, stdout=subprocess.DEVNULL,
+                               timeout=1800)
+        whole, alone, together = [], [], []
+        for _ in range(runs):  # interleaved, so that a noisy period hits all three
+            pattern = piece_path(pieces, name, 0).replace(".piece0", ".piece%d")
+            whole.append(concurrent(plugin, work, path, 1)[0]["seconds"])
+            alone.append(concurrent(plugin, work, pattern, 1)[0]["seconds"])
+            together.append(max(r["seconds"] for r in concurrent(plugin, work, pattern, 2)))
+        w, a, t = (statistics.median(x) for x in (whole, alone, together))
+        cell = lambda xs: "%.3f s (%.3f-%.3f)" % (statistics.median(xs), min(xs), max(xs))
+        print("| %s %s | %s | %s | %s | %.2f | **%.2f** |" % (work, name, cell(whole), cell(alone), cell(together),
+                                                              t / a, t / w), flush=True)
+
+
 if __name__ == "__main__":
     command = sys.argv[1]
     if command == "prepare":
@@ -262,6 +403,12 @@ if __name__ == "__main__":
         run(sys.argv[2], sys.argv[3], sys.argv[4])
     elif command == "strong":
         strong(sys.argv[2], sys.argv[3], int(sys.argv[4]) if len(sys.argv) > 4 else 5)
+    elif command == "ceiling":
+        ceiling(sys.argv[2], sys.argv[3], int(sys.argv[4]) if len(sys.argv) > 4 else 3)
+    elif command == "alone":
+        alone(sys.argv[2], sys.argv[3], sys.argv[4])
+    elif command == "split":
+        split(sys.argv[2], sys.argv[3])
     elif command == "weak":
         weak(sys.argv[2], sys.argv[3], int(sys.argv[4]) if len(sys.argv) > 4 else 3)
     else:

@@ -94,7 +94,7 @@ vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* owne
 
 /**
  * `piece` (without ghost cells) with `layers` rings of its neighbours' cells
- * (ShockGhostCells.cxx): point global ids (the input's, else made from the
+ * (ShockGhostCells.h): point global ids (the input's, else made from the
  * coordinates of the points on the pieces' borders: coincident points of
  * different pieces are one point), each ring fetched from the processes that
  * hold its points in one exchange. The result holds the piece's points and
