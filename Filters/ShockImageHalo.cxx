@@ -105,15 +105,11 @@ void CopyBox(const char* from, const Box& fromBox, char* to, const Box& toBox, c
     }
   }
 }
-}
 
-vtkSmartPointer<vtkDataArray> GrowImageSamples(
-  vtkMultiProcessController* controller, vtkDataArray* array, const int extent[6], int layers, int grown[6])
+/// Every process's piece as a sample extent (an empty piece: an empty box). Collective.
+std::vector<Box> GatherPieces(vtkMultiProcessController* controller, bool has, const int extent[6])
 {
-  const int me = controller->GetLocalProcessId();
   const int processes = controller->GetNumberOfProcesses();
-  // Every piece's sample extent (empty pieces: none).
-  const bool has = array && array->GetNumberOfTuples() > 0;
   vtkIdType mine[6];
   for (int k = 0; k < 6; ++k)
   {
@@ -129,8 +125,15 @@ vtkSmartPointer<vtkDataArray> GrowImageSamples(
       pieces[static_cast<size_t>(r)][static_cast<size_t>(k)] = static_cast<int>(all[static_cast<size_t>(6 * r + k)]);
     }
   }
-  // The whole image's samples: the box around every piece (the same on every
-  // process, whatever each one's pipeline says of the whole extent).
+  return pieces;
+}
+
+/**
+ * The whole image's samples: the box around every piece (the same on every
+ * process, whatever each one's pipeline says of the whole extent).
+ */
+Box WholeBox(const std::vector<Box>& pieces)
+{
   Box whole{ 1, 0, 1, 0, 1, 0 };
   bool first = true;
   for (const Box& piece : pieces)
@@ -146,14 +149,22 @@ vtkSmartPointer<vtkDataArray> GrowImageSamples(
     }
     first = false;
   }
-  // Every piece's grown extent: `layers` more on the axes the whole image spans,
-  // unless the pieces do not cover it (then no halo for that piece: the same
-  // decision on every process, from the same extents).
-  std::vector<Box> halos(static_cast<size_t>(processes));
-  for (int r = 0; r < processes; ++r)
+  return whole;
+}
+
+/**
+ * Every piece's grown extent: `layers` more on the axes the whole image spans,
+ * unless the pieces do not cover it (then no halo for that piece: the same
+ * decision on every process, from the same extents).
+ */
+std::vector<Box> HaloBoxes(const std::vector<Box>& pieces, int layers)
+{
+  const Box whole = WholeBox(pieces);
+  std::vector<Box> halos(pieces.size());
+  for (size_t r = 0; r < pieces.size(); ++r)
   {
-    Box& halo = halos[static_cast<size_t>(r)];
-    halo = pieces[static_cast<size_t>(r)];
+    Box& halo = halos[r];
+    halo = pieces[r];
     if (Empty(halo))
     {
       continue;
@@ -168,19 +179,71 @@ vtkSmartPointer<vtkDataArray> GrowImageSamples(
     }
     if (!Covered(halo, pieces))
     {
-      halo = pieces[static_cast<size_t>(r)];
+      halo = pieces[r];
     }
   }
-  const Box& own = pieces[static_cast<size_t>(me)];
-  const Box& target = halos[static_cast<size_t>(me)];
-  std::copy(target.begin(), target.end(), grown);
-  // Who sends what to whom: the part of the sender's piece in the receiver's
-  // halo that the receiver's own piece lacks (all of it when not contained).
+  return halos;
+}
+
+/**
+ * Point to point, in one global order of (sender, receiver) pairs (no
+ * deadlock): each process sends the part of its piece in a receiver's halo
+ * that the receiver's own piece lacks (all of it when not contained), and
+ * copies what it receives into `grownBytes` (its halo box's samples).
+ */
+void ExchangeHalos(vtkMultiProcessController* controller, const std::vector<Box>& pieces,
+  const std::vector<Box>& halos, const char* ownBytes, char* grownBytes, size_t tupleBytes)
+{
+  const int me = controller->GetLocalProcessId();
+  const int processes = controller->GetNumberOfProcesses();
   auto part = [&](int sender, int receiver) {
     const Box shared = Intersect(pieces[static_cast<size_t>(sender)], halos[static_cast<size_t>(receiver)]);
     const Box inside = Intersect(shared, pieces[static_cast<size_t>(receiver)]);
     return sender == receiver || Empty(shared) || inside == shared ? Box{ 1, 0, 1, 0, 1, 0 } : shared;
   };
+  const Box& own = pieces[static_cast<size_t>(me)];
+  const Box& target = halos[static_cast<size_t>(me)];
+  std::vector<char> buffer;
+  for (int a = 0; a < processes; ++a)
+  {
+    for (int b = 0; b < processes; ++b)
+    {
+      if (a == b || (a != me && b != me))
+      {
+        continue;
+      }
+      const Box box = part(a, b);
+      const vtkIdType count = Samples(box);
+      if (count == 0 || Empty(pieces[static_cast<size_t>(a)]) || Empty(pieces[static_cast<size_t>(b)]))
+      {
+        continue;
+      }
+      buffer.resize(static_cast<size_t>(count) * tupleBytes);
+      if (a == me)
+      {
+        CopyBox(ownBytes, own, buffer.data(), box, box, tupleBytes);
+        controller->Send(buffer.data(), static_cast<vtkIdType>(buffer.size()), b, HaloTag);
+      }
+      else
+      {
+        controller->Receive(buffer.data(), static_cast<vtkIdType>(buffer.size()), a, HaloTag);
+        CopyBox(buffer.data(), box, grownBytes, target, box, tupleBytes);
+      }
+    }
+  }
+}
+}
+
+vtkSmartPointer<vtkDataArray> GrowImageSamples(
+  vtkMultiProcessController* controller, vtkDataArray* array, const int extent[6], int layers, int grown[6])
+{
+  const int me = controller->GetLocalProcessId();
+  const bool has = array && array->GetNumberOfTuples() > 0;
+  const std::vector<Box> pieces = GatherPieces(controller, has, extent);
+  const std::vector<Box> halos = HaloBoxes(pieces, layers);
+  const Box& own = pieces[static_cast<size_t>(me)];
+  const Box& target = halos[static_cast<size_t>(me)];
+  std::copy(target.begin(), target.end(), grown);
   if (!has)
   {
     // Nothing to grow; still take part in the exchange as a sender of nothing.
@@ -200,36 +263,9 @@ vtkSmartPointer<vtkDataArray> GrowImageSamples(
   result->CopyComponentNames(array);
   result->SetNumberOfTuples(Samples(target));
   char* grownBytes = static_cast<char*>(result->GetVoidPointer(0));
-  CopyBox(static_cast<const char*>(source->GetVoidPointer(0)), own, grownBytes, target, own, tupleBytes);
-  // Point to point, in one global order of (sender, receiver) pairs: no deadlock.
-  std::vector<char> buffer;
-  for (int a = 0; a < processes; ++a)
-  {
-    for (int b = 0; b < processes; ++b)
-    {
-      if (a == b || (a != me && b != me))
-      {
-        continue;
-      }
-      const Box box = part(a, b);
-      const vtkIdType count = Samples(box);
-      if (count == 0 || Empty(pieces[static_cast<size_t>(a)]) || Empty(pieces[static_cast<size_t>(b)]))
-      {
-        continue;
-      }
-      buffer.resize(static_cast<size_t>(count) * tupleBytes);
-      if (a == me)
-      {
-        CopyBox(static_cast<const char*>(source->GetVoidPointer(0)), own, buffer.data(), box, box, tupleBytes);
-        controller->Send(buffer.data(), static_cast<vtkIdType>(buffer.size()), b, HaloTag);
-      }
-      else
-      {
-        controller->Receive(buffer.data(), static_cast<vtkIdType>(buffer.size()), a, HaloTag);
-        CopyBox(buffer.data(), box, grownBytes, target, box, tupleBytes);
-      }
-    }
-  }
+  const char* ownBytes = static_cast<const char*>(source->GetVoidPointer(0));
+  CopyBox(ownBytes, own, grownBytes, target, own, tupleBytes);
+  ExchangeHalos(controller, pieces, halos, ownBytes, grownBytes, tupleBytes);
   return result;
 }
 }

@@ -218,6 +218,106 @@ bool Replicated(vtkMultiProcessController* controller, vtkDataSet* input)
   return high[0] > 0.0;
 }
 
+namespace
+{
+/// The cells of one kind that are not marked DUPLICATECELL, as offsets and connectivity (input point ids).
+struct KindCells
+{
+  std::vector<vtkIdType> offsets{ 0 };
+  std::vector<vtkIdType> connectivity;
+};
+
+/**
+ * Calls visit(cell number, ghost, size, points) for every cell of `piece`,
+ * kind by kind (vtkPolyData numbers verts, lines, polygons, strips in turn).
+ */
+template <typename Visit>
+void ForEachCell(vtkPolyData* piece, vtkUnsignedCharArray* ghosts, Visit visit)
+{
+  vtkCellArray* inputCells[4] = { piece->GetVerts(), piece->GetLines(), piece->GetPolys(), piece->GetStrips() };
+  vtkIdType cell = 0;
+  for (int kind = 0; kind < 4; ++kind)
+  {
+    if (!inputCells[kind])
+    {
+      continue;
+    }
+    auto iterator = vtk::TakeSmartPointer(inputCells[kind]->NewIterator());
+    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
+    {
+      vtkIdType size;
+      const vtkIdType* points;
+      iterator->GetCurrentCell(size, points);
+      visit(kind, cell, (ghosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL) != 0, size, points);
+    }
+  }
+}
+
+/**
+ * The points the own cells keep: those they use, with the points no cell
+ * uses (nobody else's), in their order; `newId` maps each kept point to its
+ * row in the result (others -1).
+ */
+vtkSmartPointer<vtkIdList> KeptPoints(vtkPolyData* piece, vtkUnsignedCharArray* ghosts, std::vector<vtkIdType>& newId)
+{
+  std::vector<char> usedByOwn(static_cast<size_t>(piece->GetNumberOfPoints()), 0);
+  std::vector<char> usedByGhost(usedByOwn.size(), 0);
+  ForEachCell(piece, ghosts, [&](int, vtkIdType, bool ghost, vtkIdType size, const vtkIdType* points) {
+    std::vector<char>& used = ghost ? usedByGhost : usedByOwn;
+    for (vtkIdType k = 0; k < size; ++k)
+    {
+      used[static_cast<size_t>(points[k])] = 1;
+    }
+  });
+  auto kept = vtkSmartPointer<vtkIdList>::New();
+  newId.assign(usedByOwn.size(), -1);
+  for (size_t p = 0; p < usedByOwn.size(); ++p)
+  {
+    if (usedByOwn[p] || !usedByGhost[p])
+    {
+      newId[p] = kept->GetNumberOfIds();
+      kept->InsertNextId(static_cast<vtkIdType>(p));
+    }
+  }
+  return kept;
+}
+
+/// `cells` of kind `kind` (0 verts .. 3 strips) renumbered by `newId`, set on `owned`.
+void SetKindCells(vtkPolyData* owned, int kind, const KindCells& cells, const std::vector<vtkIdType>& newId)
+{
+  vtkNew<vtkIdTypeArray> offsetArray, connectivityArray;
+  offsetArray->SetNumberOfTuples(static_cast<vtkIdType>(cells.offsets.size()));
+  std::copy(cells.offsets.begin(), cells.offsets.end(), offsetArray->GetPointer(0));
+  connectivityArray->SetNumberOfTuples(static_cast<vtkIdType>(cells.connectivity.size()));
+  vtkIdType* to = connectivityArray->GetPointer(0);
+  for (vtkIdType p : cells.connectivity)
+  {
+    *to++ = newId[static_cast<size_t>(p)];
+  }
+  vtkNew<vtkCellArray> array;
+  array->SetData(offsetArray, connectivityArray);
+  switch (kind)
+  {
+    case 0: owned->SetVerts(array); break;
+    case 1: owned->SetLines(array); break;
+    case 2: owned->SetPolys(array); break;
+    default: owned->SetStrips(array); break;
+  }
+}
+
+/// The rows 0 .. n-1.
+vtkSmartPointer<vtkIdList> FirstRows(vtkIdType n)
+{
+  auto rows = vtkSmartPointer<vtkIdList>::New();
+  rows->SetNumberOfIds(n);
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    rows->SetId(k, k);
+  }
+  return rows;
+}
+}
+
 vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
 {
   vtkUnsignedCharArray* ghosts = piece->GetCellGhostArray();
@@ -225,117 +325,36 @@ vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
   {
     return piece;
   }
-  // The own cells, kind by kind (vtkPolyData numbers verts, lines, polygons, strips in turn).
-  vtkCellArray* inputCells[4] = { piece->GetVerts(), piece->GetLines(), piece->GetPolys(), piece->GetStrips() };
+  // The own cells, kind by kind, and the points they keep.
+  KindCells cells[4];
   vtkNew<vtkIdList> keptCells;
-  std::vector<vtkIdType> newId(static_cast<size_t>(piece->GetNumberOfPoints()), -1);
-  std::vector<vtkIdType> offsets[4], connectivity[4];
-  vtkIdType cell = 0;
-  for (int kind = 0; kind < 4; ++kind)
-  {
-    offsets[kind].push_back(0);
-    if (!inputCells[kind])
+  ForEachCell(piece, ghosts, [&](int kind, vtkIdType cell, bool ghost, vtkIdType size, const vtkIdType* points) {
+    if (!ghost)
     {
-      continue;
-    }
-    auto iterator = vtk::TakeSmartPointer(inputCells[kind]->NewIterator());
-    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
-    {
-      if (ghosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL)
-      {
-        continue;
-      }
-      vtkIdType size;
-      const vtkIdType* points;
-      iterator->GetCurrentCell(size, points);
-      connectivity[kind].insert(connectivity[kind].end(), points, points + size);
-      offsets[kind].push_back(static_cast<vtkIdType>(connectivity[kind].size()));
+      cells[kind].connectivity.insert(cells[kind].connectivity.end(), points, points + size);
+      cells[kind].offsets.push_back(static_cast<vtkIdType>(cells[kind].connectivity.size()));
       keptCells->InsertNextId(cell);
-      for (vtkIdType k = 0; k < size; ++k)
-      {
-        newId[static_cast<size_t>(points[k])] = 0; // used
-      }
     }
-  }
-  // The used points keep their order, with the points no cell uses (nobody
-  // else's); their data (with the owners' marks) comes along.
-  std::vector<char> usedByGhost(newId.size(), 0);
-  cell = 0;
-  for (int kind = 0; kind < 4; ++kind)
-  {
-    if (!inputCells[kind])
-    {
-      continue;
-    }
-    auto iterator = vtk::TakeSmartPointer(inputCells[kind]->NewIterator());
-    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
-    {
-      if (ghosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL)
-      {
-        vtkIdType size;
-        const vtkIdType* points;
-        iterator->GetCurrentCell(size, points);
-        for (vtkIdType k = 0; k < size; ++k)
-        {
-          usedByGhost[static_cast<size_t>(points[k])] = 1;
-        }
-      }
-    }
-  }
-  vtkNew<vtkIdList> keptPoints;
-  for (size_t p = 0; p < newId.size(); ++p)
-  {
-    if (newId[p] == 0 || !usedByGhost[p])
-    {
-      newId[p] = keptPoints->GetNumberOfIds();
-      keptPoints->InsertNextId(static_cast<vtkIdType>(p));
-    }
-  }
+  });
+  std::vector<vtkIdType> newId;
+  const vtkSmartPointer<vtkIdList> keptPoints = KeptPoints(piece, ghosts, newId);
   auto owned = vtkSmartPointer<vtkPolyData>::New();
   for (int kind = 0; kind < 4; ++kind)
   {
-    vtkNew<vtkIdTypeArray> offsetArray, connectivityArray;
-    offsetArray->SetNumberOfTuples(static_cast<vtkIdType>(offsets[kind].size()));
-    std::copy(offsets[kind].begin(), offsets[kind].end(), offsetArray->GetPointer(0));
-    connectivityArray->SetNumberOfTuples(static_cast<vtkIdType>(connectivity[kind].size()));
-    vtkIdType* to = connectivityArray->GetPointer(0);
-    for (vtkIdType p : connectivity[kind])
-    {
-      *to++ = newId[static_cast<size_t>(p)];
-    }
-    vtkNew<vtkCellArray> cells;
-    cells->SetData(offsetArray, connectivityArray);
-    switch (kind)
-    {
-      case 0: owned->SetVerts(cells); break;
-      case 1: owned->SetLines(cells); break;
-      case 2: owned->SetPolys(cells); break;
-      default: owned->SetStrips(cells); break;
-    }
+    SetKindCells(owned, kind, cells[kind], newId);
   }
   vtkNew<vtkPoints> points;
   points->SetDataType(piece->GetPoints()->GetDataType());
   piece->GetPoints()->GetPoints(keptPoints, points);
   owned->SetPoints(points);
   owned->GetFieldData()->ShallowCopy(piece->GetFieldData());
-  // Row lists: vtkDataSetAttributes copies each array's rows in one call (not one call per row).
-  vtkNew<vtkIdList> pointRows, cellRows;
-  pointRows->SetNumberOfIds(keptPoints->GetNumberOfIds());
-  for (vtkIdType k = 0; k < keptPoints->GetNumberOfIds(); ++k)
-  {
-    pointRows->SetId(k, k);
-  }
-  cellRows->SetNumberOfIds(keptCells->GetNumberOfIds());
-  for (vtkIdType k = 0; k < keptCells->GetNumberOfIds(); ++k)
-  {
-    cellRows->SetId(k, k);
-  }
+  // Their data (with the owners' marks): each array's rows in one call (not one call per row).
   owned->GetPointData()->CopyGlobalIdsOn(); // CopyAllocate leaves them out otherwise
   owned->GetCellData()->CopyGlobalIdsOn();
   owned->GetPointData()->CopyAllocate(piece->GetPointData(), keptPoints->GetNumberOfIds());
-  owned->GetPointData()->CopyData(piece->GetPointData(), keptPoints, pointRows);
+  owned->GetPointData()->CopyData(piece->GetPointData(), keptPoints, FirstRows(keptPoints->GetNumberOfIds()));
   owned->GetCellData()->CopyAllocate(piece->GetCellData(), keptCells->GetNumberOfIds());
-  owned->GetCellData()->CopyData(piece->GetCellData(), keptCells, cellRows);
+  owned->GetCellData()->CopyData(piece->GetCellData(), keptCells, FirstRows(keptCells->GetNumberOfIds()));
   owned->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName()); // no ghost cell left
   return owned;
 }
