@@ -5,8 +5,14 @@
  */
 #include "ShockParallel.h"
 
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkImageData.h"
 #include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <array>
@@ -267,5 +273,64 @@ vtkSmartPointer<vtkDataArray> GrowImageSamples(
   CopyBox(ownBytes, own, grownBytes, target, own, tupleBytes);
   ExchangeHalos(controller, pieces, halos, ownBytes, grownBytes, tupleBytes);
   return result;
+}
+
+vtkSmartPointer<vtkImageData> ImageWithHalo(vtkMultiProcessController* controller, vtkImageData* input,
+  vtkDataArray* array, bool cellData, bool hidden, int layers)
+{
+  // The piece's samples as a sample extent (cells: one fewer on the axes it spans).
+  int extent[6];
+  input->GetExtent(extent);
+  for (int a = 0; a < 3 && cellData; ++a)
+  {
+    extent[2 * a + 1] -= extent[2 * a + 1] > extent[2 * a] ? 1 : 0;
+  }
+  int grown[6];
+  vtkSmartPointer<vtkDataArray> grownArray = GrowImageSamples(controller, array, extent, layers, grown);
+  // Blanked samples: their marks travel with the halo when any piece has some
+  // (decided together: the exchange is collective).
+  vtkSmartPointer<vtkDataArray> grownGhosts;
+  int anyHidden = 0;
+  const int mine = hidden ? 1 : 0;
+  controller->AllReduce(&mine, &anyHidden, 1, vtkCommunicator::MAX_OP);
+  if (anyHidden)
+  {
+    vtkUnsignedCharArray* ghosts = !array ? nullptr : (cellData ? input->GetCellGhostArray() : input->GetPointGhostArray());
+    vtkNew<vtkUnsignedCharArray> none; // a piece without marks: nothing blanked
+    if (array && !(ghosts && ghosts->GetNumberOfTuples() == array->GetNumberOfTuples()))
+    {
+      none->SetNumberOfTuples(array->GetNumberOfTuples());
+      none->Fill(0);
+      ghosts = none;
+    }
+    int grownAgain[6];
+    grownGhosts = GrowImageSamples(controller, array ? ghosts : nullptr, extent, layers, grownAgain);
+  }
+  if (input->GetNumberOfPoints() == 0 || !grownArray)
+  {
+    return nullptr;
+  }
+  // The piece with its halo as an image of its own (the filtered array only).
+  auto withHalo = vtkSmartPointer<vtkImageData>::New();
+  int pointExtent[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    const bool spans = input->GetExtent()[2 * a + 1] > input->GetExtent()[2 * a];
+    pointExtent[2 * a] = grown[2 * a];
+    pointExtent[2 * a + 1] = grown[2 * a + 1] + (cellData && spans ? 1 : 0);
+  }
+  withHalo->SetExtent(pointExtent);
+  withHalo->SetOrigin(input->GetOrigin());
+  withHalo->SetSpacing(input->GetSpacing());
+  withHalo->SetDirectionMatrix(input->GetDirectionMatrix());
+  vtkDataSetAttributes* samples = cellData ? static_cast<vtkDataSetAttributes*>(withHalo->GetCellData())
+                                           : static_cast<vtkDataSetAttributes*>(withHalo->GetPointData());
+  samples->SetScalars(grownArray);
+  if (grownGhosts)
+  {
+    grownGhosts->SetName(vtkDataSetAttributes::GhostArrayName());
+    samples->AddArray(grownGhosts);
+  }
+  return withHalo;
 }
 }

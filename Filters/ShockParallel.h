@@ -20,6 +20,7 @@
 class vtkAlgorithm;
 class vtkDataArray;
 class vtkDataSet;
+class vtkImageData;
 class vtkInformation;
 class vtkMultiProcessController;
 class vtkPolyData;
@@ -57,6 +58,16 @@ vtkUnsignedCharArray* PointGhosts(vtkDataSet* data);
  */
 vtkSmartPointer<vtkDataArray> GrowImageSamples(
   vtkMultiProcessController* controller, vtkDataArray* array, const int extent[6], int layers, int grown[6]);
+
+/**
+ * The image piece `input` with a halo of `layers` samples of `array` around
+ * it (GrowImageSamples), and of the blanking marks when any process's piece
+ * has some (`hidden`: this one's has), as an image of its own holding only
+ * that array (as its scalars) and those marks; nullptr for an empty piece.
+ * Collective: every process takes part, empty pieces too (null `array`).
+ */
+vtkSmartPointer<vtkImageData> ImageWithHalo(vtkMultiProcessController* controller, vtkImageData* input,
+  vtkDataArray* array, bool cellData, bool hidden, int layers);
 
 /// Whether the filter's upstream produces composite data (the pipeline then runs it block by block).
 bool UpstreamIsComposite(vtkAlgorithm* filter);

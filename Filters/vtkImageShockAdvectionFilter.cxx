@@ -227,6 +227,33 @@ void ToWorldAxes(vtkImageData* image, const double* gridVector, double* world)
 }
 
 /// Attach ShockPotential and ShockFlow to the output (see the class documentation).
+/**
+ * The arrays of `filtered` (a piece's result, cropped to it) into `output`:
+ * its scalars (the filtered array) in place of `array`, the flow arrays added.
+ */
+void TakeResultArrays(vtkImageData* filtered, vtkImageData* output, vtkDataArray* array)
+{
+  for (int which = 0; which < 2; ++which)
+  {
+    vtkDataSetAttributes* from = which == 0 ? static_cast<vtkDataSetAttributes*>(filtered->GetPointData())
+                                            : static_cast<vtkDataSetAttributes*>(filtered->GetCellData());
+    vtkDataSetAttributes* to = which == 0 ? static_cast<vtkDataSetAttributes*>(output->GetPointData())
+                                          : static_cast<vtkDataSetAttributes*>(output->GetCellData());
+    for (int k = 0; k < from->GetNumberOfArrays(); ++k)
+    {
+      vtkAbstractArray* result = from->GetAbstractArray(k);
+      if (result == from->GetScalars() && result != nullptr)
+      {
+        ShockFilterInternals::ReplaceArray(to, array, vtkDataArray::SafeDownCast(result));
+      }
+      else if (result)
+      {
+        to->AddArray(result);
+      }
+    }
+  }
+}
+
 void AttachFlowArrays(vtkImageData* output, bool cellData, const shock::GridShape& grid,
   const shock::GridFlowFields& fields)
 {
@@ -500,68 +527,22 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
     vtkErrorMacro(<< error);
     return 0;
   }
-  // The piece's samples as a sample extent (cells: one fewer on the axes it spans).
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
-  int extent[6];
-  input->GetExtent(extent);
-  for (int a = 0; a < 3 && cellData; ++a)
+  vtkSmartPointer<vtkImageData> withHalo;
   {
-    extent[2 * a + 1] -= extent[2 * a + 1] > extent[2 * a] ? 1 : 0;
+    vtkLogScopeF(TRACE, "shock: image halo exchange");
+    withHalo = ShockParallel::ImageWithHalo(controller, input, array, cellData,
+      array && AnyHidden(input, array, cellData), this->GhostLevels);
   }
-  int grown[6];
-  vtkLogStartScope(TRACE, "shock: image halo exchange");
-  vtkSmartPointer<vtkDataArray> grownArray =
-    ShockParallel::GrowImageSamples(controller, array, extent, this->GhostLevels, grown);
-  // Blanked samples: their marks travel with the halo when any piece has some
-  // (decided together: the exchange is collective).
-  vtkSmartPointer<vtkDataArray> grownGhosts;
-  {
-    vtkUnsignedCharArray* ghosts = !array ? nullptr : (cellData ? input->GetCellGhostArray() : input->GetPointGhostArray());
-    int hidden = AnyHidden(input, array, cellData) ? 1 : 0;
-    int anyHidden = 0;
-    controller->AllReduce(&hidden, &anyHidden, 1, vtkCommunicator::MAX_OP);
-    if (anyHidden)
-    {
-      vtkNew<vtkUnsignedCharArray> none; // a piece without marks: nothing blanked
-      if (array && !(ghosts && ghosts->GetNumberOfTuples() == array->GetNumberOfTuples()))
-      {
-        none->SetNumberOfTuples(array->GetNumberOfTuples());
-        none->Fill(0);
-        ghosts = none;
-      }
-      int grownAgain[6];
-      grownGhosts = ShockParallel::GrowImageSamples(controller, array ? ghosts : nullptr, extent,
-        this->GhostLevels, grownAgain);
-    }
-  }
-  vtkLogEndScope("shock: image halo exchange");
-  if (empty || !grownArray)
+  if (!withHalo)
   {
     output->ShallowCopy(input); // an empty piece of a parallel run is normal
     return 1;
   }
-  // The piece with its halo as an image of its own (the filtered array only), filtered as a whole.
-  vtkNew<vtkImageData> withHalo;
-  int pointExtent[6];
-  for (int a = 0; a < 3; ++a)
-  {
-    const bool spans = input->GetExtent()[2 * a + 1] > input->GetExtent()[2 * a];
-    pointExtent[2 * a] = grown[2 * a];
-    pointExtent[2 * a + 1] = grown[2 * a + 1] + (cellData && spans ? 1 : 0);
-  }
-  withHalo->SetExtent(pointExtent);
-  withHalo->SetOrigin(input->GetOrigin());
-  withHalo->SetSpacing(input->GetSpacing());
-  withHalo->SetDirectionMatrix(input->GetDirectionMatrix());
-  vtkDataSetAttributes* samples = cellData ? static_cast<vtkDataSetAttributes*>(withHalo->GetCellData())
-                                           : static_cast<vtkDataSetAttributes*>(withHalo->GetPointData());
-  samples->SetScalars(grownArray);
-  if (grownGhosts)
-  {
-    grownGhosts->SetName(vtkDataSetAttributes::GhostArrayName());
-    samples->AddArray(grownGhosts);
-  }
   vtkNew<vtkImageData> filtered;
+  vtkDataArray* grownArray = (cellData ? static_cast<vtkDataSetAttributes*>(withHalo->GetCellData())
+                                        : static_cast<vtkDataSetAttributes*>(withHalo->GetPointData()))
+                               ->GetScalars();
   if (!this->FilterImageArray(withHalo, grownArray, association, filtered))
   {
     return 0;
@@ -574,25 +555,7 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
     filtered->Crop(crop);
   }
   output->ShallowCopy(input);
-  for (int which = 0; which < 2; ++which)
-  {
-    vtkDataSetAttributes* from = which == 0 ? static_cast<vtkDataSetAttributes*>(filtered->GetPointData())
-                                            : static_cast<vtkDataSetAttributes*>(filtered->GetCellData());
-    vtkDataSetAttributes* to = which == 0 ? static_cast<vtkDataSetAttributes*>(output->GetPointData())
-                                          : static_cast<vtkDataSetAttributes*>(output->GetCellData());
-    for (int k = 0; k < from->GetNumberOfArrays(); ++k)
-    {
-      vtkAbstractArray* result = from->GetAbstractArray(k);
-      if (result == from->GetScalars() && result != nullptr)
-      {
-        ShockFilterInternals::ReplaceArray(to, array, vtkDataArray::SafeDownCast(result));
-      }
-      else if (result)
-      {
-        to->AddArray(result);
-      }
-    }
-  }
+  TakeResultArrays(filtered, output, array);
   return 1;
 }
 

@@ -385,7 +385,7 @@ MUTANTS = [
          replacement="const vtkIdType row = ((box.first[2] + z) * box.dims[1] + y) * box.dims[0] + box.first[0];",
          bug="the crop of a piece's output ignores the piece's offset along y"),
     # --- inputs honoured exactly or refused (issue 32) and mixed composites ----------
-    dict(id="blanking-marks-not-in-halo", file="Filters/vtkImageShockAdvectionFilter.cxx",
+    dict(id="blanking-marks-not-in-halo", file="Filters/ShockImageHalo.cxx",
          original="    samples->AddArray(grownGhosts);",
          replacement="    (void)samples;",
          bug="the blanking marks of the neighbours' samples do not travel with the MPI halo"),
