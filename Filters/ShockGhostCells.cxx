@@ -173,57 +173,66 @@ bool AssemblePoints(vtkPolyData* piece, const Numbering& n, const Rings& rings, 
 }
 
 /**
+ * The cells of kind `kind` (0 verts .. 3 strips) of `own` then `ghost`, as
+ * one cell array filled as offsets and connectivity (not a call per cell);
+ * `order` gets (0 own / 1 ghost, index) of each, in that order.
+ */
+vtkSmartPointer<vtkCellArray> KindCells(
+  unsigned char kind, const Cells& own, const Cells& ghost, std::vector<std::pair<int, vtkIdType>>& order)
+{
+  vtkIdType cells = 0, ids = 0;
+  for (const Cells* from : { &own, &ghost })
+  {
+    for (vtkIdType c = 0; c < from->Size(); ++c)
+    {
+      if (from->kind[static_cast<size_t>(c)] == kind)
+      {
+        ++cells;
+        ids += from->offsets[static_cast<size_t>(c) + 1] - from->offsets[static_cast<size_t>(c)];
+      }
+    }
+  }
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfTuples(cells + 1);
+  connectivity->SetNumberOfTuples(ids);
+  vtkIdType* offset = offsets->GetPointer(0);
+  vtkIdType* to = connectivity->GetPointer(0);
+  *offset = 0;
+  for (int which = 0; which < 2; ++which)
+  {
+    const Cells& from = which == 0 ? own : ghost;
+    for (vtkIdType c = 0; c < from.Size(); ++c)
+    {
+      if (from.kind[static_cast<size_t>(c)] != kind)
+      {
+        continue;
+      }
+      const vtkIdType* begin = &from.points[static_cast<size_t>(from.offsets[static_cast<size_t>(c)])];
+      const vtkIdType* end = from.points.data() + from.offsets[static_cast<size_t>(c) + 1];
+      to = std::copy(begin, end, to);
+      offset[1] = offset[0] + (end - begin);
+      ++offset;
+      order.emplace_back(which, c);
+    }
+  }
+  auto array = vtkSmartPointer<vtkCellArray>::New();
+  array->SetData(offsets, connectivity);
+  return array;
+}
+
+/**
  * The cells of the piece with its rings, kind by kind, own then ghost, with
- * the cell data in that order and DUPLICATECELL on the ghost cells. The cell
- * arrays are filled as offsets and connectivity, not a call per cell. False
+ * the cell data in that order and DUPLICATECELL on the ghost cells. False
  * when a packet lacks a cell array of the piece.
  */
 bool AssembleCells(vtkPolyData* piece, const Numbering& n, const Rings& rings, vtkPolyData* result)
 {
-  const Cells& own = n.own;
-  const Cells& ghost = rings.ghost;
   std::vector<std::pair<int, vtkIdType>> order; // (0 own / 1 ghost, index)
-  order.reserve(static_cast<size_t>(own.Size() + ghost.Size()));
+  order.reserve(static_cast<size_t>(n.own.Size() + rings.ghost.Size()));
   vtkSmartPointer<vtkCellArray> kindCells[4];
   for (unsigned char kind = 0; kind < 4; ++kind)
   {
-    vtkIdType cells = 0, ids = 0;
-    for (const Cells* from : { &own, &ghost })
-    {
-      for (vtkIdType c = 0; c < from->Size(); ++c)
-      {
-        if (from->kind[static_cast<size_t>(c)] == kind)
-        {
-          ++cells;
-          ids += from->offsets[static_cast<size_t>(c) + 1] - from->offsets[static_cast<size_t>(c)];
-        }
-      }
-    }
-    vtkNew<vtkIdTypeArray> offsets, connectivity;
-    offsets->SetNumberOfTuples(cells + 1);
-    connectivity->SetNumberOfTuples(ids);
-    vtkIdType* offset = offsets->GetPointer(0);
-    vtkIdType* to = connectivity->GetPointer(0);
-    *offset = 0;
-    for (int which = 0; which < 2; ++which)
-    {
-      const Cells& from = which == 0 ? own : ghost;
-      for (vtkIdType c = 0; c < from.Size(); ++c)
-      {
-        if (from.kind[static_cast<size_t>(c)] != kind)
-        {
-          continue;
-        }
-        const vtkIdType* begin = &from.points[static_cast<size_t>(from.offsets[static_cast<size_t>(c)])];
-        const vtkIdType* end = from.points.data() + from.offsets[static_cast<size_t>(c) + 1];
-        to = std::copy(begin, end, to);
-        offset[1] = offset[0] + (end - begin);
-        ++offset;
-        order.emplace_back(which, c);
-      }
-    }
-    kindCells[kind] = vtkSmartPointer<vtkCellArray>::New();
-    kindCells[kind]->SetData(offsets, connectivity);
+    kindCells[kind] = KindCells(kind, n.own, rings.ghost, order);
   }
   result->SetVerts(kindCells[0]);
   result->SetLines(kindCells[1]);

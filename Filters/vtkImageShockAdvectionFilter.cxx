@@ -559,22 +559,33 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
   return 1;
 }
 
+namespace ShockFilterInternals
+{
+/// What a grid kernel runs on: the samples' shape and signal, where its results go, its flow fields and progress.
+struct GridRun
+{
+  const shock::GridShape& grid;
+  vtkDataArray* array;
+  KernelSignal signal;
+  const shock::SampleWriter& output;
+  shock::GridFlowFields* fields;
+  shock::ProgressFunction progress;
+};
+}
+
 bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDataArray* array,
   const ShockFilterInternals::KernelOutput& filtered, shock::GridFlowFields* fields,
   bool& aborted)
 {
-  const shock::SampleWriter& output = filtered.writer;
   // The phase a fraction belongs to (the gradient domain solves after 0.8).
   const bool gradients = this->Domain == GRADIENTS && this->Method == ADVECTION;
   const char* const tracing = this->Method == PDE ? "integrating the shock PDE" : "tracing the flow lines";
-  const auto progress = [this, gradients, tracing](double fraction) {
+  const shock::ProgressFunction progress = [this, gradients, tracing](double fraction) {
     return this->ReportProgress(
       fraction, gradients && fraction >= 0.8 ? "integrating the advected gradients" : tracing);
   };
-  const int components = array->GetNumberOfComponents();
-  const int threads = this->NumberOfThreads;
-  ShockFilterInternals::KernelSignal signal =
-    ShockFilterInternals::SignalForKernel(array, threads);
+  ShockFilterInternals::GridRun run{ grid, array, ShockFilterInternals::SignalForKernel(array, this->NumberOfThreads),
+    filtered.writer, fields, progress };
   shock::Status status;
   if (this->Domain == GRADIENTS && this->Method != ADVECTION)
   {
@@ -582,71 +593,11 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDa
   }
   else if (this->Method == ADVECTION)
   {
-    shock::AdvectionReport report;
-    shock::AdvectionParameters parameters = ShockFilterInternals::MakeParameters(this);
-    parameters.hierarchyLevels = this->HierarchyLevels;
-    shock::GradientDomainParameters domain;
-    domain.screening = this->GradientScreening;
-    const auto advect = [&](const auto* values) {
-      return this->Domain == GRADIENTS
-        ? shock::AdvectGridGradients(
-            grid, components, values, output, parameters, domain, &report, fields, progress)
-        : shock::AdvectGridSignal(
-            grid, components, values, output, parameters, &report, fields, progress);
-    };
-    status = signal.floats ? advect(signal.floats)
-                           : (signal.bytes ? advect(signal.bytes) : advect(signal.doubles));
-    if (status.Ok())
-    {
-      this->RecordRun(
-        report.flowSeconds, report.advectionSeconds, report.traceSteps, report.truncatedTraces);
-      aborted = report.aborted;
-    }
+    status = this->RunAdvection(run, aborted);
   }
   else
   {
-    shock::PDEParameters parameters;
-    parameters.time = this->FlowTime;
-    parameters.smoothingPasses = this->SmoothingPasses;
-    parameters.courantNumber = this->CourantNumber;
-    parameters.maximumIterations = this->MaximumIterations;
-    parameters.numberOfThreads = this->NumberOfThreads;
-    parameters.valueScale = this->ParallelValueScale;
-    shock::PDEReport report;
-    // The PDE works on double buffers.
-    if (!signal.doubles)
-    {
-      const vtkIdType count = array->GetNumberOfValues();
-      signal.doubleCopy = shock::AllocateLargeArray<double>(count);
-      if (signal.floats)
-      {
-        std::copy(signal.floats, signal.floats + count, signal.doubleCopy.get());
-      }
-      else
-      {
-        std::copy(signal.bytes, signal.bytes + count, signal.doubleCopy.get());
-      }
-      signal.doubles = signal.doubleCopy.get();
-    }
-    const shock::LargeArray<double> solved =
-      shock::AllocateLargeArray<double>(array->GetNumberOfValues());
-    status = shock::SolveGridShockPDE(grid, components, signal.doubles, solved.get(), parameters,
-      &report, fields, progress);
-    if (status.Ok())
-    {
-      output(0, grid.NumberOfSamples(), solved.get());
-      this->RecordRun(report.flowSeconds, report.updateSeconds, 0, 0);
-      this->LastIterations = report.iterations;
-      this->LastReachedTime = report.reachedTime;
-      aborted = report.aborted;
-      if (report.iterationLimit)
-      {
-        vtkWarningMacro("The PDE stopped at MaximumIterations (" << this->MaximumIterations
-                                                                 << " steps) at flow time "
-                                                                 << report.reachedTime << " of "
-                                                                 << this->FlowTime << ".");
-      }
-    }
+    status = this->RunPDE(run, aborted);
   }
   if (!status.Ok())
   {
@@ -654,6 +605,81 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDa
     return false;
   }
   return true;
+}
+
+shock::Status vtkImageShockAdvectionFilter::RunAdvection(const ShockFilterInternals::GridRun& run, bool& aborted)
+{
+  const shock::GridShape& grid = run.grid;
+  const int components = run.array->GetNumberOfComponents();
+  const shock::SampleWriter& output = run.output;
+  shock::GridFlowFields* fields = run.fields;
+  const shock::ProgressFunction& progress = run.progress;
+  const ShockFilterInternals::KernelSignal& signal = run.signal;
+  shock::AdvectionReport report;
+  shock::AdvectionParameters parameters = ShockFilterInternals::MakeParameters(this);
+  parameters.hierarchyLevels = this->HierarchyLevels;
+  shock::GradientDomainParameters domain;
+  domain.screening = this->GradientScreening;
+  const auto advect = [&](const auto* values) {
+    return this->Domain == GRADIENTS
+      ? shock::AdvectGridGradients(grid, components, values, output, parameters, domain, &report, fields, progress)
+      : shock::AdvectGridSignal(grid, components, values, output, parameters, &report, fields, progress);
+  };
+  const shock::Status status =
+    signal.floats ? advect(signal.floats) : (signal.bytes ? advect(signal.bytes) : advect(signal.doubles));
+  if (status.Ok())
+  {
+    this->RecordRun(report.flowSeconds, report.advectionSeconds, report.traceSteps, report.truncatedTraces);
+    aborted = report.aborted;
+  }
+  return status;
+}
+
+shock::Status vtkImageShockAdvectionFilter::RunPDE(ShockFilterInternals::GridRun& run, bool& aborted)
+{
+  vtkDataArray* array = run.array;
+  ShockFilterInternals::KernelSignal& signal = run.signal;
+  shock::PDEParameters parameters;
+  parameters.time = this->FlowTime;
+  parameters.smoothingPasses = this->SmoothingPasses;
+  parameters.courantNumber = this->CourantNumber;
+  parameters.maximumIterations = this->MaximumIterations;
+  parameters.numberOfThreads = this->NumberOfThreads;
+  parameters.valueScale = this->ParallelValueScale;
+  shock::PDEReport report;
+  // The PDE works on double buffers.
+  if (!signal.doubles)
+  {
+    const vtkIdType count = array->GetNumberOfValues();
+    signal.doubleCopy = shock::AllocateLargeArray<double>(count);
+    if (signal.floats)
+    {
+      std::copy(signal.floats, signal.floats + count, signal.doubleCopy.get());
+    }
+    else
+    {
+      std::copy(signal.bytes, signal.bytes + count, signal.doubleCopy.get());
+    }
+    signal.doubles = signal.doubleCopy.get();
+  }
+  const shock::LargeArray<double> solved = shock::AllocateLargeArray<double>(array->GetNumberOfValues());
+  const shock::Status status = shock::SolveGridShockPDE(run.grid, array->GetNumberOfComponents(), signal.doubles,
+    solved.get(), parameters, &report, run.fields, run.progress);
+  if (status.Ok())
+  {
+    run.output(0, run.grid.NumberOfSamples(), solved.get());
+    this->RecordRun(report.flowSeconds, report.updateSeconds, 0, 0);
+    this->LastIterations = report.iterations;
+    this->LastReachedTime = report.reachedTime;
+    aborted = report.aborted;
+    if (report.iterationLimit)
+    {
+      vtkWarningMacro("The PDE stopped at MaximumIterations (" << this->MaximumIterations << " steps) at flow time "
+                                                               << report.reachedTime << " of " << this->FlowTime
+                                                               << ".");
+    }
+  }
+  return status;
 }
 
 void vtkImageShockAdvectionFilter::ResetMeasurements()

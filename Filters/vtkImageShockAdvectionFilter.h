@@ -75,10 +75,12 @@ namespace shock
 {
 struct GridShape;
 struct GridFlowFields;
+struct Status;
 }
 namespace ShockFilterInternals
 {
 struct KernelOutput;
+struct GridRun;
 }
 
 class VTKFILTERSSHOCK_EXPORT vtkImageShockAdvectionFilter : public vtkShockAdvectionFilter
@@ -252,6 +254,10 @@ private:
   bool RunKernel(const shock::GridShape& grid, vtkDataArray* array,
     const ShockFilterInternals::KernelOutput& output, shock::GridFlowFields* fields,
     bool& aborted);
+  /// The paper's advection (Method ADVECTION), of the values or of their gradients (Domain).
+  shock::Status RunAdvection(const ShockFilterInternals::GridRun& run, bool& aborted);
+  /// The Osher-Rudin PDE, integrated explicitly (Method PDE), on a double copy of the signal.
+  shock::Status RunPDE(ShockFilterInternals::GridRun& run, bool& aborted);
 
   vtkImageShockAdvectionFilter(const vtkImageShockAdvectionFilter&) = delete;
   void operator=(const vtkImageShockAdvectionFilter&) = delete;
