@@ -253,44 +253,130 @@ double vtkPolyDataShockAdvectionFilter::GlobalMeanEdgeLength(
   return sums[1] > 0.0 && sums[0] > 0.0 ? sums[0] / sums[1] : 0.0;
 }
 
+namespace
+{
+/// The selected array as the piece (with ghost cells) has it, or nullptr (`error` says why).
+vtkDataArray* PieceArray(vtkPolyData* input, vtkDataArray* selected, bool cellData, std::string& error)
+{
+  vtkDataSetAttributes* inputAttributes =
+    cellData ? static_cast<vtkDataSetAttributes*>(input->GetCellData()) : input->GetPointData();
+  vtkDataArray* array =
+    selected->GetName() ? inputAttributes->GetArray(selected->GetName()) : inputAttributes->GetScalars();
+  const vtkIdType expected = cellData ? input->GetNumberOfCells() : input->GetNumberOfPoints();
+  if (array && array->GetNumberOfTuples() == expected)
+  {
+    return array;
+  }
+  error = std::string("Array '") + (selected->GetName() ? selected->GetName() : "(unnamed)") + "' has " +
+    std::to_string(array ? array->GetNumberOfTuples() : 0) + " tuples, the mesh has " + std::to_string(expected) +
+    (cellData ? " cells." : " points.");
+  return nullptr;
+}
+
+/// Why a cell array on `cells` polygons that are not triangles (or strips) is refused.
+std::string NotOnTrianglesError(vtkDataArray* selected, vtkIdType cells)
+{
+  return std::string("Cell array '") + (selected->GetName() ? selected->GetName() : "(unnamed)") + "' lives on " +
+    std::to_string(cells) +
+    " polygons with more than 3 points or triangle strips: cell data is only filtered on triangles. Triangulate "
+    "the mesh first (vtkTriangleFilter, or ParaView's Triangulate filter).";
+}
+
+/// A blanked sample's row and its own values.
+using HiddenSample = std::pair<vtkIdType, std::vector<double>>;
+
+/**
+ * Blanked samples (vtkGhostType HIDDENPOINT, or HIDDENCELL for cell data)
+ * neither feed nor receive values: NaN in `values` for the kernel (no flow,
+ * never interpolated); their own values are returned for the output.
+ */
+std::vector<HiddenSample> HideBlankedSamples(
+  vtkPolyData* input, vtkDataArray* array, bool cellData, std::vector<double>& values)
+{
+  std::vector<HiddenSample> hidden;
+  const int components = array->GetNumberOfComponents();
+  vtkUnsignedCharArray* ghosts = cellData ? input->GetCellGhostArray() : input->GetPointGhostArray();
+  const int mark = cellData ? static_cast<int>(vtkDataSetAttributes::HIDDENCELL)
+                            : static_cast<int>(vtkDataSetAttributes::HIDDENPOINT);
+  for (vtkIdType t = 0;
+       ghosts && ghosts->GetNumberOfTuples() == array->GetNumberOfTuples() && t < array->GetNumberOfTuples(); ++t)
+  {
+    if (ghosts->GetValue(t) & mark)
+    {
+      double* row = &values[static_cast<size_t>(t * components)];
+      hidden.emplace_back(t, std::vector<double>(row, row + components));
+      std::fill(row, row + components, std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  return hidden;
+}
+
+/**
+ * The signal the kernel sees: one value per triangle (cell data; other cells
+ * keep theirs), or the point values in the mesh's numbering (`values` is
+ * taken over).
+ */
+std::vector<double> ToMeshSignal(const ShockPolyDataInternals::PreparedMesh& prepared, bool cellData, int components,
+  std::vector<double>& values, int threads)
+{
+  if (!cellData)
+  {
+    return prepared.ToMeshPoints(std::move(values), components, threads);
+  }
+  const std::int64_t nt = prepared.mesh.NumberOfTriangles();
+  std::vector<double> signal(static_cast<size_t>(nt * components));
+  for (std::int64_t f = 0; f < nt; ++f)
+  {
+    const double* row =
+      &values[static_cast<size_t>(prepared.triangles.sourceCell[static_cast<size_t>(f)] * components)];
+    std::copy(row, row + components, &signal[static_cast<size_t>(f * components)]);
+  }
+  return signal;
+}
+
+/**
+ * The kernel's results back in the array's rows: each triangle's value into
+ * its cell's row of `values` (the other cells keep theirs), or the points
+ * back from the mesh's numbering.
+ */
+std::vector<double> FromMeshSignal(const ShockPolyDataInternals::PreparedMesh& prepared, bool cellData,
+  int components, std::vector<double> filtered, std::vector<double>& values, int threads)
+{
+  if (!cellData)
+  {
+    return prepared.FromMeshPoints(std::move(filtered), components, threads);
+  }
+  for (std::int64_t f = 0; f < prepared.mesh.NumberOfTriangles(); ++f)
+  {
+    const double* row = &filtered[static_cast<size_t>(f * components)];
+    std::copy(row, row + components,
+      &values[static_cast<size_t>(prepared.triangles.sourceCell[static_cast<size_t>(f)] * components)]);
+  }
+  return std::move(values);
+}
+}
+
 bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   vtkPolyData* input, vtkDataArray* selected, int association, vtkPolyData* output, double unit)
 {
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
-  // The selected array as the piece (with ghost cells) has it.
-  vtkDataSetAttributes* inputAttributes = cellData
-    ? static_cast<vtkDataSetAttributes*>(input->GetCellData()) : input->GetPointData();
-  vtkDataArray* array = selected->GetName() ? inputAttributes->GetArray(selected->GetName())
-                                            : inputAttributes->GetScalars();
-  const char* name = selected->GetName() ? selected->GetName() : "(unnamed)";
-  const vtkIdType expected = cellData ? input->GetNumberOfCells() : input->GetNumberOfPoints();
-  if (!array || array->GetNumberOfTuples() != expected)
-  {
-    vtkErrorMacro("Array '" << name << "' has " << (array ? array->GetNumberOfTuples() : 0)
-                            << " tuples, the mesh has " << expected
-                            << (cellData ? " cells." : " points."));
-    return false;
-  }
-
-  // The mesh as prepared for the last execution, unless the points or cells changed.
   std::string error;
-  const ShockPolyDataInternals::PreparedMesh* prepared =
-    this->PreparedMeshes->Get(input, false, this->NumberOfThreads, error, &this->LastSetupSeconds, unit, true);
-  if (!prepared)
+  vtkDataArray* array = PieceArray(input, selected, cellData, error);
+  if (!array)
   {
     vtkErrorMacro(<< error);
     return false;
   }
-  const ShockPolyDataInternals::Triangles& triangles = prepared->triangles;
-  const shock::TriangleMesh& mesh = prepared->mesh;
-  if (cellData && triangles.nonTriangleCells > 0)
+  // The mesh as prepared for the last execution, unless the points or cells changed.
+  const ShockPolyDataInternals::PreparedMesh* prepared =
+    this->PreparedMeshes->Get(input, false, this->NumberOfThreads, error, &this->LastSetupSeconds, unit, true);
+  if (!prepared || (cellData && prepared->triangles.nonTriangleCells > 0))
   {
-    vtkErrorMacro("Cell array '" << name << "' lives on " << triangles.nonTriangleCells
-                                 << " polygons with more than 3 points or triangle strips: cell data "
-                                    "is only filtered on triangles. Triangulate the mesh first "
-                                    "(vtkTriangleFilter, or ParaView's Triangulate filter).");
+    vtkErrorMacro(<< (prepared ? NotOnTrianglesError(selected, prepared->triangles.nonTriangleCells) : error));
     return false;
   }
+  const ShockPolyDataInternals::Triangles& triangles = prepared->triangles;
+  const shock::TriangleMesh& mesh = prepared->mesh;
 
   // Everything checked: the output starts as the input, arrays shared.
   output->ShallowCopy(input);
@@ -304,41 +390,8 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   std::vector<double> values(static_cast<size_t>(array->GetNumberOfValues()));
   ShockFilterInternals::ToDoubles(
     array, values.data(), shock::ThreadsForWork(this->NumberOfThreads, array->GetNumberOfTuples()));
-  // Blanked samples (vtkGhostType HIDDENPOINT, or HIDDENCELL for cell data)
-  // neither feed nor receive values: NaN for the kernel (no flow, never
-  // interpolated), their own values in the output.
-  std::vector<std::pair<vtkIdType, std::vector<double>>> hidden;
-  {
-    vtkUnsignedCharArray* ghosts = cellData ? input->GetCellGhostArray() : input->GetPointGhostArray();
-    const int mark = cellData ? static_cast<int>(vtkDataSetAttributes::HIDDENCELL)
-                              : static_cast<int>(vtkDataSetAttributes::HIDDENPOINT);
-    for (vtkIdType t = 0; ghosts && ghosts->GetNumberOfTuples() == array->GetNumberOfTuples() &&
-         t < array->GetNumberOfTuples();
-         ++t)
-    {
-      if (ghosts->GetValue(t) & mark)
-      {
-        double* row = &values[static_cast<size_t>(t * components)];
-        hidden.emplace_back(t, std::vector<double>(row, row + components));
-        std::fill(row, row + components, std::numeric_limits<double>::quiet_NaN());
-      }
-    }
-  }
-  std::vector<double> signal;
-  if (cellData)
-  {
-    // The kernel sees one value per triangle; other cells keep theirs.
-    signal.resize(static_cast<size_t>(mesh.NumberOfTriangles() * components));
-    for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
-    {
-      const double* row = &values[static_cast<size_t>(triangles.sourceCell[static_cast<size_t>(f)] * components)];
-      std::copy(row, row + components, &signal[static_cast<size_t>(f * components)]);
-    }
-  }
-  else
-  {
-    signal = prepared->ToMeshPoints(std::move(values), components, this->NumberOfThreads); // in the mesh's numbering
-  }
+  const std::vector<HiddenSample> hidden = HideBlankedSamples(input, array, cellData, values);
+  std::vector<double> signal = ToMeshSignal(*prepared, cellData, components, values, this->NumberOfThreads);
   shock::MeshSignal meshSignal;
   meshSignal.location = cellData ? shock::MeshLocation::Triangles : shock::MeshLocation::Points;
   meshSignal.components = components;
@@ -361,20 +414,7 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   {
     return true; // aborted: the output holds the unfiltered input
   }
-  if (cellData)
-  {
-    for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
-    {
-      const double* row = &filtered[static_cast<size_t>(f * components)];
-      std::copy(row, row + components,
-        &values[static_cast<size_t>(triangles.sourceCell[static_cast<size_t>(f)] * components)]);
-    }
-    filtered.swap(values);
-  }
-  else
-  {
-    filtered = prepared->FromMeshPoints(std::move(filtered), components, this->NumberOfThreads);
-  }
+  filtered = FromMeshSignal(*prepared, cellData, components, std::move(filtered), values, this->NumberOfThreads);
   for (const auto& sample : hidden)
   {
     std::copy(sample.second.begin(), sample.second.end(), &filtered[static_cast<size_t>(sample.first * components)]);
