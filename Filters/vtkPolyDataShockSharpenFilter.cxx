@@ -404,6 +404,17 @@ int vtkPolyDataShockSharpenFilter::RequestData(
     output->Initialize();
     return 1; // replicated data: process 0 sharpens it once
   }
+  return this->SharpenPiece(input, piece, output);
+}
+
+/**
+ * The piece (or the whole mesh) prepared, distributed, sharpened and written:
+ * every step that can fail agrees across the processes first.
+ */
+int vtkPolyDataShockSharpenFilter::SharpenPiece(
+  vtkPolyData* input, ShockParallel::SurfacePiece& piece, vtkPolyData* output)
+{
+  std::string error;
   if (piece.controller && this->Solver == EXACT)
   {
     vtkErrorMacro("The EXACT solver factorises the whole system on one process, but the mesh is "

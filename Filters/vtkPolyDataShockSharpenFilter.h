@@ -106,6 +106,10 @@ namespace ShockPolyDataInternals
 class MeshCache;
 struct PreparedMesh;
 }
+namespace ShockParallel
+{
+struct SurfacePiece;
+}
 
 class VTKFILTERSSHOCK_EXPORT vtkPolyDataShockSharpenFilter : public vtkShockAdvectionFilter
 {
@@ -293,6 +297,9 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   void ResetMeasurements() override;
+
+  /// After the agreement: the piece prepared, distributed, sharpened (Sharpen) and written (BuildOutput).
+  int SharpenPiece(vtkPolyData* input, ShockParallel::SurfacePiece& piece, vtkPolyData* output);
 
   /// Run the kernels (a piece of a distributed mesh with `partition`); false with the kernel's `error`.
   bool Sharpen(const shock::TriangleMesh& mesh, const shock::MeshPartition* partition,
