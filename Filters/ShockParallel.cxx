@@ -635,6 +635,45 @@ bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* inp
   return piece.work != nullptr; // its failures are agreed by every process already
 }
 
+namespace
+{
+/**
+ * The needs this process owns: per asker, (slot in the asker's list, local
+ * point). The asked ids (a halo) go into a table, which the owned points are
+ * looked up in (a table of every owned point would be a piece).
+ */
+std::vector<std::vector<std::pair<vtkIdType, vtkIdType>>> OwnedAnswers(int me, int processes,
+  const std::vector<vtkIdType>& all, const std::vector<vtkIdType>& counts, const std::vector<vtkIdType>& offsets,
+  const vtkIdType* globalIds, const std::vector<char>& owned)
+{
+  std::unordered_map<vtkIdType, std::vector<std::pair<int, vtkIdType>>> wanted; // id -> (asker, slot)
+  for (int r = 0; r < processes; ++r)
+  {
+    for (vtkIdType k = 0; r != me && k < counts[static_cast<size_t>(r)]; ++k)
+    {
+      wanted[all[static_cast<size_t>(offsets[static_cast<size_t>(r)] + k)]].emplace_back(r, k);
+    }
+  }
+  std::vector<std::vector<std::pair<vtkIdType, vtkIdType>>> answers(static_cast<size_t>(processes));
+  for (size_t p = 0; p < owned.size() && !wanted.empty(); ++p)
+  {
+    if (!owned[p])
+    {
+      continue;
+    }
+    const auto found = wanted.find(globalIds[p]);
+    if (found != wanted.end())
+    {
+      for (const auto& asker : found->second)
+      {
+        answers[static_cast<size_t>(asker.first)].emplace_back(asker.second, static_cast<vtkIdType>(p));
+      }
+    }
+  }
+  return answers;
+}
+}
+
 void PointExchange::Setup(vtkMultiProcessController* controller, const vtkIdType* globalIds,
   const std::vector<char>& owned, const std::vector<char>& needed)
 {
@@ -654,33 +693,7 @@ void PointExchange::Setup(vtkMultiProcessController* controller, const vtkIdType
   std::vector<vtkIdType> counts, offsets;
   const std::vector<vtkIdType> all = AllGather(controller, neededGlobal, counts, offsets);
 
-  // Answer the needs this process owns: which local points, at which slots of
-  // the asker's list. The asked ids (a halo) go into a table, which the owned
-  // points are looked up in (a table of every owned point would be a piece).
-  std::unordered_map<vtkIdType, std::vector<std::pair<int, vtkIdType>>> wanted; // id -> (asker, slot)
-  for (int r = 0; r < processes; ++r)
-  {
-    for (vtkIdType k = 0; r != me && k < counts[static_cast<size_t>(r)]; ++k)
-    {
-      wanted[all[static_cast<size_t>(offsets[static_cast<size_t>(r)] + k)]].emplace_back(r, k);
-    }
-  }
-  std::vector<std::vector<std::pair<vtkIdType, vtkIdType>>> answers(static_cast<size_t>(processes)); // (slot, point)
-  for (size_t p = 0; p < owned.size() && !wanted.empty(); ++p)
-  {
-    if (!owned[p])
-    {
-      continue;
-    }
-    const auto found = wanted.find(globalIds[p]);
-    if (found != wanted.end())
-    {
-      for (const auto& asker : found->second)
-      {
-        answers[static_cast<size_t>(asker.first)].emplace_back(asker.second, static_cast<vtkIdType>(p));
-      }
-    }
-  }
+  auto answers = OwnedAnswers(me, processes, all, counts, offsets, globalIds, owned);
   this->SendPoints.assign(static_cast<size_t>(processes), {});
   this->ReceivePoints.assign(static_cast<size_t>(processes), {});
   std::vector<std::vector<vtkIdType>> slots(static_cast<size_t>(processes));

@@ -472,6 +472,53 @@ void Renumber(shock::MeshNumbering numbering, int threads, PreparedMesh& out)
 }
 }
 
+namespace
+{
+/**
+ * The points in Morton order, on a grid that spans the triangles' points: a
+ * point no triangle uses (an isolated point far away) is clamped to its
+ * border, not allowed to stretch the grid until the mesh fills one cell.
+ */
+shock::MeshNumbering MortonNumbering(const Triangles& triangles, int threads)
+{
+  const shock::ValueVector& points = triangles.points;
+  const auto numberOfPoints = static_cast<std::int64_t>(points.size() / 3);
+  std::vector<char> used(static_cast<size_t>(numberOfPoints), 0);
+  for (const auto id : triangles.triangles)
+  {
+    used[static_cast<size_t>(id)] = 1;
+  }
+  const bool allUsed = std::all_of(used.begin(), used.end(), [](char u) { return u != 0; });
+  std::array<double, 6> box{ std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity() };
+  for (std::int64_t p = 0; p < numberOfPoints && !allUsed; ++p)
+  {
+    for (int a = 0; a < 3 && used[static_cast<size_t>(p)]; ++a)
+    {
+      box[2 * a] = std::min(box[2 * a], points[static_cast<size_t>(3 * p + a)]);
+      box[2 * a + 1] = std::max(box[2 * a + 1], points[static_cast<size_t>(3 * p + a)]);
+    }
+  }
+  return shock::MortonOrder(
+    numberOfPoints, points.data(), threads, allUsed || triangles.triangles.empty() ? nullptr : box.data());
+}
+
+/// Coincident points (found through the Morton order) become one: the triangles use each group's representative.
+void MergeCoincidentPoints(const shock::MeshNumbering& numbering, int threads, PreparedMesh& out)
+{
+  out.representative = shock::CoincidentPoints(numbering, out.triangles.points.data(), threads);
+  shock::IdVector& ids = out.triangles.triangles;
+  const auto count = static_cast<std::int64_t>(ids.size());
+  shock::ParallelFor(count, shock::ThreadsForWork(threads, count), [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i)
+    {
+      ids[static_cast<size_t>(i)] = out.representative[static_cast<size_t>(ids[static_cast<size_t>(i)])];
+    }
+  });
+}
+}
+
 bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, PreparedMesh& out,
   std::string& error, double unit, bool localityOrder)
 {
@@ -511,40 +558,11 @@ bool PrepareMesh(vtkPolyData* input, bool mergeCoincidentPoints, int threads, Pr
   vtkLogStartScope(TRACE, "shock: mesh: locality order");
   if (localityOrder || mergeCoincidentPoints)
   {
-    // The grid spans the triangles' points: a point no triangle uses (an
-    // isolated point far away) is clamped to its border, not allowed to
-    // stretch the grid until the mesh fills one cell.
-    std::vector<char> used(static_cast<size_t>(numberOfPoints), 0);
-    for (const auto id : out.triangles.triangles)
-    {
-      used[static_cast<size_t>(id)] = 1;
-    }
-    const bool allUsed = std::all_of(used.begin(), used.end(), [](char u) { return u != 0; });
-    std::array<double, 6> box{ std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity() };
-    for (std::int64_t p = 0; p < numberOfPoints && !allUsed; ++p)
-    {
-      for (int a = 0; a < 3 && used[static_cast<size_t>(p)]; ++a)
-      {
-        box[2 * a] = std::min(box[2 * a], points[static_cast<size_t>(3 * p + a)]);
-        box[2 * a + 1] = std::max(box[2 * a + 1], points[static_cast<size_t>(3 * p + a)]);
-      }
-    }
-    numbering = shock::MortonOrder(
-      numberOfPoints, points.data(), threads, allUsed || out.triangles.triangles.empty() ? nullptr : box.data());
+    numbering = MortonNumbering(out.triangles, threads);
   }
   if (mergeCoincidentPoints)
   {
-    out.representative = shock::CoincidentPoints(numbering, points.data(), threads);
-    shock::IdVector& ids = out.triangles.triangles;
-    const auto count = static_cast<std::int64_t>(ids.size());
-    shock::ParallelFor(count, shock::ThreadsForWork(threads, count), [&](std::int64_t begin, std::int64_t end) {
-      for (std::int64_t i = begin; i < end; ++i)
-      {
-        ids[static_cast<size_t>(i)] = out.representative[static_cast<size_t>(ids[static_cast<size_t>(i)])];
-      }
-    });
+    MergeCoincidentPoints(numbering, threads, out);
   }
   if (localityOrder)
   {

@@ -124,13 +124,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     output->Initialize();
     return 1; // replicated data: process 0 filters it once
   }
-  // Normalise like the whole surface: data range and mean edge length over all
-  // pieces, lengths in the unit of the whole surface (collective).
-  vtkLogStartScope(TRACE, "shock: global scales");
-  this->ParallelValueScale = this->GlobalValueScale(piece.controller, inputVector);
-  const double unit = ShockPolyDataInternals::MeshUnit(piece.controller, piece.work, this->NumberOfThreads);
-  this->ParallelLengthScale = this->GlobalMeanEdgeLength(piece.controller, piece.work) / (unit > 0.0 ? unit : 1.0);
-  vtkLogEndScope("shock: global scales");
+  const double unit = this->GlobalScales(piece.controller, piece.work, inputVector);
   if (input->GetNumberOfPoints() == 0)
   {
     output->ShallowCopy(input);
@@ -220,6 +214,16 @@ bool TriangleEdgeSums(vtkPolyData* piece, double sums[2])
   }
   return true;
 }
+}
+
+double vtkPolyDataShockAdvectionFilter::GlobalScales(
+  vtkMultiProcessController* controller, vtkPolyData* piece, vtkInformationVector** inputVector)
+{
+  vtkLogScopeF(TRACE, "shock: global scales");
+  this->ParallelValueScale = this->GlobalValueScale(controller, inputVector);
+  const double unit = ShockPolyDataInternals::MeshUnit(controller, piece, this->NumberOfThreads);
+  this->ParallelLengthScale = this->GlobalMeanEdgeLength(controller, piece) / (unit > 0.0 ? unit : 1.0);
+  return unit;
 }
 
 double vtkPolyDataShockAdvectionFilter::GlobalMeanEdgeLength(

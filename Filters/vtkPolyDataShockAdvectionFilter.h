@@ -119,6 +119,14 @@ protected:
   int RequestDataObject(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
+  /**
+   * Normalise like the whole surface: data range and mean edge length over
+   * all pieces (ParallelValueScale, ParallelLengthScale), lengths in the unit
+   * of the whole surface, returned (see ShockPolyDataInternals::MeshUnit).
+   * Collective.
+   */
+  double GlobalScales(vtkMultiProcessController* controller, vtkPolyData* piece, vtkInformationVector** inputVector);
+
   /// Mean edge length over the cells all pieces own (collective; 0 without a controller).
   double GlobalMeanEdgeLength(vtkMultiProcessController* controller, vtkPolyData* piece);
 
