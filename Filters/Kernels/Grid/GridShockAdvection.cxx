@@ -62,9 +62,149 @@ SampleWriter BufferWriter(double* buffer, int C)
 }
 
 /**
- * The grid run on a signal stored as T (float, double or 8-bit). The updates before the
- * last (Composed and Naive flows) keep their results in double buffers; the
- * last update hands its results to `output`.
+ * The flow updates of one run (Appendix A: the flow, then AdvectVertices, per
+ * update). A Fixed flow has one update; the Composed and Naive flows keep the
+ * results of the updates before the last in double buffers, and the last
+ * update hands its results to the run's output.
+ */
+template <int D, typename T>
+class FlowUpdates
+{
+public:
+  FlowUpdates(const AdvectionContext<D>& ctx, FlowComputation<D>& flow, const GridShape& shape, const T* input,
+    const AdvectionParameters& p, double range, const CarriedSignal* carried, GridFlowFields* fields)
+    : Ctx(ctx)
+    , Flow(flow)
+    , Input(input)
+    , P(p)
+    , Range(range)
+    , Carried(carried)
+    , Fields(fields)
+    , Naive(p.flowMode == FlowMode::Naive)
+    , Updates(p.flowMode == FlowMode::Fixed ? 1 : std::max(1, p.flowUpdates))
+    , StepTime(p.time / Updates)
+    , Levels(PyramidShapes(shape, p.hierarchyLevels))
+  {
+    const std::int64_t count = ctx.L.numSamples * ctx.C;
+    if (p.time > 0.0 && this->Updates > 1)
+    {
+      this->Work[0] = AllocateLargeArray<double>(count);
+      if (this->Naive && this->Updates > 2)
+      {
+        this->Work[1] = AllocateLargeArray<double>(count);
+      }
+    }
+    ctx.report.hierarchyLevels = static_cast<int>(this->Levels.size());
+    // Stored trace positions: the Composed flow's, and the coarse-to-fine traces'.
+    if (p.time > 0.0 && (p.flowMode == FlowMode::Composed || this->Levels.size() > 1))
+    {
+      this->Positions = InitialTracePositions<D>(ctx.L, ctx.threads);
+    }
+  }
+
+  /// Every update in turn, the last into `output`; false when aborted.
+  bool Run(const SampleWriter& output)
+  {
+    for (int k = 0; k < this->Updates; ++k)
+    {
+      const bool last = k == this->Updates - 1;
+      this->WithSignal([&](auto signal) {
+        ComputeFlow<D>(this->Ctx.L, this->Flow, signal, this->Range, last, this->Fields, this->Ctx.report);
+      });
+      const double progressStart = (k + 0.1) / this->Updates;
+      if (this->Ctx.progress && !this->Ctx.progress(progressStart))
+      {
+        return false;
+      }
+      if (!(this->P.time > 0.0))
+      {
+        continue; // t = 0 gives the input, exactly (the flow fields may still be wanted)
+      }
+      if (this->Levels.size() > 1 && !this->TraceCoarseLevels(k, progressStart))
+      {
+        return false;
+      }
+      // Fixed and Composed flows sample the input (Composed from the composed
+      // positions, its result feeding the next flow); Naive resamples the last result.
+      double* buffer = last ? nullptr : this->Work[this->Naive ? k % 2 : 0].get();
+      if (!this->Advect(buffer ? BufferWriter(buffer, this->Ctx.C) : output, progressStart))
+      {
+        return false;
+      }
+      this->Previous = buffer;
+    }
+    return true;
+  }
+
+private:
+  /// Calls `step` with the signal of this update: the input (T) or the last result (double).
+  template <typename Step>
+  void WithSignal(Step&& step)
+  {
+    if (this->Previous)
+    {
+      step(this->Previous);
+    }
+    else
+    {
+      step(this->Input);
+    }
+  }
+
+  /// Coarse-to-fine (GridHierarchy.h): the traces cross the coarser levels first;
+  /// a Naive step starts them afresh, as it does without levels.
+  bool TraceCoarseLevels(int k, double progressStart)
+  {
+    if (this->Naive && k > 0)
+    {
+      this->Positions = InitialTracePositions<D>(this->Ctx.L, this->Ctx.threads);
+    }
+    bool completed = false;
+    this->WithSignal([&](auto signal) {
+      completed = TraceThroughCoarseLevels<D>(this->Levels, this->Ctx.C, signal, this->Range, this->Ctx.valid,
+        this->P, this->StepTime, this->Positions.get(), this->Ctx.report, this->Ctx.progress, progressStart);
+    });
+    return completed;
+  }
+
+  /// The advection of this update's source (the input, the carried signal, or the Naive flow's last result).
+  bool Advect(const SampleWriter& target, double progressStart)
+  {
+    const double span = 0.9 / this->Updates;
+    float* positions = this->Positions.get();
+    if (this->Carried)
+    {
+      return AdvectUpdate<D>(this->Ctx, this->Flow, this->P, this->StepTime, this->Carried->values, target,
+        positions, progressStart, span);
+    }
+    if (this->Naive && this->Previous)
+    {
+      return AdvectUpdate<D>(
+        this->Ctx, this->Flow, this->P, this->StepTime, this->Previous, target, positions, progressStart, span);
+    }
+    return AdvectUpdate<D>(
+      this->Ctx, this->Flow, this->P, this->StepTime, this->Input, target, positions, progressStart, span);
+  }
+
+  const AdvectionContext<D>& Ctx;
+  FlowComputation<D>& Flow;
+  const T* Input;
+  const AdvectionParameters& P;
+  const double Range;
+  const CarriedSignal* Carried;
+  GridFlowFields* Fields;
+  const bool Naive;
+  const int Updates;
+  const double StepTime;
+  const std::vector<GridShape> Levels;
+  std::array<LargeArray<double>, 2> Work;
+  LargeArray<float> Positions;
+  const double* Previous = nullptr; ///< the last update's result; null: the input
+};
+
+/**
+ * The grid run on a signal stored as T (float, double or 8-bit): the signal's
+ * range, the masks of its finite samples and faces, then the flow updates.
  */
 template <int D, typename T>
 Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter& output,
@@ -73,8 +213,6 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
 {
   const Lattice<D> L(shape);
   const int threads = ThreadsForWork(p.numberOfThreads, L.numSamples);
-  const std::int64_t count = L.numSamples * C;
-
   const SignalRange scan = ScanSignal(L.numSamples, C, input, threads);
   const double range = p.valueScale > 0.0 ? p.valueScale : scan.high - scan.low;
   if (range == std::numeric_limits<double>::infinity())
@@ -101,99 +239,17 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
     writeUnchanged();
     return {}; // constant (or entirely non-finite) signal: no flow
   }
-
   const ValidityMasks<D> masks(L, C, input, scan.allFinite, threads);
-  const unsigned char* validSample = masks.Samples();
-
-  // t = 0 gives the input, exactly (the flow fields may still be wanted).
-  const bool advect = p.time > 0.0;
-  const bool naive = p.flowMode == FlowMode::Naive;
-  const int updates = p.flowMode == FlowMode::Fixed ? 1 : std::max(1, p.flowUpdates);
-  const double stepTime = p.time / updates;
-  // Results of the updates before the last: the Composed flow's feed the next
-  // flow; the Naive flow's are also resampled, alternating between two buffers.
-  std::array<LargeArray<double>, 2> work;
-  if (advect && updates > 1)
-  {
-    work[0] = AllocateLargeArray<double>(count);
-    if (naive && updates > 2)
-    {
-      work[1] = AllocateLargeArray<double>(count);
-    }
-  }
-  // Stored trace positions: the Composed flow's, and the coarse-to-fine traces'.
-  const std::vector<GridShape> levels = PyramidShapes(shape, p.hierarchyLevels);
-  report.hierarchyLevels = static_cast<int>(levels.size());
-  LargeArray<float> positions;
-  if (advect && (p.flowMode == FlowMode::Composed || levels.size() > 1))
-  {
-    positions = InitialTracePositions<D>(L, threads);
-  }
-  FlowComputation<D> flow(L, C, p.smoothingPasses, validSample, masks.Faces(), threads);
+  FlowComputation<D> flow(L, C, p.smoothingPasses, masks.Samples(), masks.Faces(), threads);
   if (fields)
   {
     flow.KeepPotential();
   }
-  const AdvectionContext<D> ctx{ L, carried ? carried->components : C, threads, p.sampling,
-    validSample, progress, report };
-
-  const double* previous = nullptr; // the last update's result; null: the input
-  // Calls `step` with the signal of this update: the input (T) or the last result (double).
-  const auto withSignal = [&](auto&& step) { return previous ? step(previous) : step(input); };
-  for (int k = 0; k < updates; ++k)
-  {
-    const bool last = k == updates - 1;
-    withSignal([&](auto signal) { ComputeFlow<D>(L, flow, signal, range, last, fields, report); });
-    const double progressStart = (k + 0.1) / updates;
-    if (progress && !progress(progressStart))
-    {
-      report.aborted = true;
-      break;
-    }
-    if (!advect)
-    {
-      continue;
-    }
-    if (levels.size() > 1)
-    {
-      // Coarse-to-fine (GridHierarchy.h): the traces cross the coarser levels first;
-      // a Naive step starts them afresh, as it does without levels.
-      if (naive && k > 0)
-      {
-        positions = InitialTracePositions<D>(L, threads);
-      }
-      const bool completed = withSignal([&](auto signal) {
-        return TraceThroughCoarseLevels<D>(levels, C, signal, range, validSample, p, stepTime,
-          positions.get(), report, progress, progressStart);
-      });
-      if (!completed)
-      {
-        report.aborted = true;
-        break;
-      }
-    }
-
-    // Fixed and Composed flows sample the input (Composed from the composed
-    // positions, its result feeding the next flow); Naive resamples the last result.
-    double* buffer = last ? nullptr : work[naive ? k % 2 : 0].get();
-    const SampleWriter target = buffer ? BufferWriter(buffer, C) : output;
-    const bool completed = carried
-      ? AdvectUpdate<D>(ctx, flow, p, stepTime, carried->values, target, positions.get(),
-          progressStart, 0.9 / updates)
-      : naive && previous
-      ? AdvectUpdate<D>(ctx, flow, p, stepTime, previous, target, positions.get(), progressStart,
-          0.9 / updates)
-      : AdvectUpdate<D>(ctx, flow, p, stepTime, input, target, positions.get(), progressStart,
-          0.9 / updates);
-    if (!completed)
-    {
-      report.aborted = true;
-      break;
-    }
-    previous = buffer;
-  }
-
-  if (report.aborted || !advect)
+  const AdvectionContext<D> ctx{ L, carried ? carried->components : C, threads, p.sampling, masks.Samples(),
+    progress, report };
+  FlowUpdates<D, T> updates(ctx, flow, shape, input, p, range, carried, fields);
+  report.aborted = !updates.Run(output);
+  if (report.aborted || !(p.time > 0.0))
   {
     writeUnchanged();
   }
