@@ -75,17 +75,6 @@ struct VertexAdvection
     const Lattice<D>& L = this->ctx.L;
     const int C = this->ctx.C;
     const unsigned char* valid = this->ctx.valid;
-    constexpr int Corners = Lattice<D>::Corners;
-    using Hood = Neighbourhood<D>;
-    const Hood& hood = this->hood;
-    const RowBlocks<D>& blocks = this->blocks;
-    const GridTracer<D>& tracer = this->tracer;
-    const double time = this->time;
-    const T* source = this->source;
-    const bool shortRoad = this->shortRoad;
-    const bool withinFirst = this->withinFirst;
-    const std::int64_t lastLower = this->lastLower;
-    float* positions = this->positions;
     const bool vectorReads = Wide && D == 2 && std::is_same_v<T, unsigned char> && (C == 3 || C == 4);
     // The results of one block, handed to `out` at its end.
     std::vector<double> row(static_cast<size_t>(BlockLength * C));
@@ -93,13 +82,13 @@ struct VertexAdvection
     for (std::int64_t k, end; items.Next(k, end); items.Done(k, end))
     {
       std::array<std::int64_t, D> i;
-      const std::int64_t length = blocks.Get(k, i);
+      const std::int64_t length = this->blocks.Get(k, i);
       const std::int64_t x0 = i[0];
       const std::int64_t s0 = L.SampleIndex(i);
       const AdjacentFaces<D> faces(L, i);
       // Interior rows (all neighbours along the other axes exist) take the short road
       // between x = 1 and n - 2.
-      bool interiorRow = shortRoad;
+      bool interiorRow = this->shortRoad;
       for (int d = 1; d < D; ++d)
       {
         interiorRow = interiorRow && i[d] >= 1 && i[d] + 1 < L.n[d];
@@ -111,74 +100,112 @@ struct VertexAdvection
         double* result = row.data() + j * C;
         if (valid && !valid[s])
         {
-          std::copy(source + s * C, source + (s + 1) * C, result);
-          continue;
+          std::copy(this->source + s * C, this->source + (s + 1) * C, result);
         }
-        if (interiorRow && i[0] >= 1 && i[0] + 1 < L.n[0])
+        else if (interiorRow && i[0] >= 1 && i[0] + 1 < L.n[0])
         {
-          std::array<double, D> ends[Corners]; // of the traces that leave their faces
-          if (!withinFirst)
+          if (this->withinFirst)
           {
-            // Images at large t: every trace through the tracer, no neighbourhood.
-            std::array<double, D> at;
-            for (int d = 0; d < D; ++d)
-            {
-              at[d] = static_cast<double>(i[d]);
-            }
-            // Unrolled: each start's offsets are constants.
-#pragma GCC unroll 8
-            for (int b = 0; b < Corners; ++b)
-            {
-              TraceFromSample<D, Wide>(tracer, time, i, at, b, faces.Face(i[0], b), ends[b], steps, truncated);
-            }
-            CombineSampleReads<D, T, Wide, false>(
-              vectorReads, lastLower, L, hood, source, s, C, nullptr, ends, Corners, result);
-            continue;
-          }
-          double weights[Hood::Size] = {};
-          int far = 0;
-          if constexpr (D == 3)
-          {
-            // Most traces stay in their faces: the loop unrolled (every
-            // neighbourhood entry a constant), the others out of line.
-#pragma GCC unroll 8
-            for (int b = 0; b < Corners; ++b)
-            {
-              const std::int64_t f = faces.Face(i[0], b);
-              if (!TraceWithinFace<D>(tracer.Velocity(f), b, time, weights))
-              {
-                TraceLeavingFaceOutOfLine<D, Wide>(tracer, time, i, b, f, ends[far++], steps, truncated);
-              }
-            }
+            this->template ShortRoad<Wide>(i, s, faces, vectorReads, result, steps, truncated);
           }
           else
           {
-            // Images at smaller t (measured: the 3D arrangement is slower here).
-            for (int b = 0; b < Corners; ++b)
-            {
-              const std::int64_t f = faces.Face(i[0], b);
-              if (!TraceWithinFace<D>(tracer.Velocity(f), b, time, weights))
-              {
-                TraceLeavingFace<D, Wide>(tracer, time, i, b, f, ends[far++], steps, truncated);
-              }
-            }
+            this->template ShortRoadAllTraced<Wide>(i, s, faces, vectorReads, result, steps, truncated);
           }
-          CombineSampleReads<D, T, Wide>(
-            vectorReads, lastLower, L, hood, source, s, C, weights, ends, far, result);
-          continue;
         }
-        // The traces' reads are gathered first, then combined per component in
-        // registers (no read-modify-write of the output per corner).
-        Stencil<D> stencil;
-        const int traces =
-          TraceSample<D, Wide>(this->ctx, tracer, time, faces, i, s, positions, stencil, steps, truncated);
-        for (int c = 0; c < C; ++c)
+        else
         {
-          result[c] = stencil.Apply(source, C, c) / traces;
+          this->template PaperPath<Wide>(i, s, faces, result, steps, truncated);
         }
       }
       this->out(s0, length, row.data());
     }
+  }
+
+  /**
+   * Appendix A for one sample, as the paper writes it (TraceSample,
+   * GridSample.h): the traces' reads are gathered first, then combined per
+   * component in registers (no read-modify-write of the output per corner).
+   */
+  template <bool Wide>
+  SHOCK_ALWAYS_INLINE void PaperPath(const std::array<std::int64_t, D>& i, std::int64_t s, const AdjacentFaces<D>& faces,
+    double* result, std::uint64_t& steps, std::uint64_t& truncated) const
+  {
+    Stencil<D> stencil;
+    const int traces =
+      TraceSample<D, Wide>(this->ctx, this->tracer, this->time, faces, i, s, this->positions, stencil, steps, truncated);
+    for (int c = 0; c < this->ctx.C; ++c)
+    {
+      result[c] = stencil.Apply(this->source, this->ctx.C, c) / traces;
+    }
+  }
+
+  /**
+   * The short road (GridShortRoad.h): the traces that stay in their start
+   * faces add their reads as weights on the sample's 3^D neighbourhood; the
+   * others go through the tracer; the reads are applied once.
+   */
+  template <bool Wide>
+  SHOCK_ALWAYS_INLINE void ShortRoad(const std::array<std::int64_t, D>& i, std::int64_t s,
+    const AdjacentFaces<D>& faces, bool vectorReads, double* result, std::uint64_t& steps,
+    std::uint64_t& truncated) const
+  {
+    constexpr int Corners = Lattice<D>::Corners;
+    std::array<double, D> ends[Corners]; // of the traces that leave their faces
+    double weights[Neighbourhood<D>::Size] = {};
+    int far = 0;
+    if constexpr (D == 3)
+    {
+      // Most traces stay in their faces: the loop unrolled (every
+      // neighbourhood entry a constant), the others out of line.
+#pragma GCC unroll 8
+      for (int b = 0; b < Corners; ++b)
+      {
+        const std::int64_t f = faces.Face(i[0], b);
+        if (!TraceWithinFace<D>(this->tracer.Velocity(f), b, this->time, weights))
+        {
+          TraceLeavingFaceOutOfLine<D, Wide>(this->tracer, this->time, i, b, f, ends[far++], steps, truncated);
+        }
+      }
+    }
+    else
+    {
+      // Images at smaller t (measured: the 3D arrangement is slower here).
+      for (int b = 0; b < Corners; ++b)
+      {
+        const std::int64_t f = faces.Face(i[0], b);
+        if (!TraceWithinFace<D>(this->tracer.Velocity(f), b, this->time, weights))
+        {
+          TraceLeavingFace<D, Wide>(this->tracer, this->time, i, b, f, ends[far++], steps, truncated);
+        }
+      }
+    }
+    CombineSampleReads<D, T, Wide>(
+      vectorReads, this->lastLower, this->ctx.L, this->hood, this->source, s, this->ctx.C, weights, ends, far, result);
+  }
+
+  /// The short road when traces seldom stay in their faces (images at large t): every trace through the tracer.
+  template <bool Wide>
+  SHOCK_ALWAYS_INLINE void ShortRoadAllTraced(const std::array<std::int64_t, D>& i, std::int64_t s,
+    const AdjacentFaces<D>& faces, bool vectorReads, double* result, std::uint64_t& steps,
+    std::uint64_t& truncated) const
+  {
+    constexpr int Corners = Lattice<D>::Corners;
+    std::array<double, D> ends[Corners];
+    std::array<double, D> at;
+    for (int d = 0; d < D; ++d)
+    {
+      at[d] = static_cast<double>(i[d]);
+    }
+    // Unrolled: each start's offsets are constants.
+#pragma GCC unroll 8
+    for (int b = 0; b < Corners; ++b)
+    {
+      TraceFromSample<D, Wide>(this->tracer, this->time, i, at, b, faces.Face(i[0], b), ends[b], steps, truncated);
+    }
+    CombineSampleReads<D, T, Wide, false>(
+      vectorReads, this->lastLower, this->ctx.L, this->hood, this->source, s, this->ctx.C, nullptr, ends, Corners,
+      result);
   }
 };
 
