@@ -45,6 +45,10 @@ struct Triangles
   shock::TriangleMeshView View() const;
 };
 
+/// Whether a cell's point ids lie in [0, numberOfPoints); else the message in `error`.
+bool IdsInRange(const char* kind, vtkIdType cellId, vtkIdType size, const vtkIdType* ids,
+  vtkIdType numberOfPoints, std::string& error);
+
 /// Fill `out` from `input`. Returns false with `error` set when the input cannot be read.
 bool ExtractTriangles(vtkPolyData* input, Triangles& out, std::string& error);
 
