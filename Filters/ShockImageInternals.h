@@ -1,0 +1,71 @@
+/**
+ * @file ShockImageInternals.h
+ * @brief The image filter's glue (private to the module): what
+ * vtkImageShockAdvectionFilter checks of an image and its array, its blanked
+ * samples, the grid the kernels see, the flow arrays, and cropping to pieces.
+ */
+#ifndef ShockImageInternals_h
+#define ShockImageInternals_h
+
+#include "GridShape.h"
+#include "GridShockAdvection.h"
+
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include <string>
+
+class vtkDataArray;
+class vtkImageData;
+class vtkInformation;
+
+namespace ShockImageInternals
+{
+/// The length of column `a` of the image's direction matrix: the scale it gives axis a.
+double AxisScale(vtkImageData* image, int a);
+
+/// "" when the direction matrix has orthogonal, non-zero, finite columns, else the message.
+std::string CheckDirection(vtkImageData* image);
+
+/// The blanking mark of samples: HIDDENCELL for cell data, HIDDENPOINT for point data.
+unsigned char HiddenMark(bool cellData);
+
+/// Whether sample `t` of `image` (points, or cells for cell data) is blanked.
+bool IsHidden(vtkImageData* image, bool cellData, vtkIdType t);
+
+/// Whether any sample of `array` on `image` is blanked (a scan of the marks only).
+bool AnyHidden(vtkImageData* image, vtkDataArray* array, bool cellData);
+
+/// A double copy of `array` with its blanked samples NaN, or nullptr when none is blanked.
+vtkSmartPointer<vtkDataArray> MaskHiddenSamples(vtkImageData* image, vtkDataArray* array, bool cellData);
+
+/// "" when `array` (of `association`) can be filtered on `image`, else the message.
+std::string CheckImageArray(vtkImageData* image, vtkDataArray* array, int association);
+
+/// The grid of the processed samples (points, or cell centres for cell data), physical spacing per axis.
+shock::GridShape SampleGrid(vtkImageData* image, bool cellData);
+
+/// Flow of the kernel (grid axes, physical lengths) in world axes.
+void ToWorldAxes(vtkImageData* image, const double* gridVector, double* world);
+
+/// A piece's cropped result into `output`: its scalars in place of `array`, the flow arrays added.
+void TakeResultArrays(vtkImageData* filtered, vtkImageData* output, vtkDataArray* array);
+
+/// Attach ShockPotential and ShockFlow to the output (see the class documentation).
+void AttachFlowArrays(vtkImageData* output, bool cellData, const shock::GridShape& grid,
+  const shock::GridFlowFields& fields);
+
+/// The request's number of pieces (1 when not set).
+int UpdatePieces(vtkInformation* info);
+
+/// The request's ghost levels (0 when not set).
+int UpdateGhostLevels(vtkInformation* info);
+
+/// Crop `image` to `target` a row at a time; false, changing nothing, when vtkImageData::Crop must do it.
+bool CropByRows(vtkImageData* image, const int target[6]);
+
+/// The extent of one piece of `extent` with `ghost` layers, split as the source splits it.
+void PieceExtent(vtkInformation* info, const int extent[6], int ghost, int piece[6]);
+}
+
+#endif
