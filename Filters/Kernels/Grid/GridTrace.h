@@ -163,7 +163,89 @@ public:
   std::int64_t TraceFaceCrossing(std::array<double, D>& q, std::array<std::int64_t, D> c,
     std::int64_t f, double t, bool& truncated) const
   {
-    return this->CrossFaces<ExitRule::Any>(q, c, f, t, truncated);
+    std::array<double, D> v;
+    this->Load(f, v);
+    if (!(this->Dot(v, v) > 0.0))
+    {
+      return 0;
+    }
+    int pinned = -1; // axis of the boundary the trace slides on; c is the lower face there
+    std::int64_t steps = 0;
+    while (t > 0.0)
+    {
+      // First boundary reached, without branches (the exit axis is not
+      // predictable): with r = 1 / v, (c + 1 - q) r is the time to the upper
+      // boundary when v > 0 and <= 0 otherwise, (c - q) r the time to the lower
+      // one when v < 0 and <= 0 otherwise; the larger is the boundary ahead.
+      // An axis without motion (r infinite) or the one slid along is never left.
+      constexpr double never = std::numeric_limits<double>::infinity();
+      std::array<double, D> te;
+      for (int d = 0; d < D; ++d)
+      {
+        const double r = 1.0 / v[d];
+        const double lower = static_cast<double>(c[d]);
+        const double ahead = std::max((lower + 1.0 - q[d]) * r, (lower - q[d]) * r);
+        te[d] = (d != pinned && std::abs(r) < never) ? ahead : never;
+      }
+      int exitAxis = 0;
+      double exitTime = te[0];
+      for (int d = 1; d < D; ++d)
+      {
+        const int earlier = te[d] < exitTime;
+        exitAxis += earlier * (d - exitAxis);
+        exitTime = std::min(exitTime, te[d]);
+      }
+      if (!(exitTime < never))
+      {
+        break; // no motion left (a sliding velocity of zero)
+      }
+      exitTime = std::max(exitTime, 0.0);
+      if (exitTime >= t)
+      {
+        for (int d = 0; d < D; ++d)
+        {
+          q[d] += v[d] * t;
+        }
+        break; // the time is used up in this face
+      }
+      for (int d = 0; d < D; ++d)
+      {
+        q[d] += v[d] * exitTime;
+      }
+      t -= exitTime;
+      const int dir = v[exitAxis] > 0.0 ? 1 : -1;
+      q[exitAxis] = static_cast<double>(dir > 0 ? c[exitAxis] + 1 : c[exitAxis]);
+      ++steps;
+      const std::int64_t next = c[exitAxis] + dir;
+      if (next < 0 || next >= L.m[exitAxis])
+      {
+        break; // grid boundary
+      }
+      if (steps >= this->MaxSteps)
+      {
+        truncated = true;
+        break;
+      }
+      const std::int64_t left = f;
+      c[exitAxis] = next;
+      f += dir * L.faceStride[exitAxis];
+
+      std::array<double, D> w;
+      if (!this->Enter(c, f, left, exitAxis, dir, pinned, v, w))
+      {
+        break; // the flow reverses, or a sliding velocity vanishes
+      }
+      if (w[exitAxis] * dir < 0.0 && exitAxis != pinned)
+      {
+        // Pushed onto an edge or corner.
+        this->ClampToGrid(q);
+        const std::int64_t face = this->FaceOf(q, c);
+        return steps + this->TraceStepped(q, c, face, t, truncated);
+      }
+      v = w;
+    }
+    this->ClampToGrid(q);
+    return steps;
   }
 
 private:
@@ -194,167 +276,152 @@ private:
     std::array<std::int64_t, D> c, std::int64_t f, double t, bool& truncated) const
   {
     static_assert(D == 2, "the planar tracer is for images");
-    return this->CrossFaces<ExitRule::Planar>(q, c, f, t, truncated);
+    const double hx = L.h2[0];
+    const double hy = L.h2[1];
+    const std::int64_t row = L.faceStride[1];
+    double vx = this->V[2 * f];
+    double vy = this->V[2 * f + 1];
+    if (!(hx * vx * vx + hy * vy * vy > 0.0))
+    {
+      return 0;
+    }
+    double x = q[0];
+    double y = q[1];
+    int pinned = -1; // axis of the boundary the trace slides on; c is the lower face there
+    std::int64_t steps = 0;
+    while (t > 0.0)
+    {
+      const double sx = std::abs(vx);
+      const double sy = std::abs(vy);
+      // The reciprocal speeds depend on the velocity alone: computed here, the
+      // divisions run while the position's distances are found.
+      const double rx = 1.0 / sx;
+      const double ry = 1.0 / sy;
+      const double cx = static_cast<double>(c[0]);
+      const double cy = static_cast<double>(c[1]);
+      const double dx = std::max((cx + static_cast<double>(vx > 0.0) - x) * std::copysign(1.0, vx), 0.0);
+      const double dy = std::max((cy + static_cast<double>(vy > 0.0) - y) * std::copysign(1.0, vy), 0.0);
+      const int axis = (vx == 0.0 || dy * sx < dx * sy) ? 1 : 0;
+      const double distance = axis ? dy : dx;
+      const double speed = axis ? sy : sx;
+      if (distance >= t * speed)
+      {
+        x += vx * t;
+        y += vy * t;
+        break; // the time is used up in this face
+      }
+      const double exitTime = std::min(distance * (axis ? ry : rx), t);
+      x += vx * exitTime;
+      y += vy * exitTime;
+      t -= exitTime;
+      ++steps;
+      const double across = axis ? vy : vx;
+      const int dir = across > 0.0 ? 1 : -1;
+      const double boundary = static_cast<double>(dir > 0 ? c[axis] + 1 : c[axis]);
+      x = axis ? x : boundary;
+      y = axis ? boundary : y;
+      const std::int64_t next = c[axis] + dir;
+      if (next < 0 || next >= L.m[axis])
+      {
+        break; // grid boundary
+      }
+      if (steps >= this->MaxSteps)
+      {
+        truncated = true;
+        break;
+      }
+      const std::int64_t left = f;
+      c[axis] = next;
+      f += axis ? dir * row : dir;
+
+      const std::array<double, D> v{ vx, vy };
+      std::array<double, D> w;
+      const Entry entry = this->EnterFace(c, f, left, axis, dir, pinned, v, w);
+      if (entry == Entry::Stop)
+      {
+        break;
+      }
+      if (entry == Entry::Corner)
+      {
+        q = { x, y };
+        return steps + this->TraceSteppedFrom(q, c, t, truncated);
+      }
+      vx = w[0];
+      vy = w[1];
+    }
+    q = { x, y };
+    this->ClampToGrid(q);
+    return steps;
   }
 
   /**
-   * TraceFaceCrossing in a volume (D = 3): the time to the boundary ahead
-   * along each axis is the distance to it times the reciprocal speed, computed
-   * from the velocity alone (its division overlaps the position's chain of
-   * operations); an axis without motion, or the one slid along, has an
-   * infinite time and is never left.
+   * TraceFaceCrossing in a volume (D = 3), the same rules with the position and
+   * velocity in scalars: the time to the boundary ahead along each axis is the
+   * distance to it times the reciprocal speed, computed from the velocity alone
+   * (its division overlaps the position's chain of operations); an axis without
+   * motion, or the one slid along, has an infinite time and is never left.
    */
   std::int64_t TraceFaceCrossingSpatial(std::array<double, D>& q, std::array<std::int64_t, D> c,
     std::int64_t f, double t, bool& truncated) const
   {
     static_assert(D == 3, "the spatial tracer is for volumes");
-    return this->CrossFaces<ExitRule::Spatial>(q, c, f, t, truncated);
-  }
-
-  /// How a face-crossing trace finds where it leaves its face (the same boundary, to rounding).
-  enum class ExitRule
-  {
-    Any,     ///< any D: the times to both boundaries along each axis, the larger ahead
-    Planar,  ///< images: distances compared without dividing
-    Spatial  ///< volumes: distances times reciprocal speeds
-  };
-  /// Where the trace goes in its face.
-  enum class Leave
-  {
-    Across, ///< it reaches the boundary along `axis` after `time`
-    Stays,  ///< the time is used up in this face
-    Stuck   ///< no motion left (a sliding velocity of zero)
-  };
-
-  /**
-   * The exit from face c of a trace at q with velocity v and time t left: the
-   * first boundary reached (`axis`, after `time`), without branches where the
-   * exit axis is not predictable. An axis without motion, or the one slid
-   * along (`pinned`, where v is 0), is never left.
-   */
-  template <ExitRule Rule>
-  SHOCK_ALWAYS_INLINE Leave Exit(const std::array<double, D>& q, const std::array<double, D>& v,
-    const std::array<std::int64_t, D>& c, int pinned, double t, int& axis, double& time) const
-  {
     constexpr double never = std::numeric_limits<double>::infinity();
-    if constexpr (Rule == ExitRule::Planar)
-    {
-      // With d the distance to the boundary ahead along an axis and |v| the
-      // speed along it, the trace leaves along y first when d_y |v_x| < d_x |v_y|,
-      // and it stays in its face when d >= t |v| along that axis; the one
-      // division, d / |v|, is the time of a crossing.
-      const double sx = std::abs(v[0]);
-      const double sy = std::abs(v[1]);
-      const double rx = 1.0 / sx;
-      const double ry = 1.0 / sy;
-      const double dx = std::max((static_cast<double>(c[0]) + static_cast<double>(v[0] > 0.0) - q[0]) *
-          std::copysign(1.0, v[0]), 0.0);
-      const double dy = std::max((static_cast<double>(c[1]) + static_cast<double>(v[1] > 0.0) - q[1]) *
-          std::copysign(1.0, v[1]), 0.0);
-      axis = (v[0] == 0.0 || dy * sx < dx * sy) ? 1 : 0;
-      const double distance = axis ? dy : dx;
-      if (distance >= t * (axis ? sy : sx))
-      {
-        return Leave::Stays;
-      }
-      time = std::min(distance * (axis ? ry : rx), t);
-      return Leave::Across;
-    }
-    else
-    {
-      std::array<double, D> te;
-      for (int d = 0; d < D; ++d)
-      {
-        if constexpr (Rule == ExitRule::Spatial)
-        {
-          const double r = 1.0 / std::abs(v[d]);
-          const double distance = std::max((static_cast<double>(c[d]) + static_cast<double>(v[d] > 0.0) - q[d]) *
-              std::copysign(1.0, v[d]), 0.0);
-          te[d] = v[d] == 0.0 ? never : distance * r;
-        }
-        else
-        {
-          // With r = 1 / v, (c + 1 - q) r is the time to the upper boundary when
-          // v > 0 and <= 0 otherwise, (c - q) r the time to the lower one when
-          // v < 0 and <= 0 otherwise; the larger is the boundary ahead.
-          const double r = 1.0 / v[d];
-          const double lower = static_cast<double>(c[d]);
-          const double ahead = std::max((lower + 1.0 - q[d]) * r, (lower - q[d]) * r);
-          te[d] = (d != pinned && std::abs(r) < never) ? ahead : never;
-        }
-      }
-      // The first boundary reached; on a tie, the lower axis.
-      axis = 0;
-      time = te[0];
-      for (int d = 1; d < D; ++d)
-      {
-        const int earlier = te[d] < time;
-        axis += earlier * (d - axis);
-        time = std::min(time, te[d]);
-      }
-      if (!(time < never))
-      {
-        return Leave::Stuck;
-      }
-      if constexpr (Rule == ExitRule::Any)
-      {
-        time = std::max(time, 0.0);
-      }
-      return time >= t ? Leave::Stays : Leave::Across;
-    }
-  }
-
-  /**
-   * The face-crossing trace, one loop for every D: straight to the boundary
-   * Exit finds, across it (the grid's boundary and the step cap stop it), then
-   * into the neighbouring face as EnterFace decides (on, sliding, stopped, or
-   * stepped from an edge or corner). The position and velocity stay in
-   * registers: the boundary's coordinate is set by selects, not an indexed store.
-   */
-  template <ExitRule Rule>
-  SHOCK_ALWAYS_INLINE std::int64_t CrossFaces(std::array<double, D>& q, std::array<std::int64_t, D> c,
-    std::int64_t f, double t, bool& truncated) const
-  {
-    std::array<double, D> v;
-    this->Load(f, v);
-    if (!(this->Dot(v, v) > 0.0))
+    const double hx = L.h2[0];
+    const double hy = L.h2[1];
+    const double hz = L.h2[2];
+    double vx = this->V[3 * f];
+    double vy = this->V[3 * f + 1];
+    double vz = this->V[3 * f + 2];
+    if (!(hx * vx * vx + hy * vy * vy + hz * vz * vz > 0.0))
     {
       return 0;
     }
-    std::array<double, D> x = q;
+    double x = q[0];
+    double y = q[1];
+    double z = q[2];
     int pinned = -1; // axis of the boundary the trace slides on; c is the lower face there
     std::int64_t steps = 0;
     while (t > 0.0)
     {
-      int axis = 0;
-      double exitTime = 0.0;
-      const Leave leave = this->Exit<Rule>(x, v, c, pinned, t, axis, exitTime);
-      if (leave == Leave::Stuck)
+      const double rx = 1.0 / std::abs(vx);
+      const double ry = 1.0 / std::abs(vy);
+      const double rz = 1.0 / std::abs(vz);
+      const double cx = static_cast<double>(c[0]);
+      const double cy = static_cast<double>(c[1]);
+      const double cz = static_cast<double>(c[2]);
+      const double dx = std::max((cx + static_cast<double>(vx > 0.0) - x) * std::copysign(1.0, vx), 0.0);
+      const double dy = std::max((cy + static_cast<double>(vy > 0.0) - y) * std::copysign(1.0, vy), 0.0);
+      const double dz = std::max((cz + static_cast<double>(vz > 0.0) - z) * std::copysign(1.0, vz), 0.0);
+      const double tx = vx == 0.0 ? never : dx * rx;
+      const double ty = vy == 0.0 ? never : dy * ry;
+      const double tz = vz == 0.0 ? never : dz * rz;
+      // The first boundary reached; on a tie, the lower axis (as the general tracer).
+      int axis = ty < tx ? 1 : 0;
+      double exitTime = std::min(tx, ty);
+      axis = tz < exitTime ? 2 : axis;
+      exitTime = std::min(exitTime, tz);
+      if (!(exitTime < never))
       {
-        break;
+        break; // no motion left (a sliding velocity of zero)
       }
-      const double move = leave == Leave::Stays ? t : exitTime;
-      for (int d = 0; d < D; ++d)
+      if (exitTime >= t)
       {
-        x[d] += v[d] * move;
+        x += vx * t;
+        y += vy * t;
+        z += vz * t;
+        break; // the time is used up in this face
       }
-      if (leave == Leave::Stays)
-      {
-        break;
-      }
+      x += vx * exitTime;
+      y += vy * exitTime;
+      z += vz * exitTime;
       t -= exitTime;
       ++steps;
-      double across = v[0];
-      for (int d = 1; d < D; ++d)
-      {
-        across = axis == d ? v[d] : across;
-      }
+      const double across = axis == 0 ? vx : (axis == 1 ? vy : vz);
       const int dir = across > 0.0 ? 1 : -1;
       const double boundary = static_cast<double>(dir > 0 ? c[axis] + 1 : c[axis]);
-      for (int d = 0; d < D; ++d)
-      {
-        x[d] = axis == d ? boundary : x[d];
-      }
+      x = axis == 0 ? boundary : x;
+      y = axis == 1 ? boundary : y;
+      z = axis == 2 ? boundary : z;
       const std::int64_t next = c[axis] + dir;
       if (next < 0 || next >= L.m[axis])
       {
@@ -368,6 +435,8 @@ private:
       const std::int64_t left = f;
       c[axis] = next;
       f += dir * L.faceStride[axis];
+
+      const std::array<double, D> v{ vx, vy, vz };
       std::array<double, D> w;
       const Entry entry = this->EnterFace(c, f, left, axis, dir, pinned, v, w);
       if (entry == Entry::Stop)
@@ -376,12 +445,14 @@ private:
       }
       if (entry == Entry::Corner)
       {
-        q = x;
+        q = { x, y, z };
         return steps + this->TraceSteppedFrom(q, c, t, truncated);
       }
-      v = w;
+      vx = w[0];
+      vy = w[1];
+      vz = w[2];
     }
-    q = x;
+    q = { x, y, z };
     this->ClampToGrid(q);
     return steps;
   }
