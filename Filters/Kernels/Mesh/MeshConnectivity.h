@@ -141,6 +141,16 @@ private:
   void BuildPointTriangles(int threads);
   void BuildOneRingAndNeighbours(int threads);
 
+  // The steps of BuildSplit, in order: the check (else it falls back to
+  // Build), then the lists of the copies from those of the source.
+  static bool IsSplitOf(const MeshConnectivity& source, const std::vector<std::int64_t>& original,
+    const IdVector& triangles, int team);
+  struct SplitCopies; // the source and its points' copies (MeshConnectivity.cxx)
+  void SplitPointTriangles(const SplitCopies& split);
+  void SplitNeighbours(const SplitCopies& split);
+  void CountSplitOneRings(const SplitCopies& split, std::vector<unsigned char>& same);
+  std::int64_t FillSplitOneRings(const SplitCopies& split, const std::vector<unsigned char>& same);
+
   std::int64_t numberOfPoints = 0;
   std::int64_t numberOfEdges = 0;
   bool derived = false;
