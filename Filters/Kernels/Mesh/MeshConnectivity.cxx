@@ -106,6 +106,110 @@ void MeshConnectivity::BuildPointTriangles(int threads)
   }
 }
 
+namespace
+{
+/// Prefetch the corners of the triangles around point p (their loads, scattered over the
+/// triangle array, dominate the pass).
+SHOCK_ALWAYS_INLINE void PrefetchCorners(
+  const std::int64_t* corners, const std::int64_t* items, const std::int64_t* offsets, std::int64_t p)
+{
+  for (std::int64_t k = offsets[p]; k < offsets[p + 1]; ++k)
+  {
+    __builtin_prefetch(corners + 3 * items[k]);
+  }
+}
+
+/**
+ * The edges of the triangles around p that end at p: their other ends, and
+ * 4 x triangle + edge index (two arrays of single words: a 16-byte load of a
+ * just stored pair would not be forwarded from the store buffer).
+ */
+SHOCK_ALWAYS_INLINE void EdgesEndingAt(const std::int64_t* corners, const std::int64_t* items,
+  const std::int64_t* offsets, std::int64_t p, std::vector<std::int64_t>& other,
+  std::vector<std::int64_t>& slot)
+{
+  other.clear();
+  slot.clear();
+  for (std::int64_t k = offsets[p]; k < offsets[p + 1]; ++k)
+  {
+    const std::int64_t f = items[k];
+    const std::int64_t* t = corners + 3 * f;
+    for (int e = 0; e < 3; ++e)
+    {
+      const std::int64_t a = t[e];
+      const std::int64_t b = t[e == 2 ? 0 : e + 1];
+      if (a == p || b == p)
+      {
+        other.push_back(a == p ? b : a);
+        slot.push_back(4 * f + e);
+      }
+    }
+  }
+}
+
+/// Insertion sort of the edges by (other end, slot): a few edges per point.
+SHOCK_ALWAYS_INLINE void SortByOtherEnd(std::vector<std::int64_t>& other, std::vector<std::int64_t>& slot)
+{
+  const size_t n = other.size();
+  for (size_t i = 1; i < n; ++i)
+  {
+    const std::int64_t o = other[i];
+    const std::int64_t s = slot[i];
+    size_t j = i;
+    for (; j > 0 && (o < other[j - 1] || (o == other[j - 1] && s < slot[j - 1])); --j)
+    {
+      other[j] = other[j - 1];
+      slot[j] = slot[j - 1];
+    }
+    other[j] = o;
+    slot[j] = s;
+  }
+}
+
+/**
+ * The sorted edges at p, in runs of one other end q: each q but p itself joins
+ * p's one-ring (appended to `ring`; returns how many). An edge to a larger q
+ * is seen here first: it counts in `edges`, and its triangles are joined
+ * across it when they are exactly two (else -1 in `neighbours`).
+ */
+SHOCK_ALWAYS_INLINE std::int64_t RingAndNeighboursAt(std::int64_t p,
+  const std::vector<std::int64_t>& other, const std::vector<std::int64_t>& slot,
+  std::vector<std::int64_t>& ring, std::int64_t* neighbours, std::int64_t& edges)
+{
+  const size_t n = other.size();
+  std::int64_t count = 0;
+  for (size_t i = 0; i < n;)
+  {
+    const std::int64_t q = other[i];
+    size_t j = i + 1; // [i, j): the edges from p to q
+    std::int64_t sharing = 1;
+    for (; j < n && other[j] == q; ++j)
+    {
+      sharing += (slot[j] >> 2) != (slot[j - 1] >> 2) ? 1 : 0;
+    }
+    if (q != p)
+    {
+      ring.push_back(q);
+      ++count;
+    }
+    if (q >= p) // an edge from p to p (a repeated id) joins nothing
+    {
+      edges += q > p ? 1 : 0;
+      const bool join = q > p && sharing == 2;
+      const std::int64_t low = slot[i] >> 2;
+      const std::int64_t high = slot[j - 1] >> 2;
+      for (size_t k = i; k < j; ++k)
+      {
+        const std::int64_t f = slot[k] >> 2;
+        neighbours[3 * f + (slot[k] & 3)] = join ? (f == low ? high : low) : -1;
+      }
+    }
+    i = j;
+  }
+  return count;
+}
+} // namespace
+
 /**
  * One pass over the points, each thread over a contiguous range: the edges of
  * the triangles around p that end at p, sorted by their other end (then
@@ -113,8 +217,7 @@ void MeshConnectivity::BuildPointTriangles(int threads)
  * and then copied to their place) and, for the edges whose other end is larger
  * (each edge is seen once there), the edge neighbours: the triangles that have
  * both ends join when they are exactly two. The corners of the triangles a few
- * points ahead are prefetched: their loads, scattered over the triangle array,
- * dominate the pass.
+ * points ahead are prefetched.
  */
 void MeshConnectivity::BuildOneRingAndNeighbours(int threads)
 {
@@ -145,83 +248,18 @@ void MeshConnectivity::BuildOneRingAndNeighbours(int threads)
     const std::int64_t last = PartBegin(np, size, me + 1);
     mine.reserve(static_cast<size_t>(2 * (offsets[last] - offsets[first])));
     std::int64_t* sizes = ring.offsets.data() + 1;
-    // The edge ends at p: their other ends, and 4 x triangle + edge index (two
-    // arrays of single words: a 16-byte load of a just stored pair would not be
-    // forwarded from the store buffer).
-    std::vector<std::int64_t> other;
+    std::vector<std::int64_t> other; // the edges at p (EdgesEndingAt)
     std::vector<std::int64_t> slot;
     constexpr std::int64_t Ahead = 4;
     for (std::int64_t p = first; p < last; ++p)
     {
       if (p + Ahead < last)
       {
-        for (std::int64_t k = offsets[p + Ahead]; k < offsets[p + Ahead + 1]; ++k)
-        {
-          __builtin_prefetch(corners + 3 * items[k]);
-        }
+        PrefetchCorners(corners, items, offsets, p + Ahead);
       }
-      other.clear();
-      slot.clear();
-      for (std::int64_t k = offsets[p]; k < offsets[p + 1]; ++k)
-      {
-        const std::int64_t f = items[k];
-        const std::int64_t* t = corners + 3 * f;
-        for (int e = 0; e < 3; ++e)
-        {
-          const std::int64_t a = t[e];
-          const std::int64_t b = t[e == 2 ? 0 : e + 1];
-          if (a == p || b == p)
-          {
-            other.push_back(a == p ? b : a);
-            slot.push_back(4 * f + e);
-          }
-        }
-      }
-      // Insertion sort by (other end, slot): a few edges per point.
-      const size_t n = other.size();
-      for (size_t i = 1; i < n; ++i)
-      {
-        const std::int64_t o = other[i];
-        const std::int64_t s = slot[i];
-        size_t j = i;
-        for (; j > 0 && (o < other[j - 1] || (o == other[j - 1] && s < slot[j - 1])); --j)
-        {
-          other[j] = other[j - 1];
-          slot[j] = slot[j - 1];
-        }
-        other[j] = o;
-        slot[j] = s;
-      }
-      std::int64_t count = 0;
-      for (size_t i = 0; i < n;)
-      {
-        const std::int64_t q = other[i];
-        size_t j = i + 1; // [i, j): the edges from p to q
-        std::int64_t sharing = 1;
-        for (; j < n && other[j] == q; ++j)
-        {
-          sharing += (slot[j] >> 2) != (slot[j - 1] >> 2) ? 1 : 0;
-        }
-        if (q != p)
-        {
-          mine.push_back(q);
-          ++count;
-        }
-        if (q >= p) // an edge from p to p (a repeated id) joins nothing
-        {
-          edges += q > p ? 1 : 0;
-          const bool join = q > p && sharing == 2;
-          const std::int64_t low = slot[i] >> 2;
-          const std::int64_t high = slot[j - 1] >> 2;
-          for (size_t k = i; k < j; ++k)
-          {
-            const std::int64_t f = slot[k] >> 2;
-            neighbours[3 * f + (slot[k] & 3)] = join ? (f == low ? high : low) : -1;
-          }
-        }
-        i = j;
-      }
-      sizes[p] = count;
+      EdgesEndingAt(corners, items, offsets, p, other, slot);
+      SortByOtherEnd(other, slot);
+      sizes[p] = RingAndNeighboursAt(p, other, slot, mine, neighbours, edges);
     }
 #pragma omp barrier
 #pragma omp single
