@@ -213,42 +213,28 @@ bool AdvectStep(const MeshRun& run, MeshSteps& steps, AdvectionPass& pass, doubl
   }
 }
 
-Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* output,
-  const AdvectionParameters& p, AdvectionReport& report, MeshFlowFields* fields,
-  const ProgressFunction& progress)
+/// The output is the input: the copy when no advection pass wrote it whole.
+void KeepTheInput(const MeshRun& run, double* output)
 {
-  // Threads by work size: a small mesh is not slower on more threads.
-  MeshRun run{ mesh, signal, p, signal.components,
-    ThreadsForWork(p.numberOfThreads, std::max(mesh.NumberOfPoints(), mesh.NumberOfTriangles())) };
   const std::int64_t count = (run.CellSignal() ? run.Triangles() : run.Points()) * run.C;
-  const double* input = signal.values;
-  // The output is the input unless an advection pass writes it whole (below).
-  auto keepTheInput = [&] {
+  const double* input = run.signal.values;
 #pragma omp parallel for num_threads(run.threads) schedule(static)
-    for (std::int64_t i = 0; i < count; ++i)
-    {
-      output[i] = input[i];
-    }
-  };
-  if (fields)
+  for (std::int64_t i = 0; i < count; ++i)
   {
-    fields->potential.assign(static_cast<size_t>(run.Points()), 0.0);
-    fields->flow.assign(static_cast<size_t>(3 * run.Triangles()), 0.0);
+    output[i] = input[i];
   }
-  const auto setupStart = Clock::now();
-  if (!Prepare(run))
-  {
-    if (run.range == std::numeric_limits<double>::infinity())
-    {
-      return { ValueSpanError(run.low, run.high) };
-    }
-    keepTheInput();
-    return {};
-  }
-  report.flowSeconds += SecondsSince(setupStart);
+}
 
-  const bool advect = p.time > 0.0 || signal.sampleAtTimeZero; // t = 0: the input, exactly
-  const int updates = p.flowMode == FlowMode::Fixed ? 1 : std::max(1, p.flowUpdates);
+/**
+ * The state the updates start from (the current signal, the resampled one, the
+ * composed back-traces, the input's per-point values) and, for a cell signal,
+ * which cells have a finite value (run.cellValid).
+ */
+MeshSteps StartSteps(MeshRun& run, bool advect)
+{
+  const AdvectionParameters& p = run.p;
+  const std::int64_t count = (run.CellSignal() ? run.Triangles() : run.Points()) * run.C;
+  const double* input = run.signal.values;
   MeshSteps steps;
   // The fixed flow reads only the input: no copy of it as the current signal.
   const bool fixed = p.flowMode == FlowMode::Fixed;
@@ -259,7 +245,7 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
   steps.next.resize(p.flowMode == FlowMode::Naive ? count : 0);
   if (p.flowMode == FlowMode::Composed && advect)
   {
-    steps.positions = InitialPositions(mesh, run.CellSignal());
+    steps.positions = InitialPositions(run.mesh, run.CellSignal());
   }
   if (run.CellSignal())
   {
@@ -271,7 +257,20 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
     }
     steps.inputPoints = run.PointValues(input);
   }
+  return steps;
+}
 
+/**
+ * The flow updates, each followed by its advection pass (none when `advect`
+ * is false); sets report.aborted when the progress callback or a pass aborts.
+ */
+void RunUpdates(const MeshRun& run, MeshSteps& steps, bool advect, double* output,
+  AdvectionReport& report, MeshFlowFields* fields, const ProgressFunction& progress)
+{
+  const AdvectionParameters& p = run.p;
+  const TriangleMesh& mesh = run.mesh;
+  const bool fixed = p.flowMode == FlowMode::Fixed;
+  const int updates = fixed ? 1 : std::max(1, p.flowUpdates);
   std::vector<double> flow;
   ValueVector velocity; // written whole by every flow update
   const std::int64_t traces = run.CellSignal() ? run.Triangles()
@@ -281,7 +280,7 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
   {
     const auto flowStart = Clock::now();
     // The first update of every mode starts from the input, whose per-point values are at hand.
-    const double* current = fixed ? input : steps.current.data();
+    const double* current = fixed ? run.signal.values : steps.current.data();
     std::vector<double> potential =
       UpdateFlow(run, current, k == 0 ? &steps.inputPoints : nullptr, flow, velocity);
     report.flowSeconds += SecondsSince(flowStart);
@@ -312,10 +311,39 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
       break;
     }
   }
+}
 
+/// The run: preparation, the state of the steps, the updates, and the output.
+Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* output,
+  const AdvectionParameters& p, AdvectionReport& report, MeshFlowFields* fields,
+  const ProgressFunction& progress)
+{
+  // Threads by work size: a small mesh is not slower on more threads.
+  MeshRun run{ mesh, signal, p, signal.components,
+    ThreadsForWork(p.numberOfThreads, std::max(mesh.NumberOfPoints(), mesh.NumberOfTriangles())) };
+  if (fields)
+  {
+    fields->potential.assign(static_cast<size_t>(run.Points()), 0.0);
+    fields->flow.assign(static_cast<size_t>(3 * run.Triangles()), 0.0);
+  }
+  const auto setupStart = Clock::now();
+  if (!Prepare(run))
+  {
+    if (run.range == std::numeric_limits<double>::infinity())
+    {
+      return { ValueSpanError(run.low, run.high) };
+    }
+    KeepTheInput(run, output);
+    return {};
+  }
+  report.flowSeconds += SecondsSince(setupStart);
+
+  const bool advect = p.time > 0.0 || signal.sampleAtTimeZero; // t = 0: the input, exactly
+  MeshSteps steps = StartSteps(run, advect);
+  RunUpdates(run, steps, advect, output, report, fields, progress);
   if (report.aborted || !advect)
   {
-    keepTheInput();
+    KeepTheInput(run, output);
   }
   else if (p.flowMode != FlowMode::Fixed)
   {
