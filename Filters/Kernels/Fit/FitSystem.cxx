@@ -247,6 +247,141 @@ private:
 };
 
 /**
+ * The row of point p while FillRows assembles it: its columns and values
+ * (zeroed on construction), the slot of a point's entry, and the sums of its
+ * mass term and divergence. A corner's entry: in a usual row (a one-ring: a
+ * few points, whose rows are near this one) its point among the row's, found
+ * without a branch to mispredict; in a long row (a point joined to thousands,
+ * as a fan's centre) by a binary search of its column, or the row would cost
+ * its length squared.
+ */
+struct PointRow
+{
+  static constexpr size_t ShortRow = 32;
+  const std::vector<std::int64_t>& rank;
+  const std::vector<std::int64_t>& points; ///< the points of the columns (of a short row)
+  std::int64_t r;                          ///< the row
+  const int* cols;
+  double* values;
+  size_t count;
+  bool shortRow;
+  size_t self = 0;                                ///< the slot of p's own entry
+  double b[3] = { 0.0, 0.0, 0.0 };                ///< the mass term alpha M c0
+  double divergence[3] = { 0.0, 0.0, 0.0 };       ///< D w (with targets)
+  bool fitted = false;                            ///< a non-degenerate triangle has p
+
+  /// p's row of the system's matrix, zeroed; `scratch` holds its columns' points.
+  SHOCK_ALWAYS_INLINE PointRow(FitSystemData& system, std::int64_t p, std::vector<std::int64_t>& scratch)
+    : rank(system.rank)
+    , points(scratch)
+    , r(system.rank[static_cast<size_t>(p)])
+  {
+    RowMatrix& A = system.matrix;
+    this->cols = A.innerIndexPtr() + A.outerIndexPtr()[this->r];
+    this->count = static_cast<size_t>(A.outerIndexPtr()[this->r + 1] - A.outerIndexPtr()[this->r]);
+    this->values = A.valuePtr() + A.outerIndexPtr()[this->r];
+    std::fill(this->values, this->values + this->count, 0.0);
+    this->shortRow = this->count <= ShortRow;
+    scratch.resize(this->shortRow ? this->count : 0);
+    for (size_t k = 0; k < scratch.size(); ++k)
+    {
+      scratch[k] = system.order[static_cast<size_t>(this->cols[k])];
+    }
+    this->self = this->SlotOf(p);
+  }
+
+  /// The slot of `point`'s entry in the row.
+  SHOCK_ALWAYS_INLINE size_t SlotOf(std::int64_t point) const
+  {
+    if (!this->shortRow)
+    {
+      const int column = static_cast<int>(this->rank[static_cast<size_t>(point)]);
+      return static_cast<size_t>(std::lower_bound(this->cols, this->cols + this->count, column) - this->cols);
+    }
+    size_t slot = 0;
+    for (size_t k = 0; k < this->count; ++k)
+    {
+      slot = this->points[k] == point ? k : slot;
+    }
+    return slot;
+  }
+};
+
+/**
+ * The terms of the non-degenerate triangles around p in p's row: per corner,
+ * alpha s^2 times the mass and beta times the stiffness, the mass term's share
+ * of the corner's original position and, with targets, the divergence of the
+ * target gradients.
+ */
+SHOCK_ALWAYS_INLINE void AddTriangleTerms(const TriangleMesh& mesh, const FitSystemData& system,
+  const fit::Targets* targets, TargetGradientCache& cache, std::int64_t p, PointRow& pointRow)
+{
+  const CompressedLists& around = mesh.PointTriangles();
+  const double s = system.frame.scale;
+  const int* cols = pointRow.cols;
+  double* row = pointRow.values;
+  const size_t self = pointRow.self;
+  for (std::int64_t a = around.Begin(p); a < around.End(p); ++a)
+  {
+    const std::int64_t f = around.items[static_cast<size_t>(a)];
+    if (mesh.Degenerate(f))
+    {
+      continue;
+    }
+    pointRow.fitted = true;
+    const std::int64_t* t = mesh.Corners(f);
+    const int corner = CornerOf(mesh, f, p);
+    const double area = mesh.Area(f);
+    const Vec3 gp = Load(mesh.HatGradient(f, corner));
+    if (targets)
+    {
+      fit::AddDivergence(mesh, f, gp.data(), cache.Get(mesh, *targets, f), pointRow.divergence);
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      const double mass = system.alpha * s * s * TriangleMass(area, corner, c);
+      const size_t slot = c == corner ? self : pointRow.SlotOf(t[c]);
+      row[slot] += mass + system.beta * area * Dot(gp, Load(mesh.HatGradient(f, c)));
+      for (int k = 0; k < 3; ++k)
+      {
+        pointRow.b[k] += mass * system.original(cols[slot], k);
+      }
+    }
+  }
+}
+
+/**
+ * The end of a row: an identity row when nothing constrains its point, then
+ * its flag, inverse diagonal and mass term and, with targets, its right-hand
+ * side b + weight D w.
+ */
+SHOCK_ALWAYS_INLINE void FinishRow(FitSystemData& system, const fit::Targets* targets, double weight,
+  PointRow& pointRow, Coordinates& rhs)
+{
+  const std::int64_t r = pointRow.r;
+  double* row = pointRow.values;
+  double* b = pointRow.b;
+  if (!pointRow.fitted)
+  {
+    row[pointRow.self] = 1.0; // nothing constrains the point: an identity row keeps it where it is
+    for (int k = 0; k < 3; ++k)
+    {
+      b[k] = system.original(r, k);
+    }
+  }
+  system.fitted[static_cast<size_t>(r)] = pointRow.fitted ? 1 : 0;
+  system.inverseDiagonal[static_cast<size_t>(r)] = 1.0 / row[pointRow.self]; // > 0: M's diagonal is
+  for (int k = 0; k < 3; ++k)
+  {
+    system.massTerm(r, k) = b[k];
+    if (targets)
+    {
+      rhs(r, k) = b[k] + weight * pointRow.divergence[k];
+    }
+  }
+}
+
+/**
  * The values of A = alpha M + beta S (normalised: stiffness A g.g, mass s^2 A/12),
  * the mass term alpha M c0 and the inverse diagonal, row by row in parallel;
  * with targets, also the right-hand sides b = alpha M c0 + beta s D w (the
@@ -257,9 +392,7 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
   FitSystemData& system, Coordinates& rhs)
 {
   const std::int64_t np = mesh.NumberOfPoints();
-  const CompressedLists& around = mesh.PointTriangles();
   const double s = system.frame.scale;
-  RowMatrix& A = system.matrix;
   system.massTerm.resize(np, 3);
   system.inverseDiagonal.resize(static_cast<size_t>(np));
   system.fitted.assign(static_cast<size_t>(np), 0);
@@ -267,94 +400,18 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
   const double weight = system.beta * s;
 #pragma omp parallel num_threads(threads)
   {
-  // Each triangle's target gradients serve its three corners' rows, which the
-  // visit order reaches at nearby times: kept in a small direct-mapped cache.
-  TargetGradientCache cache;
-  std::vector<std::int64_t> points; // the points of a row's columns
+    // Each triangle's target gradients serve its three corners' rows, which the
+    // visit order reaches at nearby times: kept in a small direct-mapped cache.
+    TargetGradientCache cache;
+    std::vector<std::int64_t> points; // the points of a row's columns
 #pragma omp for schedule(static)
-  for (std::int64_t i = 0; i < np; ++i)
-  {
-    const std::int64_t p = system.visit[static_cast<size_t>(i)];
-    const std::int64_t r = system.rank[static_cast<size_t>(p)];
-    const int* cols = A.innerIndexPtr() + A.outerIndexPtr()[r];
-    const size_t count = static_cast<size_t>(A.outerIndexPtr()[r + 1] - A.outerIndexPtr()[r]);
-    double* row = A.valuePtr() + A.outerIndexPtr()[r];
-    std::fill(row, row + count, 0.0);
-    // A corner's entry: in a usual row (a one-ring: a few points, whose rows
-    // are near this one) its point among the row's, found without a branch to
-    // mispredict; in a long row (a point joined to thousands, as a fan's
-    // centre) by a binary search of its column, or the row would cost its
-    // length squared.
-    constexpr size_t ShortRow = 32;
-    const bool shortRow = count <= ShortRow;
-    points.resize(shortRow ? count : 0);
-    for (size_t k = 0; k < points.size(); ++k)
+    for (std::int64_t i = 0; i < np; ++i)
     {
-      points[k] = system.order[static_cast<size_t>(cols[k])];
+      const std::int64_t p = system.visit[static_cast<size_t>(i)];
+      PointRow pointRow(system, p, points);
+      AddTriangleTerms(mesh, system, targets, cache, p, pointRow);
+      FinishRow(system, targets, weight, pointRow, rhs);
     }
-    auto slotOf = [&](std::int64_t point) {
-      if (!shortRow)
-      {
-        const int column = static_cast<int>(system.rank[static_cast<size_t>(point)]);
-        return static_cast<size_t>(std::lower_bound(cols, cols + count, column) - cols);
-      }
-      size_t slot = 0;
-      for (size_t k = 0; k < count; ++k)
-      {
-        slot = points[k] == point ? k : slot;
-      }
-      return slot;
-    };
-    const size_t self = slotOf(p);
-    double b[3] = { 0.0, 0.0, 0.0 };
-    double divergence[3] = { 0.0, 0.0, 0.0 };
-    bool fitted = false;
-    for (std::int64_t a = around.Begin(p); a < around.End(p); ++a)
-    {
-      const std::int64_t f = around.items[static_cast<size_t>(a)];
-      if (mesh.Degenerate(f))
-      {
-        continue;
-      }
-      fitted = true;
-      const std::int64_t* t = mesh.Corners(f);
-      const int corner = CornerOf(mesh, f, p);
-      const double area = mesh.Area(f);
-      const Vec3 gp = Load(mesh.HatGradient(f, corner));
-      if (targets)
-      {
-        fit::AddDivergence(mesh, f, gp.data(), cache.Get(mesh, *targets, f), divergence);
-      }
-      for (int c = 0; c < 3; ++c)
-      {
-        const double mass = system.alpha * s * s * TriangleMass(area, corner, c);
-        const size_t slot = c == corner ? self : slotOf(t[c]);
-        row[slot] += mass + system.beta * area * Dot(gp, Load(mesh.HatGradient(f, c)));
-        for (int k = 0; k < 3; ++k)
-        {
-          b[k] += mass * system.original(cols[slot], k);
-        }
-      }
-    }
-    if (!fitted)
-    {
-      row[self] = 1.0; // nothing constrains the point: an identity row keeps it where it is
-      for (int k = 0; k < 3; ++k)
-      {
-        b[k] = system.original(r, k);
-      }
-    }
-    system.fitted[static_cast<size_t>(r)] = fitted ? 1 : 0;
-    system.inverseDiagonal[static_cast<size_t>(r)] = 1.0 / row[self]; // > 0: M's diagonal is
-    for (int k = 0; k < 3; ++k)
-    {
-      system.massTerm(r, k) = b[k];
-      if (targets)
-      {
-        rhs(r, k) = b[k] + weight * divergence[k];
-      }
-    }
-  }
   }
 }
 Status BuildSystem(const TriangleMesh& mesh, double screeningWeight,
