@@ -274,21 +274,9 @@ std::array<double, 3> UpdateAndMultiplyPiece(const RowMatrix& A, const std::vect
     });
 }
 
-/**
- * Jacobi-preconditioned conjugate gradients from x = system.original, the
- * three coordinates side by side: each pass over the matrix serves the three
- * columns and every vector operation is parallel. Two passes over the rows
- * per iteration: the step of x and the direction's update fused with the
- * product (and its sums), then the step of r (and its sums). A column stops when its
- * residual is below tolerance x ||b|| (tolerance 0 runs all the iterations);
- * returns the number of iterations done.
- */
-int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int maxIterations,
-  double tolerance, int threads, const MeshPartition* partition, Coordinates& x)
+/// The vectors r, p, q of n rows: zeroed on a piece, else left to be first touched in parallel.
+Vectors AllocateVectors(std::int64_t n, const MeshPartition* partition)
 {
-  const RowMatrix& A = system.matrix;
-  const std::vector<double>& diag = system.inverseDiagonal;
-  const std::int64_t n = A.rows();
   Vectors v;
   if (partition)
   {
@@ -300,10 +288,22 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
     v.p.resize(n, 3);
     v.q.resize(n, 3);
   }
+  return v;
+}
+
+/**
+ * The start of the conjugate gradients: x = x0, r = b - A x0, p = z = D^-1 r;
+ * returns the sums of r.r, r.z and b.b (the three columns of each).
+ */
+std::array<double, 9> StartingResidual(const FitSystemData& system, const Coordinates& b,
+  int threads, const MeshPartition* partition, Vectors& v, Coordinates& x)
+{
+  const RowMatrix& A = system.matrix;
+  const std::vector<double>& diag = system.inverseDiagonal;
+  const std::int64_t n = A.rows();
   x.resize(n, 3);
-  // x = x0, r = b - A x0, p = z = D^-1 r; sums of r.r, r.z and b.b.
   const Coordinates& x0 = system.original;
-  const auto start = BlockSums<9>(n, threads, nullptr, partition, [&](std::int64_t i, std::array<double, 9>& s) {
+  return BlockSums<9>(n, threads, nullptr, partition, [&](std::int64_t i, std::array<double, 9>& s) {
     for (int k = 0; k < 3; ++k)
     {
       x(i, k) = x0(i, k);
@@ -325,6 +325,54 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
       s[k + 6] += system.fitted[static_cast<size_t>(i)] ? b(i, k) * b(i, k) : 0.0;
     }
   });
+}
+
+/// The step of r: r -= step q; returns the sums of r.r and r.z (z = D^-1 r).
+std::array<double, 6> StepResidual(const std::vector<double>& diag, const double step[3],
+  int threads, const MeshPartition* partition, Vectors& v)
+{
+  return BlockSums<6>(v.r.rows(), threads, Owned(partition), partition,
+    [&](std::int64_t i, std::array<double, 6>& s) {
+      for (int k = 0; k < 3; ++k)
+      {
+        v.r(i, k) -= step[k] * v.q(i, k);
+        s[k] += v.r(i, k) * v.r(i, k);
+        s[k + 3] += v.r(i, k) * diag[static_cast<size_t>(i)] * v.r(i, k);
+      }
+    });
+}
+
+/// The last iteration's step of x (x += step p; the owned rows only, on a piece).
+void LastStepOfX(
+  const double step[3], int threads, const MeshPartition* partition, const Vectors& v, Coordinates& x)
+{
+  const std::int64_t n = x.rows();
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i)
+  {
+    for (int k = 0; k < 3 && (!partition || partition->ownedPoints[static_cast<size_t>(i)]); ++k)
+    {
+      x(i, k) += step[k] * v.p(i, k);
+    }
+  }
+}
+
+/**
+ * Jacobi-preconditioned conjugate gradients from x = system.original, the
+ * three coordinates side by side: each pass over the matrix serves the three
+ * columns and every vector operation is parallel. Two passes over the rows
+ * per iteration: the step of x and the direction's update fused with the
+ * product (and its sums), then the step of r (and its sums). A column stops when its
+ * residual is below tolerance x ||b|| (tolerance 0 runs all the iterations);
+ * returns the number of iterations done.
+ */
+int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int maxIterations,
+  double tolerance, int threads, const MeshPartition* partition, Coordinates& x)
+{
+  const RowMatrix& A = system.matrix;
+  const std::vector<double>& diag = system.inverseDiagonal;
+  Vectors v = AllocateVectors(A.rows(), partition);
+  const auto start = StartingResidual(system, b, threads, partition, v, x);
   bool active[3];
   double threshold[3], rz[3];
   for (int k = 0; k < 3; ++k)
@@ -343,22 +391,14 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
     const DirectionUpdate* update = iteration > 0 ? &u : nullptr;
     const auto pq = partition ? UpdateAndMultiplyPiece(A, diag, threads, partition, update, v, x)
                               : UpdateAndMultiply(A, diag, ranges, update, v, x);
-    double* step = u.step;
     for (int k = 0; k < 3; ++k)
     {
       // p.Ap > 0 unless p = 0, i.e. the column is solved exactly.
       active[k] = active[k] && pq[k] > 0.0;
-      step[k] = active[k] ? rz[k] / pq[k] : 0.0;
+      u.step[k] = active[k] ? rz[k] / pq[k] : 0.0;
     }
-    // r -= step q; sums of r.r and r.z (z = D^-1 r). (x += step p: in the next product's pass.)
-    const auto sums = BlockSums<6>(n, threads, Owned(partition), partition, [&](std::int64_t i, std::array<double, 6>& s) {
-      for (int k = 0; k < 3; ++k)
-      {
-        v.r(i, k) -= step[k] * v.q(i, k);
-        s[k] += v.r(i, k) * v.r(i, k);
-        s[k + 3] += v.r(i, k) * diag[static_cast<size_t>(i)] * v.r(i, k);
-      }
-    });
+    // The step of r (x's step, x += step p, is in the next product's pass).
+    const auto sums = StepResidual(diag, u.step, threads, partition, v);
     ++iteration;
     for (int k = 0; k < 3; ++k)
     {
@@ -369,15 +409,7 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
   }
   if (iteration > 0)
   {
-    // The last iteration's step of x.
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::int64_t i = 0; i < n; ++i)
-    {
-      for (int k = 0; k < 3 && (!partition || partition->ownedPoints[static_cast<size_t>(i)]); ++k)
-      {
-        x(i, k) += u.step[k] * v.p(i, k);
-      }
-    }
+    LastStepOfX(u.step, threads, partition, v, x);
   }
   return iteration;
 }
