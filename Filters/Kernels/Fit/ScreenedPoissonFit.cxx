@@ -234,6 +234,61 @@ void FitTargetGradients(const TriangleMesh& mesh, std::int64_t f, const double n
   }
 }
 
+namespace
+{
+/// Every point at its input position: what the fit leaves where it changes nothing.
+void CopyInputPositions(const TriangleMesh& mesh, double* positions, int threads)
+{
+  const std::int64_t np = mesh.NumberOfPoints();
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t p = 0; p < np; ++p)
+  {
+    std::copy(mesh.Point(p), mesh.Point(p) + 3, positions + 3 * p);
+  }
+}
+
+/**
+ * The system and its right-hand sides b: the cached system when it was built
+ * for this mesh and eps (out.reusedSystem; then only b is assembled), else
+ * a new one, which comes with b from the same pass (its data stays null for a
+ * mesh without area).
+ */
+Status SystemAndRightHandSides(const TriangleMesh& mesh, const double* targetNormals,
+  const FitParameters& parameters, int threads, FitSystem& system, Coordinates& b, FitReport& out)
+{
+  out.reusedSystem = system.Matches(mesh, parameters.screeningWeight, parameters.rowsInMeshOrder);
+  if (out.reusedSystem)
+  {
+    b = RightHandSides(mesh, targetNormals, parameters.target, *system.data, threads);
+    return {};
+  }
+  return fit::BuildFitSystem(mesh, parameters.screeningWeight, parameters.partition, threads,
+    { targetNormals, parameters.target }, system, b, parameters.rowsInMeshOrder);
+}
+
+/**
+ * The fitted positions: the rows' solutions x, normalisation undone; unconstrained
+ * points keep their exact input position.
+ */
+void WriteFittedPositions(
+  const FitSystemData& data, const Coordinates& x, double* positions, int threads)
+{
+  const auto np = static_cast<std::int64_t>(data.order.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t r = 0; r < np; ++r)
+  {
+    if (data.fitted[static_cast<size_t>(r)])
+    {
+      const std::int64_t p = data.order[static_cast<size_t>(r)];
+      for (int k = 0; k < 3; ++k)
+      {
+        positions[3 * p + k] = data.frame.center[k] + x(r, k) / data.frame.scale;
+      }
+    }
+  }
+}
+} // namespace
+
 Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNormals,
   double* positions, const FitParameters& parameters, FitReport* report, FitSystem* cache)
 {
@@ -243,11 +298,7 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
     return { "null positions or target normals" };
   }
   const int threads = ThreadsForWork(parameters.numberOfThreads, np);
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t p = 0; p < np; ++p)
-  {
-    std::copy(mesh.Point(p), mesh.Point(p) + 3, positions + 3 * p);
-  }
+  CopyInputPositions(mesh, positions, threads);
   Status status = CheckFitParameters(mesh, parameters);
   if (!status.Ok())
   {
@@ -263,14 +314,8 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
   // The matrix and mass term: the cached ones when they were built for this mesh and eps.
   FitSystem own;
   FitSystem& system = cache && !partition ? *cache : own;
-  // (Built anew, the system comes with the right-hand sides, in the same pass.)
-  out.reusedSystem = system.Matches(mesh, parameters.screeningWeight, parameters.rowsInMeshOrder);
   Coordinates b;
-  if (!out.reusedSystem)
-  {
-    status = fit::BuildFitSystem(mesh, parameters.screeningWeight, partition, threads,
-      { targetNormals, parameters.target }, system, b, parameters.rowsInMeshOrder);
-  }
+  status = SystemAndRightHandSides(mesh, targetNormals, parameters, threads, system, b, out);
   if (!status.Ok() || !system.data)
   {
     // No area, nothing to fit: every point keeps its position.
@@ -279,10 +324,6 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
     return status;
   }
   const FitSystemData& data = *system.data;
-  if (out.reusedSystem)
-  {
-    b = RightHandSides(mesh, targetNormals, parameters.target, data, threads);
-  }
   out.setupSeconds = SecondsSince(setupStart);
 
   const auto solveStart = Clock::now();
@@ -303,19 +344,7 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
     out.converged = false;
     return { "the solve produced non-finite positions" };
   }
-  // Undo the normalisation; unconstrained points keep their exact input position.
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t r = 0; r < np; ++r)
-  {
-    if (data.fitted[static_cast<size_t>(r)])
-    {
-      const std::int64_t p = data.order[static_cast<size_t>(r)];
-      for (int k = 0; k < 3; ++k)
-      {
-        positions[3 * p + k] = data.frame.center[k] + x(r, k) / data.frame.scale;
-      }
-    }
-  }
+  WriteFittedPositions(data, x, positions, threads);
   return {};
 }
 
