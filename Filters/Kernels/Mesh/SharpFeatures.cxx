@@ -156,23 +156,12 @@ std::vector<std::int64_t> FindRepeatedTriangles(const TriangleMesh& mesh, int th
   return first;
 }
 
-Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
-  double featureAngleDegrees, int threads, FeatureSplitMesh& split)
+namespace
 {
-  split = FeatureSplitMesh();
-  if (!(featureAngleDegrees >= 0.0 && featureAngleDegrees <= 180.0))
-  {
-    return { "the feature angle must be in [0, 180] degrees" };
-  }
-  const std::int64_t np = mesh.NumberOfPoints();
+/// The number of feature edges (each counted once, from its lower triangle).
+std::int64_t CountFeatureEdges(const TriangleMesh& mesh, const std::vector<unsigned char>& feature)
+{
   const std::int64_t nt = mesh.NumberOfTriangles();
-  if (featureAngleDegrees >= 180.0 || nt == 0)
-  {
-    return {};
-  }
-  const int nthreads = ResolveThreadCount(threads);
-  const double cosine = std::cos(featureAngleDegrees * 3.14159265358979323846 / 180.0);
-  const std::vector<unsigned char> feature = FeatureEdgeFlags(mesh, normals, cosine, nthreads);
   std::int64_t edges = 0;
   for (std::int64_t f = 0; f < nt; ++f)
   {
@@ -181,13 +170,15 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
       edges += (feature[static_cast<size_t>(3 * f + e)] && mesh.Neighbour(f, e) > f) ? 1 : 0;
     }
   }
-  if (edges == 0)
-  {
-    return {};
-  }
+  return edges;
+}
 
-  // The points on feature edges: only they can split.
-  std::vector<unsigned char> touched(static_cast<size_t>(np), 0);
+/// Per point: 1 when it is on a feature edge (only those points can split).
+std::vector<unsigned char> PointsOnFeatureEdges(
+  const TriangleMesh& mesh, const std::vector<unsigned char>& feature)
+{
+  const std::int64_t nt = mesh.NumberOfTriangles();
+  std::vector<unsigned char> touched(static_cast<size_t>(mesh.NumberOfPoints()), 0);
   for (std::int64_t f = 0; f < nt; ++f)
   {
     for (int e = 0; e < 3; ++e)
@@ -199,12 +190,22 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
       }
     }
   }
-  // Copies per point, their first new id, and the group of each (point, triangle)
-  // entry of a touched point (the only ones read).
+  return touched;
+}
+
+/**
+ * The copies of the points: returns the first copy of each point (np + 1
+ * entries, the last one the number of copies), and fills `label` with the
+ * group of each (point, triangle) entry of a touched point (the only ones read).
+ */
+std::vector<std::int64_t> CopiesOfPoints(const TriangleMesh& mesh,
+  const std::vector<unsigned char>& feature, const std::vector<unsigned char>& touched, int threads,
+  IdVector& label)
+{
+  const std::int64_t np = mesh.NumberOfPoints();
   const CompressedLists& around = mesh.PointTriangles();
-  IdVector label(around.items.size());
   std::vector<std::int64_t> firstCopy(static_cast<size_t>(np) + 1, 0);
-#pragma omp parallel for num_threads(nthreads) schedule(dynamic, 1024)
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
   for (std::int64_t p = 0; p < np; ++p)
   {
     firstCopy[static_cast<size_t>(p) + 1] = touched[static_cast<size_t>(p)]
@@ -215,18 +216,33 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
   {
     firstCopy[static_cast<size_t>(p) + 1] += firstCopy[static_cast<size_t>(p)];
   }
-  const std::int64_t copies = firstCopy.back();
-  split.original.resize(static_cast<size_t>(copies));
-#pragma omp parallel for num_threads(nthreads) schedule(static)
+  return firstCopy;
+}
+
+/// For each copy, the point it copies.
+std::vector<std::int64_t> OriginalPoints(const std::vector<std::int64_t>& firstCopy, int threads)
+{
+  const auto np = static_cast<std::int64_t>(firstCopy.size()) - 1;
+  std::vector<std::int64_t> original(static_cast<size_t>(firstCopy.back()));
+#pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t p = 0; p < np; ++p)
   {
     for (std::int64_t q = firstCopy[static_cast<size_t>(p)]; q < firstCopy[static_cast<size_t>(p) + 1]; ++q)
     {
-      split.original[static_cast<size_t>(q)] = p;
+      original[static_cast<size_t>(q)] = p;
     }
   }
+  return original;
+}
+
+/// The triangles on the copies: each corner the copy of its point for the corner's group.
+IdVector SplitTriangles(const TriangleMesh& mesh, const std::vector<unsigned char>& touched,
+  const std::vector<std::int64_t>& firstCopy, const IdVector& label, int threads)
+{
+  const std::int64_t nt = mesh.NumberOfTriangles();
+  const CompressedLists& around = mesh.PointTriangles();
   IdVector triangles(static_cast<size_t>(3 * nt));
-#pragma omp parallel for num_threads(nthreads) schedule(static)
+#pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t f = 0; f < nt; ++f)
   {
     const std::int64_t* t = mesh.Corners(f);
@@ -247,6 +263,35 @@ Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
         firstCopy[static_cast<size_t>(p)] + label[static_cast<size_t>(k)];
     }
   }
+  return triangles;
+}
+} // namespace
+
+Status SplitAtFeatureEdges(const TriangleMesh& mesh, const double* normals,
+  double featureAngleDegrees, int threads, FeatureSplitMesh& split)
+{
+  split = FeatureSplitMesh();
+  if (!(featureAngleDegrees >= 0.0 && featureAngleDegrees <= 180.0))
+  {
+    return { "the feature angle must be in [0, 180] degrees" };
+  }
+  if (featureAngleDegrees >= 180.0 || mesh.NumberOfTriangles() == 0)
+  {
+    return {};
+  }
+  const int nthreads = ResolveThreadCount(threads);
+  const double cosine = std::cos(featureAngleDegrees * 3.14159265358979323846 / 180.0);
+  const std::vector<unsigned char> feature = FeatureEdgeFlags(mesh, normals, cosine, nthreads);
+  const std::int64_t edges = CountFeatureEdges(mesh, feature);
+  if (edges == 0)
+  {
+    return {};
+  }
+  const std::vector<unsigned char> touched = PointsOnFeatureEdges(mesh, feature);
+  IdVector label(mesh.PointTriangles().items.size());
+  const std::vector<std::int64_t> firstCopy = CopiesOfPoints(mesh, feature, touched, nthreads, label);
+  split.original = OriginalPoints(firstCopy, nthreads);
+  IdVector triangles = SplitTriangles(mesh, touched, firstCopy, label, nthreads);
   split.featureEdges = edges;
   // The same mesh as built from the copied points and these triangles, derived from `mesh`.
   return split.mesh.BuildSplit(mesh, split.original, std::move(triangles), nthreads);
