@@ -378,7 +378,7 @@ MUTANTS = [
          original="      this->Grown.emplace_back(p, source);",
          replacement="      (void)source;",
          bug="points reached through a neighbour's piece are never asked of a third piece that holds them"),
-    dict(id="owned-cells-keep-ghost-points", file="Filters/ShockParallel.cxx",
+    dict(id="owned-cells-keep-ghost-points", file="Filters/ShockSurfacePieces.cxx",
          original="    if (usedByOwn[p] || !usedByGhost[p])",
          replacement="    if (usedByOwn[p] || usedByGhost[p] || !usedByGhost[p])",
          bug="a piece with ghost cells from upstream keeps the points only its ghost cells use"),

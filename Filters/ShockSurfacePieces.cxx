@@ -1,0 +1,266 @@
+/**
+ * @file ShockSurfacePieces.cxx
+ * @brief A surface piece's own cells (OwnedCells) and the output of its own
+ * cells after filtering with ghost cells (OwnedPiece).
+ */
+#include "ShockParallel.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkAbstractArray.h"
+#include "vtkAlgorithmOutput.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
+#include "vtkCommunicator.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkFieldData.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkLogger.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <unordered_map>
+
+namespace ShockParallel
+{
+namespace
+{
+/// The cells of one kind that are not marked DUPLICATECELL, as offsets and connectivity (input point ids).
+struct KindCells
+{
+  std::vector<vtkIdType> offsets{ 0 };
+  std::vector<vtkIdType> connectivity;
+};
+
+/**
+ * Calls visit(cell number, ghost, size, points) for every cell of `piece`,
+ * kind by kind (vtkPolyData numbers verts, lines, polygons, strips in turn).
+ */
+template <typename Visit>
+void ForEachCell(vtkPolyData* piece, vtkUnsignedCharArray* ghosts, Visit visit)
+{
+  vtkCellArray* inputCells[4] = { piece->GetVerts(), piece->GetLines(), piece->GetPolys(), piece->GetStrips() };
+  vtkIdType cell = 0;
+  for (int kind = 0; kind < 4; ++kind)
+  {
+    if (!inputCells[kind])
+    {
+      continue;
+    }
+    auto iterator = vtk::TakeSmartPointer(inputCells[kind]->NewIterator());
+    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
+    {
+      vtkIdType size;
+      const vtkIdType* points;
+      iterator->GetCurrentCell(size, points);
+      visit(kind, cell, (ghosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL) != 0, size, points);
+    }
+  }
+}
+
+/**
+ * The points the own cells keep: those they use, with the points no cell
+ * uses (nobody else's), in their order; `newId` maps each kept point to its
+ * row in the result (others -1).
+ */
+vtkSmartPointer<vtkIdList> KeptPoints(vtkPolyData* piece, vtkUnsignedCharArray* ghosts, std::vector<vtkIdType>& newId)
+{
+  std::vector<char> usedByOwn(static_cast<size_t>(piece->GetNumberOfPoints()), 0);
+  std::vector<char> usedByGhost(usedByOwn.size(), 0);
+  ForEachCell(piece, ghosts, [&](int, vtkIdType, bool ghost, vtkIdType size, const vtkIdType* points) {
+    std::vector<char>& used = ghost ? usedByGhost : usedByOwn;
+    for (vtkIdType k = 0; k < size; ++k)
+    {
+      used[static_cast<size_t>(points[k])] = 1;
+    }
+  });
+  auto kept = vtkSmartPointer<vtkIdList>::New();
+  newId.assign(usedByOwn.size(), -1);
+  for (size_t p = 0; p < usedByOwn.size(); ++p)
+  {
+    if (usedByOwn[p] || !usedByGhost[p])
+    {
+      newId[p] = kept->GetNumberOfIds();
+      kept->InsertNextId(static_cast<vtkIdType>(p));
+    }
+  }
+  return kept;
+}
+
+/// `cells` of kind `kind` (0 verts .. 3 strips) renumbered by `newId`, set on `owned`.
+void SetKindCells(vtkPolyData* owned, int kind, const KindCells& cells, const std::vector<vtkIdType>& newId)
+{
+  vtkNew<vtkIdTypeArray> offsetArray, connectivityArray;
+  offsetArray->SetNumberOfTuples(static_cast<vtkIdType>(cells.offsets.size()));
+  std::copy(cells.offsets.begin(), cells.offsets.end(), offsetArray->GetPointer(0));
+  connectivityArray->SetNumberOfTuples(static_cast<vtkIdType>(cells.connectivity.size()));
+  vtkIdType* to = connectivityArray->GetPointer(0);
+  for (vtkIdType p : cells.connectivity)
+  {
+    *to++ = newId[static_cast<size_t>(p)];
+  }
+  vtkNew<vtkCellArray> array;
+  array->SetData(offsetArray, connectivityArray);
+  switch (kind)
+  {
+    case 0: owned->SetVerts(array); break;
+    case 1: owned->SetLines(array); break;
+    case 2: owned->SetPolys(array); break;
+    default: owned->SetStrips(array); break;
+  }
+}
+
+/// The rows 0 .. n-1.
+vtkSmartPointer<vtkIdList> FirstRows(vtkIdType n)
+{
+  auto rows = vtkSmartPointer<vtkIdList>::New();
+  rows->SetNumberOfIds(n);
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    rows->SetId(k, k);
+  }
+  return rows;
+}
+}
+
+vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
+{
+  vtkUnsignedCharArray* ghosts = piece->GetCellGhostArray();
+  if (!ghosts || !piece->GetPoints() || ghosts->GetNumberOfTuples() < piece->GetNumberOfCells())
+  {
+    return piece;
+  }
+  // The own cells, kind by kind, and the points they keep.
+  KindCells cells[4];
+  vtkNew<vtkIdList> keptCells;
+  ForEachCell(piece, ghosts, [&](int kind, vtkIdType cell, bool ghost, vtkIdType size, const vtkIdType* points) {
+    if (!ghost)
+    {
+      cells[kind].connectivity.insert(cells[kind].connectivity.end(), points, points + size);
+      cells[kind].offsets.push_back(static_cast<vtkIdType>(cells[kind].connectivity.size()));
+      keptCells->InsertNextId(cell);
+    }
+  });
+  std::vector<vtkIdType> newId;
+  const vtkSmartPointer<vtkIdList> keptPoints = KeptPoints(piece, ghosts, newId);
+  auto owned = vtkSmartPointer<vtkPolyData>::New();
+  for (int kind = 0; kind < 4; ++kind)
+  {
+    SetKindCells(owned, kind, cells[kind], newId);
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataType(piece->GetPoints()->GetDataType());
+  piece->GetPoints()->GetPoints(keptPoints, points);
+  owned->SetPoints(points);
+  owned->GetFieldData()->ShallowCopy(piece->GetFieldData());
+  // Their data (with the owners' marks): each array's rows in one call (not one call per row).
+  owned->GetPointData()->CopyGlobalIdsOn(); // CopyAllocate leaves them out otherwise
+  owned->GetCellData()->CopyGlobalIdsOn();
+  owned->GetPointData()->CopyAllocate(piece->GetPointData(), keptPoints->GetNumberOfIds());
+  owned->GetPointData()->CopyData(piece->GetPointData(), keptPoints, FirstRows(keptPoints->GetNumberOfIds()));
+  owned->GetCellData()->CopyAllocate(piece->GetCellData(), keptCells->GetNumberOfIds());
+  owned->GetCellData()->CopyData(piece->GetCellData(), keptCells, FirstRows(keptCells->GetNumberOfIds()));
+  owned->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName()); // no ghost cell left
+  return owned;
+}
+
+namespace
+{
+/// `array`'s rows `rows` (all of its first `count` rows when `rows` is null) as a new array.
+vtkSmartPointer<vtkAbstractArray> Rows(vtkAbstractArray* array, vtkIdType count, vtkIdList* rows)
+{
+  auto picked = vtk::TakeSmartPointer(array->NewInstance());
+  picked->SetName(array->GetName());
+  picked->SetNumberOfComponents(array->GetNumberOfComponents());
+  picked->CopyComponentNames(array);
+  if (rows)
+  {
+    picked->SetNumberOfTuples(rows->GetNumberOfIds());
+    vtkNew<vtkIdList> to;
+    to->SetNumberOfIds(rows->GetNumberOfIds());
+    for (vtkIdType k = 0; k < rows->GetNumberOfIds(); ++k)
+    {
+      to->SetId(k, k);
+    }
+    picked->InsertTuples(to, rows, array);
+  }
+  else
+  {
+    picked->SetNumberOfTuples(count);
+    picked->InsertTuples(0, count, 0, array);
+  }
+  return picked;
+}
+
+/// Replace every array of `attributes` (taken from `from`) by its rows, attributes kept.
+void KeepRows(vtkDataSetAttributes* attributes, vtkDataSetAttributes* from, vtkIdType count, vtkIdList* rows)
+{
+  attributes->ShallowCopy(from);
+  for (int k = 0; k < from->GetNumberOfArrays(); ++k)
+  {
+    vtkAbstractArray* array = from->GetAbstractArray(k);
+    if (array && array->GetName())
+    {
+      attributes->AddArray(Rows(array, count, rows)); // same name: replaced at its index
+    }
+  }
+}
+}
+
+vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* owned, vtkPolyData* input)
+{
+  // WithGhostCells put the piece's own points first, in their order, and each
+  // kind's own cells before its ghost cells: the owned piece is those rows.
+  auto result = vtkSmartPointer<vtkPolyData>::New();
+  result->ShallowCopy(owned); // its cells
+  const vtkIdType np = owned->GetNumberOfPoints();
+  if (filtered->GetPoints() && filtered->GetPoints() != owned->GetPoints())
+  {
+    vtkNew<vtkPoints> points;
+    points->SetData(vtkDataArray::SafeDownCast(Rows(filtered->GetPoints()->GetData(), np, nullptr)));
+    result->SetPoints(points);
+  }
+  KeepRows(result->GetPointData(), filtered->GetPointData(), np, nullptr);
+  vtkCellArray* ownCells[4] = { owned->GetVerts(), owned->GetLines(), owned->GetPolys(), owned->GetStrips() };
+  vtkCellArray* allCells[4] = { filtered->GetVerts(), filtered->GetLines(), filtered->GetPolys(), filtered->GetStrips() };
+  vtkNew<vtkIdList> cellRows;
+  vtkIdType first = 0;
+  for (int kind = 0; kind < 4; ++kind)
+  {
+    const vtkIdType own = ownCells[kind] ? ownCells[kind]->GetNumberOfCells() : 0;
+    for (vtkIdType c = 0; c < own; ++c)
+    {
+      cellRows->InsertNextId(first + c);
+    }
+    first += allCells[kind] ? allCells[kind]->GetNumberOfCells() : 0;
+  }
+  KeepRows(result->GetCellData(), filtered->GetCellData(), cellRows->GetNumberOfIds(), cellRows);
+  result->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName()); // no ghost cell left
+  for (vtkDataSetAttributes* attributes : { static_cast<vtkDataSetAttributes*>(result->GetPointData()),
+         static_cast<vtkDataSetAttributes*>(result->GetCellData()) })
+  {
+    vtkDataArray* made = attributes->GetGlobalIds();
+    vtkDataSetAttributes* given = attributes == result->GetPointData()
+      ? static_cast<vtkDataSetAttributes*>(input->GetPointData())
+      : static_cast<vtkDataSetAttributes*>(input->GetCellData());
+    if (made && made->GetName() && !given->GetGlobalIds())
+    {
+      attributes->RemoveArray(made->GetName());
+    }
+  }
+  return result;
+}
+}
