@@ -1,0 +1,54 @@
+#!/bin/sh
+# Fetches the CAD parts of sharpen_eval.py (not committed): Debian's
+# libcgal-demo package ships CGAL's data.tar.gz, whose data/meshes/ holds
+# mechanical parts with sharp creases. Ten closed ones are kept: fandisk,
+# anchor_dense, dragknob, rotor_small, couplingdown, pinion, spool, oblong,
+# joint and part (.off). The package is downloaded with `apt-get download`
+# and unpacked with `dpkg -x` into the mesh directory, without installing it
+# (no root needed); sharpen_eval.py subdivides the coarse ones itself.
+#
+#   Benchmarks/get_cad_meshes.sh [DIR]
+#
+# DIR defaults to $SHOCK_CAD_DIR, else ${XDG_CACHE_HOME:-~/.cache}/shockfilters/cad,
+# which is also where sharpen_eval.py looks. Idempotent: does nothing when the
+# ten files are there; the downloaded .deb is kept in DIR/deb for later runs.
+# Needs apt-get with current package lists (`apt-get update`), dpkg and tar.
+set -eu
+dir=${1:-${SHOCK_CAD_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/shockfilters/cad}}
+meshes="fandisk.off anchor_dense.off dragknob.off rotor_small.off couplingdown.off pinion.off spool.off oblong.off joint.off part.off"
+
+missing=
+for mesh in $meshes; do
+  [ -s "$dir/$mesh" ] || missing="$missing $mesh"
+done
+if [ -z "$missing" ]; then
+  echo "the CAD parts are in $dir"
+  exit 0
+fi
+
+mkdir -p "$dir/deb"
+dir=$(cd "$dir" && pwd)
+if ! ls "$dir"/deb/libcgal-demo_*.deb >/dev/null 2>&1; then
+  # apt-get download writes into the current directory.
+  (cd "$dir/deb" && apt-get download libcgal-demo)
+fi
+deb=$(ls "$dir"/deb/libcgal-demo_*.deb | tail -n 1)
+
+work=$(mktemp -d "$dir/unpack.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+dpkg -x "$deb" "$work/root"
+data=$(find "$work/root" -path '*/libcgal-dev/data.tar.gz' | head -n 1)
+if [ -z "$data" ]; then
+  echo "get_cad_meshes.sh: no data.tar.gz in $deb" >&2
+  exit 1
+fi
+members=
+for mesh in $missing; do
+  members="$members data/meshes/$mesh"
+done
+# shellcheck disable=SC2086 # one member per word
+tar -xzf "$data" -C "$work" $members
+for mesh in $missing; do
+  mv "$work/data/meshes/$mesh" "$dir/$mesh"
+done
+echo "extracted$missing into $dir (from $(basename "$deb"))"
