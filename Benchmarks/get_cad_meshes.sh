@@ -15,40 +15,5 @@
 # Needs apt-get with current package lists (`apt-get update`), dpkg and tar.
 set -eu
 dir=${1:-${SHOCK_CAD_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/shockfilters/cad}}
-meshes="fandisk.off anchor_dense.off dragknob.off rotor_small.off couplingdown.off pinion.off spool.off oblong.off joint.off part.off"
-
-missing=
-for mesh in $meshes; do
-  [ -s "$dir/$mesh" ] || missing="$missing $mesh"
-done
-if [ -z "$missing" ]; then
-  echo "the CAD parts are in $dir"
-  exit 0
-fi
-
-mkdir -p "$dir/deb"
-dir=$(cd "$dir" && pwd)
-if ! ls "$dir"/deb/libcgal-demo_*.deb >/dev/null 2>&1; then
-  # apt-get download writes into the current directory.
-  (cd "$dir/deb" && apt-get download libcgal-demo)
-fi
-deb=$(ls "$dir"/deb/libcgal-demo_*.deb | tail -n 1)
-
-work=$(mktemp -d "$dir/unpack.XXXXXX")
-trap 'rm -rf "$work"' EXIT
-dpkg -x "$deb" "$work/root"
-data=$(find "$work/root" -path '*/libcgal-dev/data.tar.gz' | head -n 1)
-if [ -z "$data" ]; then
-  echo "get_cad_meshes.sh: no data.tar.gz in $deb" >&2
-  exit 1
-fi
-members=
-for mesh in $missing; do
-  members="$members data/meshes/$mesh"
-done
-# shellcheck disable=SC2086 # one member per word
-tar -xzf "$data" -C "$work" $members
-for mesh in $missing; do
-  mv "$work/data/meshes/$mesh" "$dir/$mesh"
-done
-echo "extracted$missing into $dir (from $(basename "$deb"))"
+SHOCK_MESH_FILES="fandisk.off anchor_dense.off dragknob.off rotor_small.off couplingdown.off pinion.off spool.off oblong.off joint.off part.off" \
+  exec "$(dirname "$0")/get_meshes.sh" "$dir"

@@ -15,7 +15,8 @@
 # Needs apt-get with current package lists (`apt-get update`), dpkg and tar.
 set -eu
 dir=${1:-${SHOCK_MESH_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/shockfilters/meshes}}
-meshes="ChineseDragon-10kv.off armadillo.off bunny00.off fandisk_large.off refined_elephant.off"
+# SHOCK_MESH_FILES names other files of CGAL's data/meshes (get_cad_meshes.sh does).
+meshes=${SHOCK_MESH_FILES:-"ChineseDragon-10kv.off armadillo.off bunny00.off fandisk_large.off refined_elephant.off"}
 
 missing=
 for mesh in $meshes; do

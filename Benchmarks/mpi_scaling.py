@@ -278,7 +278,12 @@ def split(path, outdir):
     surface.Update()
     writer = vtkXMLPolyDataWriter()
     writer.SetInputData(surface.GetOutput())
-    writer.SetFileName(piece_path(outdir, os.path.basename(path), rank))
+    write_raw(writer, piece_path(outdir, os.path.basename(path), rank))
+
+
+def write_raw(writer, path):
+    """Write with `writer` (an XML writer with its input set) into `path`, appended raw data."""
+    writer.SetFileName(path)
     writer.SetDataModeToAppended()
     writer.EncodeAppendedDataOff()
     writer.Write()
@@ -316,10 +321,7 @@ def split_image(path, outdir, layers=16):
         voi.SetVOI(extent)
         writer = vtkXMLImageDataWriter()
         writer.SetInputConnection(voi.GetOutputPort())
-        writer.SetFileName(piece_path(outdir, os.path.basename(path), rank))
-        writer.SetDataModeToAppended()
-        writer.EncodeAppendedDataOff()
-        writer.Write()
+        write_raw(writer, piece_path(outdir, os.path.basename(path), rank))
 
 
 def alone(plugin, work, pattern):

@@ -38,17 +38,6 @@ const char* const PacketCellIds = "vtkShockGhostCellIds";
 const char* const PacketCellKinds = "vtkShockGhostCellKinds";
 const char* const PacketBudgets = "vtkShockGhostBudgets";
 
-/// The ids 0 .. n-1.
-vtkSmartPointer<vtkIdList> Sequence(vtkIdType n)
-{
-  auto ids = vtkSmartPointer<vtkIdList>::New();
-  ids->SetNumberOfIds(n);
-  for (vtkIdType k = 0; k < n; ++k)
-  {
-    ids->SetId(k, k);
-  }
-  return ids;
-}
 
 /**
  * The rings as a breadth-first search over all pieces' cells from the own

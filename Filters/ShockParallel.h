@@ -20,6 +20,7 @@
 class vtkAlgorithm;
 class vtkDataArray;
 class vtkDataSet;
+class vtkIdList;
 class vtkImageData;
 class vtkInformation;
 class vtkMultiProcessController;
@@ -87,6 +88,9 @@ double GlobalRangeWidth(vtkMultiProcessController* controller, bool has, const d
  * filtered once, on process 0.
  */
 bool Replicated(vtkMultiProcessController* controller, vtkDataSet* input);
+
+/// The ids 0 .. n-1 (the rows of a copy, for vtkDataSetAttributes::CopyData).
+vtkSmartPointer<vtkIdList> Sequence(vtkIdType n);
 
 /**
  * The piece's own cells: those not marked DUPLICATECELL, with the points they

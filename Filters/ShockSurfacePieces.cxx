@@ -123,17 +123,17 @@ void SetKindCells(vtkPolyData* owned, int kind, const KindCells& cells, const st
   }
 }
 
-/// The rows 0 .. n-1.
-vtkSmartPointer<vtkIdList> FirstRows(vtkIdType n)
+}
+
+vtkSmartPointer<vtkIdList> Sequence(vtkIdType n)
 {
-  auto rows = vtkSmartPointer<vtkIdList>::New();
-  rows->SetNumberOfIds(n);
+  auto ids = vtkSmartPointer<vtkIdList>::New();
+  ids->SetNumberOfIds(n);
   for (vtkIdType k = 0; k < n; ++k)
   {
-    rows->SetId(k, k);
+    ids->SetId(k, k);
   }
-  return rows;
-}
+  return ids;
 }
 
 vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
@@ -170,9 +170,9 @@ vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
   owned->GetPointData()->CopyGlobalIdsOn(); // CopyAllocate leaves them out otherwise
   owned->GetCellData()->CopyGlobalIdsOn();
   owned->GetPointData()->CopyAllocate(piece->GetPointData(), keptPoints->GetNumberOfIds());
-  owned->GetPointData()->CopyData(piece->GetPointData(), keptPoints, FirstRows(keptPoints->GetNumberOfIds()));
+  owned->GetPointData()->CopyData(piece->GetPointData(), keptPoints, Sequence(keptPoints->GetNumberOfIds()));
   owned->GetCellData()->CopyAllocate(piece->GetCellData(), keptCells->GetNumberOfIds());
-  owned->GetCellData()->CopyData(piece->GetCellData(), keptCells, FirstRows(keptCells->GetNumberOfIds()));
+  owned->GetCellData()->CopyData(piece->GetCellData(), keptCells, Sequence(keptCells->GetNumberOfIds()));
   owned->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName()); // no ghost cell left
   return owned;
 }
