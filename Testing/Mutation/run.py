@@ -115,7 +115,9 @@ def main():
     # The build inside the copy, as build/ inside the worktree: the same relative
     # paths, so that ccache (with CCACHE_BASEDIR) reuses the worktree's objects.
     build = os.path.join(src, "build")
-    env_launcher = ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache", "-DCMAKE_C_COMPILER_LAUNCHER=ccache"]
+    # ccache when installed (Debian's ccache); without it every mutant rebuilds what it touches.
+    launcher = shutil.which("ccache") or ""
+    env_launcher = ["-DCMAKE_CXX_COMPILER_LAUNCHER=" + launcher, "-DCMAKE_C_COMPILER_LAUNCHER=" + launcher]
     code, _ = run(["cmake", "-S", src, "-B", build, "-DCMAKE_BUILD_TYPE=Release"] + env_launcher,
                   cwd=work)
     def build_command(targets):
