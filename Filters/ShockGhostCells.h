@@ -116,14 +116,20 @@ private:
 };
 
 /// Steps 1 and 2: the piece's cells, its border and the global numbering of its points.
+/// Not copied: holdersById points into holders.
 struct Numbering
 {
+  Numbering() = default;
+  Numbering(const Numbering&) = delete;
+  Numbering& operator=(const Numbering&) = delete;
+
   int me = 0;
   int processes = 1;
   vtkIdType np = 0;                         ///< the piece's points
   Cells own;                                ///< the piece's cells
   std::vector<vtkIdType> linkStart, links;  ///< point -> own cells (CSR)
-  vtkDataArray* givenIds = nullptr;         ///< the input's point global ids, if every piece has them
+  vtkDataArray* givenIds = nullptr;         ///< this piece's point global ids (given), if it has points
+  bool idsGiven = false;                    ///< every piece with points has ids (the same on every process)
   std::vector<vtkIdType> border;            ///< points another piece may share, ascending
   std::vector<vtkIdType> gid;               ///< global id per own point
   std::vector<int> ownerOf;                 ///< owning process per own point

@@ -256,7 +256,7 @@ struct Gathered
  * Point global ids count when every piece with points has them (one
  * reduction: some with and some without is an error on every process).
  */
-bool GivenIdsAgree(vtkMultiProcessController* controller, const Numbering& n, std::string& error)
+bool GivenIdsAgree(vtkMultiProcessController* controller, Numbering& n, std::string& error)
 {
   const int local[2] = { n.np > 0 && n.givenIds ? 1 : 0, n.np > 0 && !n.givenIds ? 1 : 0 };
   int global[2] = { 0, 0 };
@@ -266,6 +266,7 @@ bool GivenIdsAgree(vtkMultiProcessController* controller, const Numbering& n, st
     error = "some pieces have point global ids and others do not: give every piece its ids, or none";
     return false; // the same decision on every process
   }
+  n.idsGiven = global[0] != 0; // the same on every process, empty pieces too
   return true;
 }
 
@@ -339,8 +340,8 @@ bool MatchKeys(vtkMultiProcessController* controller, vtkPolyData* piece, const 
   int floatPoints = piece->GetPoints()->GetDataType() == VTK_FLOAT && n.np > 0 ? 1 : 0;
   int any = 0;
   controller->AllReduce(&floatPoints, &any, 1, vtkCommunicator::MAX_OP);
-  g.keys = n.givenIds ? GivenKeys(g.words) : MergedCoordinateKeys(g.words, any ? 4.0 * 0x1p-23 : 1e-12);
-  if (!n.givenIds)
+  g.keys = n.idsGiven ? GivenKeys(g.words) : MergedCoordinateKeys(g.words, any ? 4.0 * 0x1p-23 : 1e-12);
+  if (!n.idsGiven)
   {
     return true;
   }
@@ -396,7 +397,7 @@ void FindOwners(Numbering& n, Gathered& g)
       {
         --owned;
       }
-      else if (g.shared[item] && !n.givenIds)
+      else if (g.shared[item] && !n.idsGiven)
       {
         g.sharedIds[key] = g.firstId[static_cast<size_t>(r)] + ownedBorder;
       }
@@ -463,7 +464,7 @@ void IndexHolders(Numbering& n, Gathered& g)
       const Holders& h = n.holders[key];
       if (h.size() > 1)
       {
-        n.holdersById.emplace(n.givenIds ? static_cast<vtkIdType>(key.a) : g.sharedIds[key], &h);
+        n.holdersById.emplace(n.idsGiven ? static_cast<vtkIdType>(key.a) : g.sharedIds[key], &h);
       }
     }
   }

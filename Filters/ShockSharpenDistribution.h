@@ -19,6 +19,9 @@ namespace ShockParallel
 /// A piece of a distributed mesh as the fit sees it, and the exchange behind it.
 struct Distribution
 {
+  Distribution() = default;
+  Distribution(const Distribution&) = delete; // the partition's functions point at this one
+  Distribution& operator=(const Distribution&) = delete;
   shock::MeshPartition partition;
   ShockParallel::PointExchange exchange;
   double meanEdgeLength = 0.0;

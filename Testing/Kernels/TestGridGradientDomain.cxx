@@ -220,6 +220,50 @@ TEST(GridGradientDomain, CarriedSignalFollowsTheValuesFlow)
   }
 }
 
+TEST(GridGradientDomain, CarriedSignalFollowsTheValuesFlowThroughCoarseLevels)
+{
+  // With coarse-to-fine tracing (HierarchyLevels), the coarse levels' flows are
+  // the input's (C components), whatever the carried signal holds: carrying
+  // the values (and more channels) gives the values' own advection with the
+  // same levels, which differs from the single-level one.
+  for (const GridShape& shape : { Shape(41, 37, 1, 1.0, 1.2, 1.0), Shape(19, 17, 15, 0.9, 1.0, 1.1) })
+  {
+    const int C = 2;
+    const std::vector<double> input = Noisy(Bumps(shape, C, 0.2), 0.03, 5);
+    AdvectionParameters p;
+    p.time = 2000.0;
+    const std::vector<double> single = Filter(shape, C, input, p);
+    p.hierarchyLevels = 3;
+    const std::vector<double> values = Filter(shape, C, input, p);
+    const int carriedC = C + 5; // more channels than the input: the levels must read the input's C
+    std::vector<float> carried;
+    for (std::int64_t s = 0; s < shape.NumberOfSamples(); ++s)
+    {
+      carried.push_back(static_cast<float>(input[s * C]));
+      carried.push_back(static_cast<float>(input[s * C + 1]));
+      for (int k = 0; k < carriedC - C; ++k)
+      {
+        carried.push_back(static_cast<float>(k + 1));
+      }
+    }
+    const std::vector<double> out = Carried(shape, C, input, carried, carriedC, p);
+    double levelsChange = 0.0;
+    for (std::int64_t s = 0; s < shape.NumberOfSamples(); ++s)
+    {
+      for (int c = 0; c < C; ++c)
+      {
+        EXPECT_NEAR(out[s * carriedC + c], values[s * C + c], 1e-6);
+        levelsChange = std::max(levelsChange, std::abs(values[s * C + c] - single[s * C + c]));
+      }
+      for (int k = C; k < carriedC; ++k)
+      {
+        EXPECT_NEAR(out[s * carriedC + k], k - C + 1, 1e-6); // a constant stays constant
+      }
+    }
+    EXPECT_GT(levelsChange, 1e-3) << "the coarse levels should change the traces";
+  }
+}
+
 TEST(GridGradientDomain, StepsEqualAnIndependentComputation)
 {
   for (const GridShape& shape : IrregularShapes())

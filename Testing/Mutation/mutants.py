@@ -44,6 +44,10 @@ MUTANTS = [
       WriteSignal(this->Ctx.L.numSamples, this->Carried->components, this->Carried->values, target, this->Ctx.threads);
       return true || AdvectUpdate<D>(this->Ctx, this->Flow, this->P, this->StepTime, this->Carried->values, target,""",
          bug="the carried signal is handed back unadvected (the differences never follow the flow)"),
+    dict(id="gradient-levels-read-carried-components", file=K + "Grid/GridShockAdvection.cxx",
+         original="TraceThroughCoarseLevels<D>(this->Levels, this->C, signal,",
+         replacement="TraceThroughCoarseLevels<D>(this->Levels, this->Ctx.C, signal,",
+         bug="the coarse levels of a carried (gradient-domain) run read the input with the carried signal's components"),
     dict(id="gradient-pieces-allowed", file="Filters/vtkImageShockAdvectionFilter.cxx",
          original="  if (error.empty() && this->Domain == GRADIENTS)",
          replacement="  if (false)",

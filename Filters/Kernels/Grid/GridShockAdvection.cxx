@@ -71,10 +71,11 @@ template <int D, typename T>
 class FlowUpdates
 {
 public:
-  FlowUpdates(const AdvectionContext<D>& ctx, FlowComputation<D>& flow, const GridShape& shape, const T* input,
-    const AdvectionParameters& p, double range, const CarriedSignal* carried, GridFlowFields* fields)
+  FlowUpdates(const AdvectionContext<D>& ctx, FlowComputation<D>& flow, const GridShape& shape, int C,
+    const T* input, const AdvectionParameters& p, double range, const CarriedSignal* carried, GridFlowFields* fields)
     : Ctx(ctx)
     , Flow(flow)
+    , C(C)
     , Input(input)
     , P(p)
     , Range(range)
@@ -85,7 +86,7 @@ public:
     , StepTime(p.time / Updates)
     , Levels(PyramidShapes(shape, p.hierarchyLevels))
   {
-    const std::int64_t count = ctx.L.numSamples * ctx.C;
+    const std::int64_t count = ctx.L.numSamples * C;
     if (p.time > 0.0 && this->Updates > 1)
     {
       this->Work[0] = AllocateLargeArray<double>(count);
@@ -127,7 +128,7 @@ public:
       // Fixed and Composed flows sample the input (Composed from the composed
       // positions, its result feeding the next flow); Naive resamples the last result.
       double* buffer = last ? nullptr : this->Work[this->Naive ? k % 2 : 0].get();
-      if (!this->Advect(buffer ? BufferWriter(buffer, this->Ctx.C) : output, progressStart))
+      if (!this->Advect(buffer ? BufferWriter(buffer, this->C) : output, progressStart))
       {
         return false;
       }
@@ -161,7 +162,7 @@ private:
     }
     bool completed = false;
     this->WithSignal([&](auto signal) {
-      completed = TraceThroughCoarseLevels<D>(this->Levels, this->Ctx.C, signal, this->Range, this->Ctx.valid,
+      completed = TraceThroughCoarseLevels<D>(this->Levels, this->C, signal, this->Range, this->Ctx.valid,
         this->P, this->StepTime, this->Positions.get(), this->Ctx.report, this->Ctx.progress, progressStart);
     });
     return completed;
@@ -186,8 +187,9 @@ private:
       this->Ctx, this->Flow, this->P, this->StepTime, this->Input, target, positions, progressStart, span);
   }
 
-  const AdvectionContext<D>& Ctx;
+  const AdvectionContext<D>& Ctx; ///< its C: the advected signal's components (the carried signal's, if any)
   FlowComputation<D>& Flow;
+  const int C; ///< the input signal's components, which the flow and the coarse levels read
   const T* Input;
   const AdvectionParameters& P;
   const double Range;
@@ -247,7 +249,7 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
   }
   const AdvectionContext<D> ctx{ L, carried ? carried->components : C, threads, p.sampling, masks.Samples(),
     progress, report };
-  FlowUpdates<D, T> updates(ctx, flow, shape, input, p, range, carried, fields);
+  FlowUpdates<D, T> updates(ctx, flow, shape, C, input, p, range, carried, fields);
   report.aborted = !updates.Run(output);
   if (report.aborted || !(p.time > 0.0))
   {
