@@ -31,28 +31,6 @@ using ghost::Cells;
 using ghost::Numbering;
 using ghost::Rings;
 
-/// `from`'s first `count` rows into `to`'s first rows: one copy when both hold their values contiguously.
-void CopyLeadingRows(vtkAbstractArray* to, vtkAbstractArray* from, vtkIdType count)
-{
-  auto* target = vtkDataArray::SafeDownCast(to);
-  auto* source = vtkDataArray::SafeDownCast(from);
-  if (count <= 0)
-  {
-    return;
-  }
-  if (target && source && target->HasStandardMemoryLayout() && source->HasStandardMemoryLayout() &&
-    target->GetDataType() == source->GetDataType() && source->GetDataTypeSize() > 0 && // not bits
-    target->GetDataType() != VTK_BIT &&
-    target->GetNumberOfComponents() == source->GetNumberOfComponents())
-  {
-    std::memcpy(target->GetVoidPointer(0), source->GetVoidPointer(0),
-      static_cast<size_t>(count) * static_cast<size_t>(source->GetNumberOfComponents()) *
-        static_cast<size_t>(source->GetDataTypeSize()));
-    return;
-  }
-  to->InsertTuples(0, count, 0, from);
-}
-
 /**
  * `to` holds `from`'s arrays (attributes kept) with `total` tuples: rows
  * [0, leading) are `from`'s first rows; any other row r comes from
@@ -79,7 +57,7 @@ bool ExtendAttributes(vtkDataSetAttributes* to, vtkDataSetAttributes* from, vtkI
     target->CopyComponentNames(source);
     target->CopyInformation(source->GetInformation(), 1);
     target->SetNumberOfTuples(total);
-    CopyLeadingRows(target, source, std::min(leading, source->GetNumberOfTuples()));
+    ghost::CopyRowBlock(target, 0, source, 0, std::min(leading, source->GetNumberOfTuples()));
     vtkDataSetAttributes* lastHolder = nullptr; // rows come packet by packet: one lookup per packet
     vtkAbstractArray* other = nullptr;
     for (vtkIdType r = leading; r < total; ++r)
@@ -124,7 +102,7 @@ bool AssemblePoints(vtkPolyData* piece, const Numbering& n, const Rings& rings, 
   vtkNew<vtkPoints> points;
   points->SetDataType(piece->GetPoints()->GetDataType());
   points->SetNumberOfPoints(total);
-  CopyLeadingRows(points->GetData(), piece->GetPoints()->GetData(), np);
+  ghost::CopyRowBlock(points->GetData(), 0, piece->GetPoints()->GetData(), 0, np);
   for (size_t g = 0; g < rings.ghostPoints.size(); ++g)
   {
     const Rings::Row& from = rings.ghostPoints[g];
@@ -313,5 +291,30 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
     return nullptr;
   }
   return result;
+}
+
+namespace ghost
+{
+void CopyRowBlock(vtkAbstractArray* to, vtkIdType toRow, vtkAbstractArray* from, vtkIdType fromRow, vtkIdType count)
+{
+  auto* target = vtkDataArray::SafeDownCast(to);
+  auto* source = vtkDataArray::SafeDownCast(from);
+  if (count <= 0)
+  {
+    return;
+  }
+  if (target && source && target->HasStandardMemoryLayout() && source->HasStandardMemoryLayout() &&
+    target->GetDataType() == source->GetDataType() && source->GetDataTypeSize() > 0 && // not bits
+    target->GetDataType() != VTK_BIT && target->GetNumberOfComponents() == source->GetNumberOfComponents())
+  {
+    const size_t row = static_cast<size_t>(source->GetNumberOfComponents()) *
+      static_cast<size_t>(source->GetDataTypeSize());
+    std::memcpy(static_cast<char*>(target->GetVoidPointer(0)) + row * static_cast<size_t>(toRow),
+      static_cast<const char*>(source->GetVoidPointer(0)) + row * static_cast<size_t>(fromRow),
+      row * static_cast<size_t>(count));
+    return;
+  }
+  to->InsertTuples(toRow, count, fromRow, from);
+}
 }
 }

@@ -41,6 +41,7 @@
 #include <unordered_map>
 #include <vector>
 
+class vtkAbstractArray;
 class vtkDataArray;
 class vtkMultiProcessController;
 
@@ -140,6 +141,13 @@ struct Numbering
 
 /// Cells of `piece`, read in place from its four cell arrays.
 Cells ReadCells(vtkPolyData* piece);
+
+/**
+ * Rows [fromRow, fromRow + count) of `from` into rows [toRow, toRow + count)
+ * of `to` (allocated): one copy when both hold their values contiguously with
+ * the same type and components, VTK's row copy otherwise.
+ */
+void CopyRowBlock(vtkAbstractArray* to, vtkIdType toRow, vtkAbstractArray* from, vtkIdType fromRow, vtkIdType count);
 
 /// Point -> cells (CSR) of `cells` over `np` points.
 void PointLinks(const Cells& cells, vtkIdType np, std::vector<vtkIdType>& start, std::vector<vtkIdType>& list);

@@ -44,78 +44,118 @@ void AppendKind(unsigned char k, vtkIdType n, const Offset* offsets, const Offse
 }
 
 /**
- * Whether point p may be shared with another piece: it is on a vertex or line
- * cell, or on an edge that exactly one of its polygons (or strip triangles) has.
+ * Calls edge(a, b) for every side of the polygons (a, b consecutive around
+ * the loop, the last with the first) and of the strips' triangles, and
+ * loose(p) for every point of a vertex or line cell and of a polygon or
+ * strip with fewer than 3 points.
  */
-bool OnBorder(const Cells& cells, const std::vector<vtkIdType>& start, const std::vector<vtkIdType>& list,
-  vtkIdType p, std::vector<vtkIdType>& scratch)
+template <typename Edge, typename Loose>
+void ForEachSide(const Cells& cells, Edge edge, Loose loose)
 {
-  scratch.clear();
-  for (vtkIdType k = start[static_cast<size_t>(p)]; k < start[static_cast<size_t>(p) + 1]; ++k)
+  for (vtkIdType c = 0; c < cells.Size(); ++c)
   {
-    const vtkIdType c = list[static_cast<size_t>(k)];
     const vtkIdType* ids = &cells.points[static_cast<size_t>(cells.offsets[static_cast<size_t>(c)])];
     const vtkIdType n = cells.offsets[static_cast<size_t>(c) + 1] - cells.offsets[static_cast<size_t>(c)];
     const unsigned char kind = cells.kind[static_cast<size_t>(c)];
     if (kind < 2 || n < 3)
     {
-      return true;
+      std::for_each(ids, ids + n, loose);
     }
-    for (vtkIdType i = 0; i < n; ++i)
+    else if (kind == 2) // polygon: its loop
     {
-      if (ids[i] != p)
+      for (vtkIdType i = 0; i < n; ++i)
       {
-        continue;
+        edge(ids[i], ids[i + 1 == n ? 0 : i + 1]);
       }
-      if (kind == 2) // polygon: the neighbours along its loop
+    }
+    else // strip: the sides of the triangles (j, j+1, j+2)
+    {
+      for (vtkIdType j = 0; j + 2 < n; ++j)
       {
-        scratch.push_back(ids[i + 1 == n ? 0 : i + 1]);
-        scratch.push_back(ids[i == 0 ? n - 1 : i - 1]);
-      }
-      else // strip: the edges of the triangles (j, j+1, j+2) that hold i
-      {
-        for (vtkIdType j = std::max<vtkIdType>(0, i - 2); j <= std::min(i, n - 3); ++j)
-        {
-          for (vtkIdType q = j; q < j + 3; ++q)
-          {
-            if (q != i)
-            {
-              scratch.push_back(ids[q]);
-            }
-          }
-        }
+        edge(ids[j], ids[j + 1]);
+        edge(ids[j + 1], ids[j + 2]);
+        edge(ids[j], ids[j + 2]);
       }
     }
   }
-  // Few entries (two per polygon around p): an insertion sort beats std::sort here.
-  if (scratch.size() > 64)
+}
+
+/**
+ * The points another piece may share, ascending: those on a vertex or line
+ * cell (or a polygon or strip of fewer than 3 points), and both ends of every
+ * edge that exactly one side of the polygons and strip triangles has (an
+ * edge used twice or more is inside the piece; an edge from a point to
+ * itself is no edge). The edges are bucketed by their lower point (a counting
+ * sort over the cells in order), so that each bucket's few entries are
+ * counted where they lie together instead of walking every point's cells.
+ */
+std::vector<vtkIdType> BorderPoints(const Cells& cells, vtkIdType np)
+{
+  std::vector<char> onBorder(static_cast<size_t>(np), 0);
+  std::vector<vtkIdType> start(static_cast<size_t>(np) + 1, 0);
+  const auto none = [](vtkIdType) {};
+  ForEachSide(
+    cells,
+    [&](vtkIdType a, vtkIdType b) {
+      if (a != b)
+      {
+        ++start[static_cast<size_t>(std::min(a, b)) + 1];
+      }
+    },
+    [&](vtkIdType p) { onBorder[static_cast<size_t>(p)] = 1; });
+  for (size_t p = 0; p < static_cast<size_t>(np); ++p)
   {
-    std::sort(scratch.begin(), scratch.end());
+    start[p + 1] += start[p];
   }
-  for (size_t i = 1; i < scratch.size(); ++i)
+  std::vector<vtkIdType> higher(static_cast<size_t>(start.back()));
+  std::vector<vtkIdType> fill(start.begin(), start.end() - 1);
+  ForEachSide(
+    cells,
+    [&](vtkIdType a, vtkIdType b) {
+      if (a != b)
+      {
+        higher[static_cast<size_t>(fill[static_cast<size_t>(std::min(a, b))]++)] = std::max(a, b);
+      }
+    },
+    none);
+  for (size_t p = 0; p < static_cast<size_t>(np); ++p)
   {
-    const vtkIdType value = scratch[i];
-    size_t j = i;
-    for (; j > 0 && scratch[j - 1] > value; --j)
+    vtkIdType* first = higher.data() + start[p];
+    vtkIdType* last = higher.data() + start[p + 1];
+    for (vtkIdType* i = first + 1; i < last; ++i) // a few entries: insertion sort
     {
-      scratch[j] = scratch[j - 1];
+      const vtkIdType value = *i;
+      vtkIdType* j = i;
+      for (; j > first && *(j - 1) > value; --j)
+      {
+        *j = *(j - 1);
+      }
+      *j = value;
     }
-    scratch[j] = value;
+    for (vtkIdType* k = first; k < last;)
+    {
+      vtkIdType* end = k + 1;
+      while (end < last && *end == *k)
+      {
+        ++end;
+      }
+      if (end - k == 1) // an edge of one side only
+      {
+        onBorder[p] = 1;
+        onBorder[static_cast<size_t>(*k)] = 1;
+      }
+      k = end;
+    }
   }
-  for (size_t k = 0; k < scratch.size();)
+  std::vector<vtkIdType> border;
+  for (vtkIdType p = 0; p < np; ++p)
   {
-    size_t end = k;
-    while (end < scratch.size() && scratch[end] == scratch[k])
+    if (onBorder[static_cast<size_t>(p)])
     {
-      ++end;
+      border.push_back(p);
     }
-    if (end - k == 1 && scratch[k] != p)
-    {
-      return true;
-    }
-    k = end;
   }
-  return false;
+  return border;
 }
 
 Key CoordinateKey(const double x[3])
@@ -300,15 +340,7 @@ Key KeyOf(vtkPolyData* piece, vtkDataArray* givenIds, vtkIdType p)
 /// Step 1: the piece's border points, and every piece's border keys and point counts.
 void GatherBorders(vtkMultiProcessController* controller, vtkPolyData* piece, Numbering& n, Gathered& g)
 {
-  std::vector<vtkIdType> scratch;
-  for (vtkIdType p = 0; p < n.np; ++p)
-  {
-    if (n.linkStart[static_cast<size_t>(p) + 1] > n.linkStart[static_cast<size_t>(p)] &&
-      OnBorder(n.own, n.linkStart, n.links, p, scratch))
-    {
-      n.border.push_back(p);
-    }
-  }
+  n.border = BorderPoints(n.own, n.np);
   std::vector<std::uint64_t> mine;
   mine.reserve(3 * n.border.size());
   for (vtkIdType p : n.border)

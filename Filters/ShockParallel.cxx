@@ -137,13 +137,24 @@ double GlobalRangeWidth(vtkMultiProcessController* controller, bool has, const d
 
 bool Replicated(vtkMultiProcessController* controller, vtkDataSet* input)
 {
+  // The sizes first: pieces of different sizes (the usual case) are not
+  // replicated, and need no pass over their cells and points.
+  const double points = input ? static_cast<double>(input->GetNumberOfPoints()) : 0.0;
+  const double cells = input ? static_cast<double>(input->GetNumberOfCells()) : 0.0;
+  const double sizes[4] = { points, cells, -points, -cells }; // largest, and minus the smallest
+  double extremes[4];
+  controller->AllReduce(sizes, extremes, 4, vtkCommunicator::MAX_OP);
+  if (extremes[0] != -extremes[2] || extremes[1] != -extremes[3] || !(extremes[0] > 0.0))
+  {
+    return false;
+  }
   // A fingerprint: sizes, and sums of the coordinates weighted two ways (so
   // that a permutation or a different piece shows).
   double print[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
   if (input)
   {
-    print[0] = static_cast<double>(input->GetNumberOfPoints());
-    print[1] = static_cast<double>(input->GetNumberOfCells());
+    print[0] = points;
+    print[1] = cells;
     // The cells too, weighted by position (same points, other cells: not replicated).
     if (auto* polyData = vtkPolyData::SafeDownCast(input))
     {

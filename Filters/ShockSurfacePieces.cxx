@@ -3,6 +3,7 @@
  * @brief A surface piece's own cells (OwnedCells) and the output of its own
  * cells after filtering with ghost cells (OwnedPiece).
  */
+#include "ShockGhostCells.h"
 #include "ShockParallel.h"
 
 #include "vtkAlgorithm.h"
@@ -179,34 +180,37 @@ vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece)
 
 namespace
 {
-/// `array`'s rows `rows` (all of its first `count` rows when `rows` is null) as a new array.
-vtkSmartPointer<vtkAbstractArray> Rows(vtkAbstractArray* array, vtkIdType count, vtkIdList* rows)
+/// A run of rows: `count` rows from `first`.
+struct RowRun
+{
+  vtkIdType first;
+  vtkIdType count;
+};
+
+/// `array`'s rows of `runs`, one after the other, as a new array.
+vtkSmartPointer<vtkAbstractArray> Rows(vtkAbstractArray* array, const std::vector<RowRun>& runs)
 {
   auto picked = vtk::TakeSmartPointer(array->NewInstance());
   picked->SetName(array->GetName());
   picked->SetNumberOfComponents(array->GetNumberOfComponents());
   picked->CopyComponentNames(array);
-  if (rows)
+  vtkIdType total = 0;
+  for (const RowRun& run : runs)
   {
-    picked->SetNumberOfTuples(rows->GetNumberOfIds());
-    vtkNew<vtkIdList> to;
-    to->SetNumberOfIds(rows->GetNumberOfIds());
-    for (vtkIdType k = 0; k < rows->GetNumberOfIds(); ++k)
-    {
-      to->SetId(k, k);
-    }
-    picked->InsertTuples(to, rows, array);
+    total += run.count;
   }
-  else
+  picked->SetNumberOfTuples(total);
+  vtkIdType to = 0;
+  for (const RowRun& run : runs)
   {
-    picked->SetNumberOfTuples(count);
-    picked->InsertTuples(0, count, 0, array);
+    ghost::CopyRowBlock(picked, to, array, run.first, run.count);
+    to += run.count;
   }
   return picked;
 }
 
 /// Replace every array of `attributes` (taken from `from`) by its rows, attributes kept.
-void KeepRows(vtkDataSetAttributes* attributes, vtkDataSetAttributes* from, vtkIdType count, vtkIdList* rows)
+void KeepRows(vtkDataSetAttributes* attributes, vtkDataSetAttributes* from, const std::vector<RowRun>& runs)
 {
   attributes->ShallowCopy(from);
   for (int k = 0; k < from->GetNumberOfArrays(); ++k)
@@ -214,7 +218,7 @@ void KeepRows(vtkDataSetAttributes* attributes, vtkDataSetAttributes* from, vtkI
     vtkAbstractArray* array = from->GetAbstractArray(k);
     if (array && array->GetName())
     {
-      attributes->AddArray(Rows(array, count, rows)); // same name: replaced at its index
+      attributes->AddArray(Rows(array, runs)); // same name: replaced at its index
     }
   }
 }
@@ -230,24 +234,24 @@ vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* owne
   if (filtered->GetPoints() && filtered->GetPoints() != owned->GetPoints())
   {
     vtkNew<vtkPoints> points;
-    points->SetData(vtkDataArray::SafeDownCast(Rows(filtered->GetPoints()->GetData(), np, nullptr)));
+    points->SetData(vtkDataArray::SafeDownCast(Rows(filtered->GetPoints()->GetData(), { { 0, np } })));
     result->SetPoints(points);
   }
-  KeepRows(result->GetPointData(), filtered->GetPointData(), np, nullptr);
+  KeepRows(result->GetPointData(), filtered->GetPointData(), { { 0, np } });
   vtkCellArray* ownCells[4] = { owned->GetVerts(), owned->GetLines(), owned->GetPolys(), owned->GetStrips() };
   vtkCellArray* allCells[4] = { filtered->GetVerts(), filtered->GetLines(), filtered->GetPolys(), filtered->GetStrips() };
-  vtkNew<vtkIdList> cellRows;
+  std::vector<RowRun> cellRows; // each kind's own cells: the leading run of its cells
   vtkIdType first = 0;
   for (int kind = 0; kind < 4; ++kind)
   {
     const vtkIdType own = ownCells[kind] ? ownCells[kind]->GetNumberOfCells() : 0;
-    for (vtkIdType c = 0; c < own; ++c)
+    if (own > 0)
     {
-      cellRows->InsertNextId(first + c);
+      cellRows.push_back({ first, own });
     }
     first += allCells[kind] ? allCells[kind]->GetNumberOfCells() : 0;
   }
-  KeepRows(result->GetCellData(), filtered->GetCellData(), cellRows->GetNumberOfIds(), cellRows);
+  KeepRows(result->GetCellData(), filtered->GetCellData(), cellRows);
   result->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName()); // no ghost cell left
   for (vtkDataSetAttributes* attributes : { static_cast<vtkDataSetAttributes*>(result->GetPointData()),
          static_cast<vtkDataSetAttributes*>(result->GetCellData()) })

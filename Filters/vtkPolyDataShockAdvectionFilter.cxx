@@ -176,41 +176,44 @@ bool TriangleEdgeSums(vtkPolyData* piece, double sums[2])
       return false; // polygons of other sizes: ExtractTriangles's way
     }
   }
-  std::vector<std::int64_t> corners(static_cast<size_t>(3 * nt));
-  if (polys->IsStorage64Bit())
-  {
-    const vtkTypeInt64* ids = polys->GetConnectivityArray64()->GetPointer(0);
-    std::copy(ids, ids + 3 * nt, corners.begin());
-  }
-  else
-  {
-    const vtkTypeInt32* ids = polys->GetConnectivityArray32()->GetPointer(0);
-    std::copy(ids, ids + 3 * nt, corners.begin());
-  }
-  // The coordinates as doubles (one copy when they are doubles in one block).
+  // The coordinates as doubles: read in place when they are doubles in one block.
   vtkDataArray* coordinates = piece->GetPoints()->GetData();
-  std::vector<double> points(static_cast<size_t>(3 * piece->GetNumberOfPoints()));
+  std::vector<double> copied;
+  const double* points = nullptr;
   if (coordinates->GetDataType() == VTK_DOUBLE && coordinates->HasStandardMemoryLayout())
   {
-    coordinates->ExportToVoidPointer(points.data());
+    points = static_cast<const double*>(coordinates->GetVoidPointer(0));
   }
   else
   {
+    copied.resize(static_cast<size_t>(3 * piece->GetNumberOfPoints()));
     for (vtkIdType p = 0; p < piece->GetNumberOfPoints(); ++p)
     {
-      coordinates->GetTuple(p, points.data() + 3 * p);
+      coordinates->GetTuple(p, copied.data() + 3 * p);
     }
+    points = copied.data();
   }
   vtkUnsignedCharArray* ghosts = piece->GetCellGhostArray();
   const vtkIdType first = piece->GetNumberOfVerts() + piece->GetNumberOfLines(); // polygons' cell ids start here
-  for (vtkIdType f = 0; f < nt; ++f)
-  {
-    if (ghosts && (ghosts->GetValue(first + f) & vtkDataSetAttributes::DUPLICATECELL))
+  const auto sum = [&](const auto* ids) {
+    for (vtkIdType f = 0; f < nt; ++f)
     {
-      continue;
+      if (ghosts && (ghosts->GetValue(first + f) & vtkDataSetAttributes::DUPLICATECELL))
+      {
+        continue;
+      }
+      const std::int64_t corners[3] = { ids[3 * f], ids[3 * f + 1], ids[3 * f + 2] };
+      sums[0] += shock::TrianglePerimeter(points, corners);
+      sums[1] += 3.0;
     }
-    sums[0] += shock::TrianglePerimeter(points.data(), corners.data() + 3 * f);
-    sums[1] += 3.0;
+  };
+  if (polys->IsStorage64Bit())
+  {
+    sum(polys->GetConnectivityArray64()->GetPointer(0));
+  }
+  else
+  {
+    sum(polys->GetConnectivityArray32()->GetPointer(0));
   }
   return true;
 }
