@@ -261,6 +261,48 @@ double vtkShockAdvectionFilter::GlobalValueScale(
   return ShockParallel::GlobalRangeWidth(controller, has, range);
 }
 
+namespace
+{
+/// Component value of tuple t: read in place from a contiguous array, or through vtkDataArray.
+template <typename T>
+double ComponentOf(const T* values, vtkIdType t, int c, int components)
+{
+  return static_cast<double>(values[t * components + c]);
+}
+double ComponentOf(vtkDataArray* array, vtkIdType t, int c, int)
+{
+  return array->GetComponent(t, c);
+}
+
+/**
+ * The smallest and largest component of the tuples whose components are all
+ * finite, leaving out the tuples `marks` flags with `hidden`.
+ */
+template <typename Values>
+void TupleRange(Values values, vtkIdType tuples, int components, const unsigned char* marks, unsigned char hidden,
+  double range[2])
+{
+  for (vtkIdType t = 0; t < tuples; ++t)
+  {
+    if (marks && (marks[t] & hidden))
+    {
+      continue;
+    }
+    bool finite = true;
+    for (int c = 0; c < components && finite; ++c)
+    {
+      finite = std::isfinite(ComponentOf(values, t, c, components));
+    }
+    for (int c = 0; c < components && finite; ++c)
+    {
+      const double v = ComponentOf(values, t, c, components);
+      range[0] = std::min(range[0], v);
+      range[1] = std::max(range[1], v);
+    }
+  }
+}
+}
+
 bool vtkShockAdvectionFilter::LocalValueRange(vtkInformationVector** inputVector, double range[2])
 {
   range[0] = std::numeric_limits<double>::infinity();
@@ -271,32 +313,27 @@ bool vtkShockAdvectionFilter::LocalValueRange(vtkInformationVector** inputVector
   {
     return false;
   }
-  const int components = array->GetNumberOfComponents();
-  std::vector<double> tuple(static_cast<size_t>(components));
   // Blanked samples (HIDDENPOINT / HIDDENCELL) take no part, as in the kernels.
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
   const bool cells = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
   vtkUnsignedCharArray* ghosts = input ? (cells ? input->GetCellGhostArray() : input->GetPointGhostArray()) : nullptr;
   ghosts = ghosts && ghosts->GetNumberOfTuples() == array->GetNumberOfTuples() ? ghosts : nullptr;
-  const int hidden =
-    cells ? static_cast<int>(vtkDataSetAttributes::HIDDENCELL) : static_cast<int>(vtkDataSetAttributes::HIDDENPOINT);
-  for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+  const unsigned char hidden = cells ? static_cast<unsigned char>(vtkDataSetAttributes::HIDDENCELL)
+                                     : static_cast<unsigned char>(vtkDataSetAttributes::HIDDENPOINT);
+  const unsigned char* marks = ghosts ? ghosts->GetPointer(0) : nullptr;
+  if (array->HasStandardMemoryLayout())
   {
-    if (ghosts && (ghosts->GetValue(t) & hidden))
+    switch (array->GetDataType())
     {
-      continue;
+      vtkTemplateMacro(TupleRange(static_cast<const VTK_TT*>(array->GetVoidPointer(0)), array->GetNumberOfTuples(),
+        array->GetNumberOfComponents(), marks, hidden, range));
+      default:
+        TupleRange(array, array->GetNumberOfTuples(), array->GetNumberOfComponents(), marks, hidden, range);
     }
-    array->GetTuple(t, tuple.data());
-    bool finite = true;
-    for (int c = 0; c < components && finite; ++c)
-    {
-      finite = std::isfinite(tuple[static_cast<size_t>(c)]);
-    }
-    for (int c = 0; c < components && finite; ++c)
-    {
-      range[0] = std::min(range[0], tuple[static_cast<size_t>(c)]);
-      range[1] = std::max(range[1], tuple[static_cast<size_t>(c)]);
-    }
+  }
+  else
+  {
+    TupleRange(array, array->GetNumberOfTuples(), array->GetNumberOfComponents(), marks, hidden, range);
   }
   return range[0] <= range[1];
 }
