@@ -336,7 +336,7 @@ bool Agree(vtkMultiProcessController* controller, const std::string& localError,
 
 bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* input,
   const std::string& localError, const std::string& parameters, const std::string& selection, int layers,
-  SurfacePiece& piece, std::string& error)
+  const CarriedArrays& carried, SurfacePiece& piece, std::string& error)
 {
   piece = SurfacePiece();
   piece.work = input;
@@ -365,7 +365,7 @@ bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* inp
   vtkNew<vtkPolyData> none;
   piece.owned = input ? OwnedCells(input) : vtkSmartPointer<vtkPolyData>(none);
   vtkLogStartScope(TRACE, "shock: ghost rings");
-  piece.work = WithGhostCells(controller, piece.owned, layers, error);
+  piece.work = WithGhostCells(controller, Carrying(piece.owned, carried), layers, error);
   vtkLogEndScope("shock: ghost rings");
   return piece.work != nullptr; // its failures are agreed by every process already
 }

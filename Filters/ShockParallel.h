@@ -99,13 +99,31 @@ vtkSmartPointer<vtkIdList> Sequence(vtkIdType n);
 vtkSmartPointer<vtkPolyData> OwnedCells(vtkPolyData* piece);
 
 /**
- * The output of a surface filter's piece: the rows of `owned` (the piece
- * WithGhostCells was given) in `filtered` (its result with ghost cells: own
- * points first, each kind's own cells before its ghost cells), with the
- * filtered points and arrays, without the ghost cells' marks and the global
- * ids made for it (those `input` did not have).
+ * Which point and cell arrays of a piece its ghost rings carry: every one, or
+ * those named (the arrays a filter reads; the ghost marks and the point global
+ * ids always travel). The arrays left behind reach the output from the owned
+ * piece unchanged (OwnedPiece), so a filter carries only what it reads.
  */
-vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* owned, vtkPolyData* input);
+struct CarriedArrays
+{
+  bool all = true;
+  std::vector<std::string> point, cell;
+};
+
+/// `owned` with only the arrays `carried` names (points and cells shared), or `owned` itself.
+vtkSmartPointer<vtkPolyData> Carrying(vtkPolyData* owned, const CarriedArrays& carried);
+
+/**
+ * The output of a surface filter's piece: `owned` (the piece's own cells,
+ * with every array) where `filtered` (the filter's result on `work`, the piece
+ * WithGhostCells made: own points first, each kind's own cells before its
+ * ghost cells) changed it: the filtered points, the arrays the filter made or
+ * replaced (their own rows), the owners' point marks, and the attribute roles
+ * the filter changed. Arrays the filter left alone are the owned piece's, so
+ * the global ids the rings made (those the input did not have) and the ghost
+ * cells' marks are not in it.
+ */
+vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* work, vtkPolyData* owned);
 
 /**
  * `piece` (without ghost cells) with `layers` rings of its neighbours' cells
@@ -146,12 +164,12 @@ struct SurfacePiece
  * Then a replicated input is recognised; otherwise the piece (without the
  * ghost cells it may have come with: their depth cannot be checked, as the
  * pipeline stamps DATA_NUMBER_OF_GHOST_LEVELS with the request whatever the
- * source made) gets `layers` rings of ghost cells and the owners' marks
- * from WithGhostCells.
+ * source made) gets `layers` rings of ghost cells, carrying the arrays
+ * `carried` names, and the owners' marks from WithGhostCells.
  */
 bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* input,
   const std::string& localError, const std::string& parameters, const std::string& selection, int layers,
-  SurfacePiece& piece, std::string& error);
+  const CarriedArrays& carried, SurfacePiece& piece, std::string& error);
 
 /**
  * Whether any process has `failed` (collective, one reduction; the message

@@ -229,8 +229,8 @@ std::string ValidateSurface(vtkPolyData* surface)
 
 bool BeginSurface(vtkInformationVector** inputVector, vtkMultiProcessController* controller,
   int ghostLevels, const std::function<std::string(vtkPolyData* surface)>& check,
-  const std::string& parameters, const std::string* selection, vtkSmartPointer<vtkPolyData>& input,
-  ShockParallel::SurfacePiece& piece, std::string& error)
+  const std::string& parameters, const std::string* selection, const ShockParallel::CarriedArrays& carried,
+  vtkSmartPointer<vtkPolyData>& input, ShockParallel::SurfacePiece& piece, std::string& error)
 {
   error.clear();
   input = AsSurface(vtkDataSet::GetData(inputVector[0]), error);
@@ -245,7 +245,7 @@ bool BeginSurface(vtkInformationVector** inputVector, vtkMultiProcessController*
   }
   // In parallel: every process agrees (on failure, parameters and arrays), then gets ghost cells (collective).
   return ShockParallel::PrepareSurfacePiece(controller, input, error, parameters,
-    selection ? *selection : std::string(), ghostLevels, piece, error);
+    selection ? *selection : std::string(), ghostLevels, carried, piece, error);
 }
 
 bool IsSurfaceType(vtkDataObject* data)

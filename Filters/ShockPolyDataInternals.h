@@ -19,6 +19,7 @@ class vtkDataSet;
 class vtkMultiProcessController;
 namespace ShockParallel
 {
+struct CarriedArrays;
 struct SurfacePiece;
 }
 class vtkInformationVector;
@@ -153,7 +154,8 @@ vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error);
  * not called without a surface, nor when ValidateSurface refuses it), then,
  * with a `controller`, the agreement of every process (ShockParallel::Agree
  * on the error, on `parameters` and `*selection`, the filtered array as
- * `check` chose it) and the piece's ghost layers
+ * `check` chose it) and the piece's ghost layers, carrying the arrays
+ * `carried` names (read after `check`, which may fill it in)
  * (ShockParallel::PrepareSurfacePiece, collective: call it on every
  * process). Returns false with a one-sentence `error` to report; on success,
  * `piece.skip` says the output stays empty (replicated data: process 0
@@ -161,8 +163,8 @@ vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error);
  */
 bool BeginSurface(vtkInformationVector** inputVector, vtkMultiProcessController* controller,
   int ghostLevels, const std::function<std::string(vtkPolyData* surface)>& check,
-  const std::string& parameters, const std::string* selection, vtkSmartPointer<vtkPolyData>& input,
-  ShockParallel::SurfacePiece& piece, std::string& error);
+  const std::string& parameters, const std::string* selection, const ShockParallel::CarriedArrays& carried,
+  vtkSmartPointer<vtkPolyData>& input, ShockParallel::SurfacePiece& piece, std::string& error);
 
 /**
  * The checks every surface filter makes before anything reads the mesh: the

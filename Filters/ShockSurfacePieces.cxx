@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -209,35 +210,64 @@ vtkSmartPointer<vtkAbstractArray> Rows(vtkAbstractArray* array, const std::vecto
   return picked;
 }
 
-/// Replace every array of `attributes` (taken from `from`) by its rows, attributes kept.
-void KeepRows(vtkDataSetAttributes* attributes, vtkDataSetAttributes* from, const std::vector<RowRun>& runs)
+/**
+ * `result`'s arrays (those of the owned piece) updated from `filtered`: an
+ * array the filter made or replaced (not the same array in `work`) becomes
+ * its rows `runs` (replacing the owned array of that name, else added), as
+ * does the point ghost array (the owners' marks); the arrays the filter left
+ * alone stay the owned piece's own (the same values, without a copy); the
+ * attribute roles the filter changed follow it.
+ */
+void TakeFilteredArrays(vtkDataSetAttributes* result, vtkDataSetAttributes* filtered, vtkDataSetAttributes* work,
+  const std::vector<RowRun>& runs, bool points)
 {
-  attributes->ShallowCopy(from);
-  for (int k = 0; k < from->GetNumberOfArrays(); ++k)
+  for (int k = 0; k < filtered->GetNumberOfArrays(); ++k)
   {
-    vtkAbstractArray* array = from->GetAbstractArray(k);
-    if (array && array->GetName())
+    vtkAbstractArray* array = filtered->GetAbstractArray(k);
+    if (!array || !array->GetName())
     {
-      attributes->AddArray(Rows(array, runs)); // same name: replaced at its index
+      continue;
+    }
+    const bool marks = points && std::strcmp(array->GetName(), vtkDataSetAttributes::GhostArrayName()) == 0;
+    if (!marks && work->GetAbstractArray(array->GetName()) == array)
+    {
+      continue; // left alone by the filter: the owned piece's array (or one the rings made)
+    }
+    result->AddArray(Rows(array, runs)); // same name: replaced at its index
+  }
+  for (int a = 0; a < vtkDataSetAttributes::NUM_ATTRIBUTES; ++a)
+  {
+    vtkAbstractArray* role = filtered->GetAbstractAttribute(a);
+    if (role == work->GetAbstractAttribute(a))
+    {
+      continue;
+    }
+    if (role && role->GetName() && result->GetAbstractArray(role->GetName()))
+    {
+      result->SetActiveAttribute(role->GetName(), a);
+    }
+    else
+    {
+      result->SetActiveAttribute(-1, a);
     }
   }
 }
 }
 
-vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* owned, vtkPolyData* input)
+vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* work, vtkPolyData* owned)
 {
   // WithGhostCells put the piece's own points first, in their order, and each
   // kind's own cells before its ghost cells: the owned piece is those rows.
   auto result = vtkSmartPointer<vtkPolyData>::New();
-  result->ShallowCopy(owned); // its cells
+  result->ShallowCopy(owned); // its cells, and the arrays the filter leaves alone
   const vtkIdType np = owned->GetNumberOfPoints();
-  if (filtered->GetPoints() && filtered->GetPoints() != owned->GetPoints())
+  if (filtered->GetPoints() && filtered->GetPoints() != work->GetPoints())
   {
     vtkNew<vtkPoints> points;
     points->SetData(vtkDataArray::SafeDownCast(Rows(filtered->GetPoints()->GetData(), { { 0, np } })));
     result->SetPoints(points);
   }
-  KeepRows(result->GetPointData(), filtered->GetPointData(), { { 0, np } });
+  TakeFilteredArrays(result->GetPointData(), filtered->GetPointData(), work->GetPointData(), { { 0, np } }, true);
   vtkCellArray* ownCells[4] = { owned->GetVerts(), owned->GetLines(), owned->GetPolys(), owned->GetStrips() };
   vtkCellArray* allCells[4] = { filtered->GetVerts(), filtered->GetLines(), filtered->GetPolys(), filtered->GetStrips() };
   std::vector<RowRun> cellRows; // each kind's own cells: the leading run of its cells
@@ -251,20 +281,44 @@ vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* owne
     }
     first += allCells[kind] ? allCells[kind]->GetNumberOfCells() : 0;
   }
-  KeepRows(result->GetCellData(), filtered->GetCellData(), cellRows);
+  TakeFilteredArrays(result->GetCellData(), filtered->GetCellData(), work->GetCellData(), cellRows, false);
   result->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName()); // no ghost cell left
-  for (vtkDataSetAttributes* attributes : { static_cast<vtkDataSetAttributes*>(result->GetPointData()),
-         static_cast<vtkDataSetAttributes*>(result->GetCellData()) })
-  {
-    vtkDataArray* made = attributes->GetGlobalIds();
-    vtkDataSetAttributes* given = attributes == result->GetPointData()
-      ? static_cast<vtkDataSetAttributes*>(input->GetPointData())
-      : static_cast<vtkDataSetAttributes*>(input->GetCellData());
-    if (made && made->GetName() && !given->GetGlobalIds())
-    {
-      attributes->RemoveArray(made->GetName());
-    }
-  }
   return result;
+}
+
+vtkSmartPointer<vtkPolyData> Carrying(vtkPolyData* owned, const CarriedArrays& carried)
+{
+  if (carried.all)
+  {
+    return owned;
+  }
+  auto slim = vtkSmartPointer<vtkPolyData>::New();
+  slim->CopyStructure(owned); // points and cells, shared
+  const auto keep = [](vtkDataSetAttributes* to, vtkDataSetAttributes* from, const std::vector<std::string>& names,
+                      bool points) {
+    for (int k = 0; k < from->GetNumberOfArrays(); ++k)
+    {
+      vtkAbstractArray* array = from->GetAbstractArray(k);
+      const char* name = array ? array->GetName() : nullptr;
+      if (name &&
+        (std::find(names.begin(), names.end(), name) != names.end() ||
+          std::strcmp(name, vtkDataSetAttributes::GhostArrayName()) == 0 || // blanked samples
+          (points && array == from->GetGlobalIds()))) // the given ids number the points
+      {
+        to->AddArray(array);
+      }
+    }
+    for (int a = 0; a < vtkDataSetAttributes::NUM_ATTRIBUTES; ++a)
+    {
+      vtkAbstractArray* role = from->GetAbstractAttribute(a);
+      if (role && role->GetName() && to->GetAbstractArray(role->GetName()) == role)
+      {
+        to->SetActiveAttribute(role->GetName(), a);
+      }
+    }
+  };
+  keep(slim->GetPointData(), owned->GetPointData(), carried.point, true);
+  keep(slim->GetCellData(), owned->GetCellData(), carried.cell, false);
+  return slim;
 }
 }

@@ -93,6 +93,8 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   int association = -1;
   vtkDataArray* array = nullptr;
   std::string selection; // the filtered array, which every piece must agree on
+  ShockParallel::CarriedArrays carried; // the ghost rings carry the filtered array only
+  carried.all = false;
   auto findArray = [&](vtkPolyData* surface) -> std::string {
     if (!started)
     {
@@ -104,6 +106,11 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
       selection = std::string("filtered ") +
         (association == vtkDataObject::FIELD_ASSOCIATION_CELLS ? "cell" : "point") + " array '" +
         (array->GetName() ? array->GetName() : "(unnamed)") + "';";
+      if (array->GetName())
+      {
+        (association == vtkDataObject::FIELD_ASSOCIATION_CELLS ? carried.cell : carried.point)
+          .push_back(array->GetName());
+      }
     }
     return array || surface->GetNumberOfPoints() == 0 ? "" : "no array to filter (see the message above)";
   };
@@ -112,7 +119,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   std::string error;
   vtkLogStartScope(TRACE, "shock: input, agreement and ghost rings");
   const bool begun = ShockPolyDataInternals::BeginSurface(inputVector, controller, this->GhostLevels,
-    findArray, this->ParametersText(), &selection, input, piece, error);
+    findArray, this->ParametersText(), &selection, carried, input, piece, error);
   vtkLogEndScope("shock: input, agreement and ghost rings");
   if (!begun)
   {
@@ -144,7 +151,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     return 0;
   }
   vtkLogScopeF(TRACE, "shock: output of the owned cells");
-  output->ShallowCopy(piece.controller ? ShockParallel::OwnedPiece(filtered, piece.owned, input).GetPointer()
+  output->ShallowCopy(piece.controller ? ShockParallel::OwnedPiece(filtered, piece.work, piece.owned).GetPointer()
                                        : filtered.GetPointer());
   return 1;
 }

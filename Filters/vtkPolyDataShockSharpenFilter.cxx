@@ -287,10 +287,20 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   // The surface (an unstructured grid of polygons is read as polydata); in
   // parallel, all agree, replicated data is recognised, pieces get ghost layers
   // (collective; at least one: the fit's rows need the one-rings of their points).
-  auto wholeOrPieces = [&unknown, started](vtkPolyData* surface) -> std::string {
+  // The ghost rings carry the positions, and the active normals (recomputed for the output) only.
+  ShockParallel::CarriedArrays carried;
+  carried.all = false;
+  auto wholeOrPieces = [&unknown, &carried, started](vtkPolyData* surface) -> std::string {
     if (!started)
     {
       return "the filter's parameters are invalid (see the message above)";
+    }
+    for (auto* normals : { surface->GetPointData()->GetNormals(), surface->GetCellData()->GetNormals() })
+    {
+      if (normals && normals->GetName())
+      {
+        (normals == surface->GetPointData()->GetNormals() ? carried.point : carried.cell).push_back(normals->GetName());
+      }
     }
     return unknown && surface->GetNumberOfPoints() > 0
       ? "This is one of several pieces of the mesh, and no MPI controller with as many "
@@ -302,7 +312,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   std::string error;
   vtkLogStartScope(TRACE, "shock: input, agreement and ghost rings");
   const bool begun = ShockPolyDataInternals::BeginSurface(inputVector, controller,
-    std::max(1, this->GhostLevels), wholeOrPieces, this->ParametersText(), nullptr, input, piece, error);
+    std::max(1, this->GhostLevels), wholeOrPieces, this->ParametersText(), nullptr, carried, input, piece, error);
   vtkLogEndScope("shock: input, agreement and ghost rings");
   if (!begun)
   {
@@ -389,7 +399,7 @@ int vtkPolyDataShockSharpenFilter::SharpenPiece(
   vtkLogScopeF(TRACE, "shock: output");
   vtkNew<vtkPolyData> result;
   this->BuildOutput(piece.work, prepared, positions, normals, fields, report, result);
-  output->ShallowCopy(piece.controller ? ShockParallel::OwnedPiece(result, piece.owned, input).GetPointer()
+  output->ShallowCopy(piece.controller ? ShockParallel::OwnedPiece(result, piece.work, piece.owned).GetPointer()
                                        : result.GetPointer());
   return 1;
 }

@@ -301,12 +301,23 @@ def whole_mesh(resolution=96):
     ids = numpy_to_vtk(np.arange(len(points), dtype=np.int64), deep=1)
     ids.SetName("PointIds")
     mesh.GetPointData().AddArray(ids)
+    cells = numpy_to_vtk(np.arange(mesh.GetNumberOfCells(), dtype=np.int64) % 7, deep=1)
+    cells.SetName("CellTag")  # passes through every filter
+    mesh.GetCellData().AddArray(cells)
     path = os.path.join(OUTPUT, "whole.vtp")
     writer = vtkXMLPolyDataWriter()
     writer.SetInputData(mesh)
     writer.SetFileName(path)
     writer.Write()
     return path, mesh
+
+
+def declared(attributes):
+    """The .pvtp declarations of the arrays of `attributes`."""
+    types = {"float": "Float32", "double": "Float64", "long long": "Int64", "vtkIdType": "Int64"}
+    return "".join('<PDataArray type="%s" Name="%s" NumberOfComponents="%d"/>\n'
+                   % (types[a.GetDataTypeAsString()], a.GetName(), a.GetNumberOfComponents())
+                   for a in (attributes.GetArray(i) for i in range(attributes.GetNumberOfArrays())))
 
 
 def partitioned_file(mesh, pieces, fractions=None, tag=""):
@@ -316,6 +327,7 @@ def partitioned_file(mesh, pieces, fractions=None, tag=""):
     from vtkmodules.vtkFiltersCore import vtkCleanPolyData
     from vtkmodules.vtkFiltersCore import vtkCellCenters
     from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+    from vtkmodules.util.numpy_support import numpy_to_vtk
     centres = vtkCellCenters()
     centres.SetInputData(mesh)
     centres.Update()
@@ -330,6 +342,11 @@ def partitioned_file(mesh, pieces, fractions=None, tag=""):
         piece = vtkPolyData()
         piece.SetPoints(mesh.GetPoints())
         piece.GetPointData().ShallowCopy(mesh.GetPointData())
+        for i in range(mesh.GetCellData().GetNumberOfArrays()):  # the cells' rows, in the piece's order
+            whole = mesh.GetCellData().GetArray(i)
+            rows = numpy_to_vtk(vtk_to_numpy(whole)[np.array(sorted(chunk), dtype=np.int64)].copy(), deep=1)
+            rows.SetName(whole.GetName())
+            piece.GetCellData().AddArray(rows)
         piece.SetPolys(polys)
         clean = vtkCleanPolyData()  # drop the points the piece does not use, merge nothing
         clean.PointMergingOff()
@@ -343,9 +360,9 @@ def partitioned_file(mesh, pieces, fractions=None, tag=""):
     path = os.path.join(OUTPUT, "split%d%s.pvtp" % (pieces, tag))
     with open(path, "w") as handle:
         handle.write('<?xml version="1.0"?>\n<VTKFile type="PPolyData" version="0.1" byte_order="LittleEndian">\n'
-                     '<PPolyData GhostLevel="0">\n<PPointData Scalars="Heat">\n'
-                     '<PDataArray type="Float64" Name="Heat"/>\n<PDataArray type="Int64" Name="PointIds"/>\n'
-                     '</PPointData>\n<PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>\n'
+                     '<PPolyData GhostLevel="0">\n<PPointData Scalars="Heat" Normals="Normals">\n'
+                     + declared(mesh.GetPointData()) + '</PPointData>\n<PCellData>\n' + declared(mesh.GetCellData())
+                     + '</PCellData>\n<PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>\n'
                      + "".join('<Piece Source="%s"/>\n' % n for n in names) + '</PPolyData>\n</VTKFile>\n')
     return path
 
@@ -389,6 +406,27 @@ def positions(mesh):
     return vtk_to_numpy(mesh.GetPoints().GetData()).astype(float)
 
 
+def normals(mesh):
+    return vtk_to_numpy(mesh.GetPointData().GetNormals()).astype(float)
+
+
+def same_arrays(label, mesh, serial):
+    """The parallel output holds the serial one's point and cell arrays (and the
+    owners' marks), with the same active attributes: what the filter does not
+    change passes through, what it makes or replaces is there."""
+    for kind in ("GetPointData", "GetCellData"):
+        got, want = getattr(mesh, kind)(), getattr(serial, kind)()
+        upstream = ("vtkGhostType", "vtkOriginalPointIds", "vtkOriginalCellIds")  # the marks; RedistributeDataSet's
+        names = [sorted(a.GetArrayName(i) for i in range(a.GetNumberOfArrays()) if a.GetArrayName(i) not in upstream)
+                 for a in (got, want)]
+        check(names[0] == names[1], "%s: %s arrays %s, serial has %s" % (label, kind[3:], names[0], names[1]))
+        for role in ("GetScalars", "GetVectors", "GetNormals", "GetGlobalIds"):
+            a, b = getattr(got, role)(), getattr(want, role)()
+            check((a.GetName() if a else None) == (b.GetName() if b else None),
+                  "%s: %s %s is %s, serial has %s" % (label, kind[3:], role[3:], a.GetName() if a else None,
+                                                     b.GetName() if b else None))
+
+
 def split_input(how, whole_path, split_path):
     """Proxies delivering the whole mesh split over the processes."""
     if how == "redistribute":
@@ -425,6 +463,10 @@ def surface_split_case(how, whole_path, split_path, references):
     Delete(filtered)
     compare("advection " + label, read_pieces(path), references["advection"], heat,
             1e-12 * np.ptp(heat(references["advection"])), "Heat")
+    # The sphere's point Normals (active) and its cell array pass through unchanged.
+    compare("advection passes Normals " + label, read_pieces(path), references["advection"], normals, 0.0, "Normals")
+    if how in ("redistribute", "pvtp"):  # the other ways add arrays upstream
+        same_arrays("advection " + label, read_pieces(path), references["advection"])
     # Surface Shock Sharpen: the fit solved across the processes.
     for name, properties, bound in (("sharpen", {}, FIXED_CG_BOUND), ("sharpen converged", CONVERGED, 1e-11)):
         sharpen = SurfaceShockSharpen(Input=proxies[-1], FlowTime=256, **properties)
@@ -432,6 +474,8 @@ def surface_split_case(how, whole_path, split_path, references):
         check(not messages.errors, "%s on %s: no error (%s)" % (name, label, messages.errors))
         Delete(sharpen)
         compare("%s %s" % (name, label), read_pieces(path), references[name], positions, bound, "position")
+        if how in ("redistribute", "pvtp"):
+            same_arrays("%s %s" % (name, label), read_pieces(path), references[name])
     for proxy in proxies[::-1]:
         Delete(proxy)
 
