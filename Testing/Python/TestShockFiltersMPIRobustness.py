@@ -439,6 +439,42 @@ def source_pieces_case():
     return local, judge
 
 
+def noncontiguous_array_case():
+    """The filtered array in an array class that does not hold its values in one
+    block (struct-of-arrays): the ghost rings carry it the general way."""
+    label = "non-contiguous array np=%d" % PROCESSES
+
+    def soa(mesh):
+        from vtkmodules.vtkCommonCore import vtkSOADataArrayTemplate
+        values = vtk_to_numpy(mesh.GetPointData().GetScalars())
+        array = vtkSOADataArrayTemplate["float64"]()
+        array.SetName("Elevation")
+        array.SetNumberOfComponents(1)
+        array.SetNumberOfTuples(len(values))
+        for k, v in enumerate(values):
+            array.SetValue(k, float(v))
+        mesh.GetPointData().SetScalars(array)
+        return mesh
+
+    def local():
+        record, algorithm = run("advection", soa(piece_mesh()), label)
+        record["owned"] = owned_points(algorithm.GetOutput(), "Elevation")
+        return record
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        check(all(r.get("rc") == 1 and not r.get("errors") for r in records),
+              "%s: every process succeeds without error" % label)
+        algorithm = vtkPolyDataShockAdvectionFilter()
+        algorithm.SetController(None)
+        algorithm.SetNumberOfThreads(1)
+        algorithm.SetInputData(make_polydata(*slab(32)))
+        algorithm.UpdatePiece(0, 1, 0)
+        compare_with_serial(label, records, algorithm.GetOutput(), "Elevation")
+
+    return local, judge
+
+
 def nan_coordinate_case(kind, bad):
     label = "nan coordinate %s bad=%d np=%d" % (kind, bad, PROCESSES)
 
@@ -604,7 +640,8 @@ def abort_case():
 
 def all_cases():
     """(name, case) pairs; a name is dotted (e.g. bad_cell_id.sharpen.line.bad1)."""
-    cases = [("replicated", replicated_case()), ("source_pieces", source_pieces_case())]
+    cases = [("replicated", replicated_case()), ("source_pieces", source_pieces_case()),
+             ("noncontiguous_array", noncontiguous_array_case())]
     for bad in bad_ranks():
         for kind in ("advection", "sharpen"):
             cases.append(("nan_coordinate.%s.bad%d" % (kind, bad), nan_coordinate_case(kind, bad)))
