@@ -25,7 +25,8 @@
  *    new points (the gathered borders name them; a point not on any border
  *    has one holder, the process that sent it) for their own cells around
  *    those points, in one round of requests and one of answers (the cells
- *    with their points, point data and cell data, as vtkPolyData).
+ *    with their points and the piece's arrays (those the filter reads:
+ *    ShockParallel::CarriedArrays), as vtkPolyData sent as raw blocks).
  * 4. Assembly (ShockGhostCells.cxx): the piece with its rings, owners' marks
  *    and global ids.
  */
