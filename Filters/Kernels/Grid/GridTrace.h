@@ -107,6 +107,14 @@ public:
     return f;
   }
 
+  /// How a trace goes on after reaching a face boundary (Cross).
+  enum class Entry
+  {
+    Go,    ///< on with the velocity w
+    Stop,  ///< the grid boundary, the step cap, the flow reverses, or a sliding velocity vanishes
+    Corner ///< pushed onto a grid edge or corner: the rest of the trace is stepped
+  };
+
 private:
   /// Dot product of index-space velocities in the physical metric.
   template <typename A, typename B>
@@ -173,29 +181,9 @@ public:
     std::int64_t steps = 0;
     while (t > 0.0)
     {
-      // First boundary reached, without branches (the exit axis is not
-      // predictable): with r = 1 / v, (c + 1 - q) r is the time to the upper
-      // boundary when v > 0 and <= 0 otherwise, (c - q) r the time to the lower
-      // one when v < 0 and <= 0 otherwise; the larger is the boundary ahead.
-      // An axis without motion (r infinite) or the one slid along is never left.
-      constexpr double never = std::numeric_limits<double>::infinity();
-      std::array<double, D> te;
-      for (int d = 0; d < D; ++d)
-      {
-        const double r = 1.0 / v[d];
-        const double lower = static_cast<double>(c[d]);
-        const double ahead = std::max((lower + 1.0 - q[d]) * r, (lower - q[d]) * r);
-        te[d] = (d != pinned && std::abs(r) < never) ? ahead : never;
-      }
-      int exitAxis = 0;
-      double exitTime = te[0];
-      for (int d = 1; d < D; ++d)
-      {
-        const int earlier = te[d] < exitTime;
-        exitAxis += earlier * (d - exitAxis);
-        exitTime = std::min(exitTime, te[d]);
-      }
-      if (!(exitTime < never))
+      double exitTime = 0.0;
+      const int exitAxis = this->ExitAhead(q, c, v, pinned, exitTime);
+      if (!(exitTime < std::numeric_limits<double>::infinity()))
       {
         break; // no motion left (a sliding velocity of zero)
       }
@@ -216,31 +204,15 @@ public:
       const int dir = v[exitAxis] > 0.0 ? 1 : -1;
       q[exitAxis] = static_cast<double>(dir > 0 ? c[exitAxis] + 1 : c[exitAxis]);
       ++steps;
-      const std::int64_t next = c[exitAxis] + dir;
-      if (next < 0 || next >= L.m[exitAxis])
+      std::array<double, D> w;
+      const Entry entry = this->Cross(c, f, exitAxis, dir, pinned, steps, truncated, v, w);
+      if (entry == Entry::Stop)
       {
-        break; // grid boundary
-      }
-      if (steps >= this->MaxSteps)
-      {
-        truncated = true;
         break;
       }
-      const std::int64_t left = f;
-      c[exitAxis] = next;
-      f += dir * L.faceStride[exitAxis];
-
-      std::array<double, D> w;
-      if (!this->Enter(c, f, left, exitAxis, dir, pinned, v, w))
+      if (entry == Entry::Corner)
       {
-        break; // the flow reverses, or a sliding velocity vanishes
-      }
-      if (w[exitAxis] * dir < 0.0 && exitAxis != pinned)
-      {
-        // Pushed onto an edge or corner.
-        this->ClampToGrid(q);
-        const std::int64_t face = this->FaceOf(q, c);
-        return steps + this->TraceStepped(q, c, face, t, truncated);
+        return steps + this->TraceSteppedFrom(q, c, t, truncated);
       }
       v = w;
     }
@@ -276,41 +248,27 @@ private:
     std::array<std::int64_t, D> c, std::int64_t f, double t, bool& truncated) const
   {
     static_assert(D == 2, "the planar tracer is for images");
-    const double hx = L.h2[0];
-    const double hy = L.h2[1];
-    const std::int64_t row = L.faceStride[1];
-    double vx = this->V[2 * f];
-    double vy = this->V[2 * f + 1];
-    if (!(hx * vx * vx + hy * vy * vy > 0.0))
+    std::array<double, D> start;
+    this->Load(f, start);
+    if (!(this->Dot(start, start) > 0.0))
     {
       return 0;
     }
-    double x = q[0];
-    double y = q[1];
+    double vx = start[0], vy = start[1];
+    double x = q[0], y = q[1];
     int pinned = -1; // axis of the boundary the trace slides on; c is the lower face there
     std::int64_t steps = 0;
     while (t > 0.0)
     {
-      const double sx = std::abs(vx);
-      const double sy = std::abs(vy);
-      // The reciprocal speeds depend on the velocity alone: computed here, the
-      // divisions run while the position's distances are found.
-      const double rx = 1.0 / sx;
-      const double ry = 1.0 / sy;
-      const double cx = static_cast<double>(c[0]);
-      const double cy = static_cast<double>(c[1]);
-      const double dx = std::max((cx + static_cast<double>(vx > 0.0) - x) * std::copysign(1.0, vx), 0.0);
-      const double dy = std::max((cy + static_cast<double>(vy > 0.0) - y) * std::copysign(1.0, vy), 0.0);
-      const int axis = (vx == 0.0 || dy * sx < dx * sy) ? 1 : 0;
-      const double distance = axis ? dy : dx;
-      const double speed = axis ? sy : sx;
+      double distance, speed, reciprocal;
+      const int axis = PlanarExit(x, y, vx, vy, c, distance, speed, reciprocal);
       if (distance >= t * speed)
       {
         x += vx * t;
         y += vy * t;
         break; // the time is used up in this face
       }
-      const double exitTime = std::min(distance * (axis ? ry : rx), t);
+      const double exitTime = std::min(distance * reciprocal, t);
       x += vx * exitTime;
       y += vy * exitTime;
       t -= exitTime;
@@ -320,23 +278,9 @@ private:
       const double boundary = static_cast<double>(dir > 0 ? c[axis] + 1 : c[axis]);
       x = axis ? x : boundary;
       y = axis ? boundary : y;
-      const std::int64_t next = c[axis] + dir;
-      if (next < 0 || next >= L.m[axis])
-      {
-        break; // grid boundary
-      }
-      if (steps >= this->MaxSteps)
-      {
-        truncated = true;
-        break;
-      }
-      const std::int64_t left = f;
-      c[axis] = next;
-      f += axis ? dir * row : dir;
-
       const std::array<double, D> v{ vx, vy };
       std::array<double, D> w;
-      const Entry entry = this->EnterFace(c, f, left, axis, dir, pinned, v, w);
+      const Entry entry = this->Cross(c, f, axis, dir, pinned, steps, truncated, v, w);
       if (entry == Entry::Stop)
       {
         break;
@@ -366,40 +310,20 @@ private:
   {
     static_assert(D == 3, "the spatial tracer is for volumes");
     constexpr double never = std::numeric_limits<double>::infinity();
-    const double hx = L.h2[0];
-    const double hy = L.h2[1];
-    const double hz = L.h2[2];
-    double vx = this->V[3 * f];
-    double vy = this->V[3 * f + 1];
-    double vz = this->V[3 * f + 2];
-    if (!(hx * vx * vx + hy * vy * vy + hz * vz * vz > 0.0))
+    std::array<double, D> start;
+    this->Load(f, start);
+    if (!(this->Dot(start, start) > 0.0))
     {
       return 0;
     }
-    double x = q[0];
-    double y = q[1];
-    double z = q[2];
+    double vx = start[0], vy = start[1], vz = start[2];
+    double x = q[0], y = q[1], z = q[2];
     int pinned = -1; // axis of the boundary the trace slides on; c is the lower face there
     std::int64_t steps = 0;
     while (t > 0.0)
     {
-      const double rx = 1.0 / std::abs(vx);
-      const double ry = 1.0 / std::abs(vy);
-      const double rz = 1.0 / std::abs(vz);
-      const double cx = static_cast<double>(c[0]);
-      const double cy = static_cast<double>(c[1]);
-      const double cz = static_cast<double>(c[2]);
-      const double dx = std::max((cx + static_cast<double>(vx > 0.0) - x) * std::copysign(1.0, vx), 0.0);
-      const double dy = std::max((cy + static_cast<double>(vy > 0.0) - y) * std::copysign(1.0, vy), 0.0);
-      const double dz = std::max((cz + static_cast<double>(vz > 0.0) - z) * std::copysign(1.0, vz), 0.0);
-      const double tx = vx == 0.0 ? never : dx * rx;
-      const double ty = vy == 0.0 ? never : dy * ry;
-      const double tz = vz == 0.0 ? never : dz * rz;
-      // The first boundary reached; on a tie, the lower axis (as the general tracer).
-      int axis = ty < tx ? 1 : 0;
-      double exitTime = std::min(tx, ty);
-      axis = tz < exitTime ? 2 : axis;
-      exitTime = std::min(exitTime, tz);
+      double exitTime = 0.0;
+      const int axis = SpatialExit(x, y, z, vx, vy, vz, c, exitTime);
       if (!(exitTime < never))
       {
         break; // no motion left (a sliding velocity of zero)
@@ -422,23 +346,9 @@ private:
       x = axis == 0 ? boundary : x;
       y = axis == 1 ? boundary : y;
       z = axis == 2 ? boundary : z;
-      const std::int64_t next = c[axis] + dir;
-      if (next < 0 || next >= L.m[axis])
-      {
-        break; // grid boundary
-      }
-      if (steps >= this->MaxSteps)
-      {
-        truncated = true;
-        break;
-      }
-      const std::int64_t left = f;
-      c[axis] = next;
-      f += dir * L.faceStride[axis];
-
       const std::array<double, D> v{ vx, vy, vz };
       std::array<double, D> w;
-      const Entry entry = this->EnterFace(c, f, left, axis, dir, pinned, v, w);
+      const Entry entry = this->Cross(c, f, axis, dir, pinned, steps, truncated, v, w);
       if (entry == Entry::Stop)
       {
         break;
@@ -457,52 +367,155 @@ private:
     return steps;
   }
 
-  /// What the image and volume tracers do after a crossing.
-  enum class Entry
+  /**
+   * The first boundary of face c that a trace at q moving with v reaches, and
+   * the time to it (infinite when it does not move), without branches (the exit
+   * axis is not predictable): with r = 1 / v, (c + 1 - q) r is the time to the
+   * upper boundary when v > 0 and <= 0 otherwise, (c - q) r the time to the
+   * lower one when v < 0 and <= 0 otherwise; the larger is the boundary ahead.
+   * An axis without motion (r infinite) or the one slid along is never left;
+   * on a tie, the lower axis.
+   */
+  int ExitAhead(const std::array<double, D>& q, const std::array<std::int64_t, D>& c,
+    const std::array<double, D>& v, int pinned, double& exitTime) const
   {
-    Go,    ///< on with the velocity w
-    Stop,  ///< the flow reverses, or a sliding velocity vanishes
-    Corner ///< pushed onto a grid edge or corner: the rest of the trace is stepped
-  };
+    constexpr double never = std::numeric_limits<double>::infinity();
+    std::array<double, D> te;
+    for (int d = 0; d < D; ++d)
+    {
+      const double r = 1.0 / v[d];
+      const double lower = static_cast<double>(c[d]);
+      const double ahead = std::max((lower + 1.0 - q[d]) * r, (lower - q[d]) * r);
+      te[d] = (d != pinned && std::abs(r) < never) ? ahead : never;
+    }
+    int exitAxis = 0;
+    exitTime = te[0];
+    for (int d = 1; d < D; ++d)
+    {
+      const int earlier = te[d] < exitTime;
+      exitAxis += earlier * (d - exitAxis);
+      exitTime = std::min(exitTime, te[d]);
+    }
+    return exitAxis;
+  }
 
   /**
-   * Enter for the image and volume tracers: the trace has crossed into face f
-   * along `axis` in direction `dir`, with velocity v. Starts sliding where both
-   * faces push into the boundary just crossed; along a boundary slid on, Enter
-   * decides, and a velocity that pushes back across the crossing means a corner.
+   * ExitAhead on an image, without dividing: with d the distance to the
+   * boundary ahead along an axis and |v| the speed along it, the trace leaves
+   * along y first when d_y |v_x| < d_x |v_y|. Returns that axis, its distance,
+   * speed and reciprocal speed (computed from the velocity alone, the division
+   * runs while the distances are found). An axis slid along has v = 0 there.
+   */
+  static SHOCK_ALWAYS_INLINE int PlanarExit(double x, double y, double vx, double vy,
+    const std::array<std::int64_t, D>& c, double& distance, double& speed, double& reciprocal)
+  {
+    const double sx = std::abs(vx);
+    const double sy = std::abs(vy);
+    const double rx = 1.0 / sx;
+    const double ry = 1.0 / sy;
+    const double dx = std::max((static_cast<double>(c[0]) + static_cast<double>(vx > 0.0) - x) * std::copysign(1.0, vx), 0.0);
+    const double dy = std::max((static_cast<double>(c[1]) + static_cast<double>(vy > 0.0) - y) * std::copysign(1.0, vy), 0.0);
+    const int axis = (vx == 0.0 || dy * sx < dx * sy) ? 1 : 0;
+    distance = axis ? dy : dx;
+    speed = axis ? sy : sx;
+    reciprocal = axis ? ry : rx;
+    return axis;
+  }
+
+  /**
+   * ExitAhead in a volume: the time to the boundary ahead along each axis is
+   * the distance to it times the reciprocal speed (its division overlaps the
+   * position's chain of operations); an axis without motion has an infinite
+   * time. On a tie, the lower axis (as ExitAhead).
+   */
+  static SHOCK_ALWAYS_INLINE int SpatialExit(double x, double y, double z, double vx, double vy, double vz,
+    const std::array<std::int64_t, D>& c, double& exitTime)
+  {
+    constexpr double never = std::numeric_limits<double>::infinity();
+    const double rx = 1.0 / std::abs(vx);
+    const double ry = 1.0 / std::abs(vy);
+    const double rz = 1.0 / std::abs(vz);
+    const double dx = std::max((static_cast<double>(c[0]) + static_cast<double>(vx > 0.0) - x) * std::copysign(1.0, vx), 0.0);
+    const double dy = std::max((static_cast<double>(c[1]) + static_cast<double>(vy > 0.0) - y) * std::copysign(1.0, vy), 0.0);
+    const double dz = std::max((static_cast<double>(c[2]) + static_cast<double>(vz > 0.0) - z) * std::copysign(1.0, vz), 0.0);
+    const double tx = vx == 0.0 ? never : dx * rx;
+    const double ty = vy == 0.0 ? never : dy * ry;
+    const double tz = vz == 0.0 ? never : dz * rz;
+    int axis = ty < tx ? 1 : 0;
+    exitTime = std::min(tx, ty);
+    axis = tz < exitTime ? 2 : axis;
+    exitTime = std::min(exitTime, tz);
+    return axis;
+  }
+
+  /**
+   * The step every face-crossing tracer shares: the trace has reached the
+   * boundary of face f along `axis`, moving in direction `dir` with velocity
+   * v, after `steps` crossings. Into the neighbouring face (c and f follow)
+   * with the velocity w to go on with (EnterFace), or Stop at the grid
+   * boundary and at the step cap (`truncated`), or Stop / Corner as EnterFace
+   * decides.
+   */
+  SHOCK_ALWAYS_INLINE Entry Cross(std::array<std::int64_t, D>& c, std::int64_t& f, int axis, int dir,
+    int& pinned, std::int64_t steps, bool& truncated, const std::array<double, D>& v,
+    std::array<double, D>& w) const
+  {
+    const std::int64_t next = c[axis] + dir;
+    if (next < 0 || next >= L.m[axis])
+    {
+      return Entry::Stop; // grid boundary
+    }
+    if (steps >= this->MaxSteps)
+    {
+      truncated = true;
+      return Entry::Stop;
+    }
+    const std::int64_t left = f;
+    c[axis] = next;
+    f += dir * L.faceStride[axis];
+    return this->EnterFace(c, f, left, axis, dir, pinned, v, w);
+  }
+
+  /**
+   * Into face f (coordinates c), crossed along `axis` in direction `dir` from
+   * face `left` with velocity v: the velocity w to go on with. Off a boundary,
+   * the trace stops where the flow reverses (a ridge of the potential), and
+   * slides along the boundary just crossed where both faces push into it (the
+   * Filippov velocity). On a boundary slid along, SlideOn decides, and a
+   * velocity that pushes back across the crossing means a corner.
    */
   SHOCK_ALWAYS_INLINE Entry EnterFace(std::array<std::int64_t, D>& c, std::int64_t& f,
     std::int64_t left, int axis, int dir, int& pinned, const std::array<double, D>& v,
     std::array<double, D>& w) const
   {
+    if (pinned >= 0)
+    {
+      if (!this->SlideOn(c, f, pinned, v, w))
+      {
+        return Entry::Stop;
+      }
+      return w[axis] * dir < 0.0 ? Entry::Corner : Entry::Go;
+    }
     this->Load(f, w);
-    if (pinned < 0)
+    if (!(this->Dot(w, v) > 0.0))
     {
-      if (!(this->Dot(w, v) > 0.0))
-      {
-        return Entry::Stop; // the flow reverses: a ridge of the potential
-      }
-      if (w[axis] * dir < 0.0)
-      {
-        // Both faces push towards the boundary just crossed: slide along it.
-        pinned = axis;
-        if (dir > 0)
-        {
-          c[pinned] -= 1;
-          f = left;
-        }
-        if (!this->Sliding(f, pinned, w))
-        {
-          return Entry::Stop;
-        }
-      }
-      return Entry::Go;
+      return Entry::Stop; // the flow reverses: a ridge of the potential
     }
-    if (!this->Enter(c, f, left, axis, dir, pinned, v, w))
+    if (w[axis] * dir < 0.0)
     {
-      return Entry::Stop;
+      // Both faces push towards the boundary just crossed: slide along it.
+      pinned = axis;
+      if (dir > 0)
+      {
+        c[pinned] -= 1;
+        f = left;
+      }
+      if (!this->Sliding(f, pinned, w))
+      {
+        return Entry::Stop;
+      }
     }
-    return w[axis] * dir < 0.0 ? Entry::Corner : Entry::Go;
+    return Entry::Go;
   }
 
   /// The stepped rest of a trace at q (clamped to the grid), c its face's coordinates.
@@ -515,66 +528,41 @@ private:
   }
 
   /**
-   * The trace has crossed into face f (coordinates c) along `exitAxis` in
-   * direction `dir`, leaving face `left` with velocity v: the velocity w to go
-   * on with. Starts sliding where both faces push into the boundary just
-   * crossed, and leaves a boundary it slides on into a face that does not push
-   * back (c, f and `pinned` change accordingly). False when the trace stops.
+   * On the boundary slid along (`pinned`, c the lower of its two faces), the
+   * trace has moved into the next pair of faces: it slides on with their
+   * Filippov velocity w where both still push into the boundary, else it
+   * leaves the boundary into the face that does not push back into it (c, f
+   * and `pinned` follow). False when the flow reverses.
    */
-  bool Enter(std::array<std::int64_t, D>& c, std::int64_t& f, std::int64_t left, int exitAxis,
-    int dir, int& pinned, const std::array<double, D>& v, std::array<double, D>& w) const
+  bool SlideOn(std::array<std::int64_t, D>& c, std::int64_t& f, int& pinned, const std::array<double, D>& v,
+    std::array<double, D>& w) const
   {
-    if (pinned < 0)
+    // Sliding into the next pair of faces along the pinned boundary.
+    std::array<double, D> lower, upper;
+    this->Load(f, lower);
+    this->Load(f + L.faceStride[pinned], upper);
+    if (lower[pinned] > 0.0 && upper[pinned] < 0.0)
     {
-      this->Load(f, w);
-      if (!(this->Dot(w, v) > 0.0))
-      {
-        return false; // the flow reverses: a ridge of the potential
-      }
-      if (w[exitAxis] * dir < 0.0)
-      {
-        // Both faces push towards the boundary just crossed: slide along it.
-        pinned = exitAxis;
-        if (dir > 0)
-        {
-          c[pinned] -= 1;
-          f = left;
-        }
-        if (!this->Sliding(f, pinned, w))
-        {
-          return false;
-        }
-      }
+      this->Sliding(f, pinned, w);
     }
     else
     {
-      // Sliding into the next pair of faces along the pinned boundary.
-      std::array<double, D> lower, upper;
-      this->Load(f, lower);
-      this->Load(f + L.faceStride[pinned], upper);
-      if (lower[pinned] > 0.0 && upper[pinned] < 0.0)
+      // Leave the boundary into a face that does not push back into it.
+      const bool lowerOk = lower[pinned] <= 0.0;
+      const bool upperOk = upper[pinned] >= 0.0;
+      const bool takeUpper =
+        upperOk && (!lowerOk || this->Dot(upper, v) > this->Dot(lower, v));
+      if (takeUpper)
       {
-        this->Sliding(f, pinned, w);
+        c[pinned] += 1;
+        f += L.faceStride[pinned];
       }
-      else
-      {
-        // Leave the boundary into a face that does not push back into it.
-        const bool lowerOk = lower[pinned] <= 0.0;
-        const bool upperOk = upper[pinned] >= 0.0;
-        const bool takeUpper =
-          upperOk && (!lowerOk || this->Dot(upper, v) > this->Dot(lower, v));
-        if (takeUpper)
-        {
-          c[pinned] += 1;
-          f += L.faceStride[pinned];
-        }
-        w = takeUpper ? upper : lower;
-        pinned = -1;
-      }
-      if (!(this->Dot(w, v) > 0.0))
-      {
-        return false; // the flow reverses
-      }
+      w = takeUpper ? upper : lower;
+      pinned = -1;
+    }
+    if (!(this->Dot(w, v) > 0.0))
+    {
+      return false; // the flow reverses
     }
     return true;
   }
