@@ -43,6 +43,7 @@
 #include <vector>
 
 class vtkAbstractArray;
+class vtkCharArray;
 class vtkDataArray;
 class vtkMultiProcessController;
 
@@ -170,6 +171,17 @@ struct Rings
   std::vector<Row> ghostCellRows;        ///< ghost cell g is ghostCellRows[g]
   Cells ghost;                           ///< ghost cells, local point ids
 };
+
+/**
+ * A ring answer `packet` into `buffer` for sending (ShockGhostPackets.cxx):
+ * its points, cells and arrays as raw blocks of memory (the processes of one
+ * run are one build on one kind of machine) behind a tag, or VTK's
+ * marshalling when an array does not hold its values in one block.
+ */
+void PackPacket(vtkPolyData* packet, vtkCharArray* buffer);
+
+/// The packet PackPacket put in `buffer`; false when the buffer is damaged.
+bool UnpackPacket(vtkCharArray* buffer, vtkPolyData* packet);
 
 /// Step 3 (collective): `layers` rings of the other pieces' cells around the piece's own.
 void GrowRings(vtkMultiProcessController* controller, vtkPolyData* piece, int layers, Numbering& numbering,
