@@ -14,15 +14,17 @@
  * S the cotangent stiffness matrix. Creases and corners come out sharp; flat and
  * smooth parts stay as they are.
  *
- * Two departures from the paper, each with a value that reproduces it
+ * Three departures from the paper, each with a value that reproduces it
  * (docs/sharpening.md has the evaluation): creases sharper than FeatureAngle are
  * kept as they are (the paper's per-point normals round them: 180 reproduces
- * it), and the fit maps each triangle onto its target plane by a central
+ * it); the fit maps each triangle onto its target plane by a central
  * projection from the centre of curvature instead of an orthogonal
  * projection, so that sharpening does not shrink the shape (FitTarget
- * PROJECTION reproduces the paper).
+ * PROJECTION reproduces the paper); and the advection's potential keeps only
+ * what stands out CurvatureContrast times above its surroundings, so that a
+ * coarsely tessellated smooth shape is not sharpened (0 reproduces the paper).
  *
- * Parameters specific to this filter: FeatureAngle, FitTarget,
+ * Parameters specific to this filter: FeatureAngle, CurvatureContrast, FitTarget,
  * NormalSmoothingPasses (pre-mollification of noisy normals), ScreeningWeight
  * (eps), Solver, SolverIterations, SolverTolerance, MergeCoincidentPoints,
  * GenerateSharpenedNormals. Of the base
