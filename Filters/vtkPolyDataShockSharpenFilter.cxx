@@ -413,6 +413,7 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   parameters.advection = ShockFilterInternals::MakeParameters(this);
   parameters.normalSmoothingPasses = this->NormalSmoothingPasses;
   parameters.featureAngle = this->FeatureAngle;
+  parameters.curvatureContrast = this->CurvatureContrast;
   parameters.fit.target = static_cast<shock::FitTarget>(this->FitTarget);
   parameters.lengthScale = meanEdgeLength;
   parameters.fit.screeningWeight = this->ScreeningWeight;
@@ -531,6 +532,7 @@ std::string vtkPolyDataShockSharpenFilter::ParametersText()
   text.precision(17);
   text << this->Superclass::ParametersText()
        << "FeatureAngle=" << this->FeatureAngle << ";"
+       << "CurvatureContrast=" << this->CurvatureContrast << ";"
        << "FitTarget=" << this->FitTarget << ";"
        << "NormalSmoothingPasses=" << this->NormalSmoothingPasses << ";"
        << "ScreeningWeight=" << this->ScreeningWeight << ";"
@@ -547,6 +549,7 @@ void vtkPolyDataShockSharpenFilter::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   static const char* solverNames[] = { "ConjugateGradient", "ConjugateGradientTolerance", "Exact" };
   os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
+  os << indent << "CurvatureContrast: " << this->CurvatureContrast << "\n";
   static const char* targetNames[] = { "Projection", "Rotation", "Shear", "CentralProjection" };
   os << indent << "FitTarget: " << targetNames[this->FitTarget] << "\n";
   os << indent << "NormalSmoothingPasses: " << this->NormalSmoothingPasses << "\n";

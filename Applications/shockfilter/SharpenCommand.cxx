@@ -44,6 +44,7 @@ struct SharpenSettings
 {
   ShockOptions shock;
   std::optional<double> featureAngle;
+  std::optional<double> curvatureContrast;
   std::optional<int> fitTarget;
   std::optional<int> normalSmoothingPasses;
   std::optional<double> screeningWeight;
@@ -62,6 +63,10 @@ std::vector<OptionSpec> SharpenOptionSpecs(SharpenSettings& settings)
   specs.push_back(RangeOptionSpec("--feature-angle", "DEG",
     "creases sharper than this are kept (180 = the paper)", settings.featureAngle,
     d->GetFeatureAngleMinValue(), d->GetFeatureAngleMaxValue(), d->GetFeatureAngle()));
+  specs.push_back(RangeOptionSpec("--curvature-contrast", "X",
+    "smooth shapes are left alone: the potential keeps what exceeds X times its minimum over 6 rings (0 = the paper)",
+    settings.curvatureContrast, d->GetCurvatureContrastMinValue(), d->GetCurvatureContrastMaxValue(),
+    d->GetCurvatureContrast()));
   specs.push_back(ChoiceOptionSpec("--fit-target", "NAME",
     "central-projection|shear|rotation|projection (the paper)", settings.fitTarget, FitTargetChoices(),
     d->GetFitTarget()));
@@ -135,6 +140,7 @@ int RunSharpenCommand(const std::vector<std::string>& args)
   ConfigureFilter(filter, settings.shock);
   using F = vtkPolyDataShockSharpenFilter;
   SetIfGiven(filter.Get(), &F::SetFeatureAngle, settings.featureAngle);
+  SetIfGiven(filter.Get(), &F::SetCurvatureContrast, settings.curvatureContrast);
   SetIfGiven(filter.Get(), &F::SetFitTarget, settings.fitTarget);
   SetIfGiven(filter.Get(), &F::SetNormalSmoothingPasses, settings.normalSmoothingPasses);
   SetIfGiven(filter.Get(), &F::SetScreeningWeight, settings.screeningWeight);
@@ -162,6 +168,7 @@ int RunSharpenCommand(const std::vector<std::string>& args)
       .Add("flow_mode", ChoiceName(filter->GetFlowMode(), FlowModeChoices()))
       .Add("solver", ChoiceName(filter->GetSolver(), SolverChoices()))
       .Add("feature_angle", filter->GetFeatureAngle())
+      .Add("curvature_contrast", filter->GetCurvatureContrast())
       .Add("fit_target", ChoiceName(filter->GetFitTarget(), FitTargetChoices()))
       .Add("threads", filter->GetNumberOfThreads())
       .Add("preprocessing", filter->GetLastSetupSeconds() + filter->GetLastFitSetupSeconds())

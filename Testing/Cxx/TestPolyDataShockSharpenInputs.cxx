@@ -469,7 +469,13 @@ TEST(PolyDataShockSharpenFilter, DefaultsClampingAndPrintSelf)
   EXPECT_FALSE(filter->GetGenerateSharpenedNormals());
   EXPECT_EQ(filter->GetSampling(), Filter::LINEAR);
   EXPECT_EQ(filter->GetFeatureAngle(), 30.0);
+  EXPECT_EQ(filter->GetCurvatureContrast(), 16.0);
   EXPECT_EQ(filter->GetFitTarget(), Filter::CENTRAL_PROJECTION);
+
+  filter->SetCurvatureContrast(-1.0);
+  EXPECT_EQ(filter->GetCurvatureContrast(), 0.0);
+  filter->SetCurvatureContrast(1e9);
+  EXPECT_EQ(filter->GetCurvatureContrast(), 1000.0);
 
   filter->SetFeatureAngle(-5.0);
   EXPECT_EQ(filter->GetFeatureAngle(), 0.0);
@@ -499,13 +505,14 @@ TEST(PolyDataShockSharpenFilter, DefaultsClampingAndPrintSelf)
   filter->GenerateSharpenedNormalsOn();
   filter->SetFlowTime(123.25);
   filter->SetFeatureAngle(42.5);
+  filter->SetCurvatureContrast(3.5);
   filter->SetFitTargetToShear();
   std::ostringstream os;
   filter->Print(os);
   for (const char* key : { "vtkPolyDataShockSharpenFilter", "FlowTime: 123.25", "NormalSmoothingPasses: 3",
          "ScreeningWeight: 2.5", "Solver: ConjugateGradientTolerance", "SolverIterations: 40",
          "SolverTolerance: 1e-07", "MergeCoincidentPoints: Off", "GenerateSharpenedNormals: On",
-         "LastSolverResidual", "LastMaxDisplacement", "FeatureAngle: 42.5", "FitTarget: Shear",
+         "LastSolverResidual", "LastMaxDisplacement", "FeatureAngle: 42.5", "CurvatureContrast: 3.5", "FitTarget: Shear",
          "LastRepeatedTriangles", "LastDegenerateTriangles", "LastFeatureEdges" })
   {
     EXPECT_NE(os.str().find(key), std::string::npos) << key << "\n" << os.str();

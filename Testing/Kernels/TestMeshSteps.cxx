@@ -371,6 +371,90 @@ SmallMesh Hinge()
   return m;
 }
 
+/// The minimum of `values` over the points within graph distance `rings` (breadth-first search).
+std::vector<double> RefRingMinimum(const SmallMesh& m, const std::vector<double>& values, int rings)
+{
+  const auto n = m.Neighbours();
+  std::vector<double> out(values.size());
+  for (int p = 0; p < m.Points(); ++p)
+  {
+    std::map<std::int64_t, int> distance{ { p, 0 } };
+    std::vector<std::int64_t> frontier{ p };
+    double low = values[p];
+    for (int r = 0; r < rings; ++r)
+    {
+      std::vector<std::int64_t> next;
+      for (std::int64_t q : frontier)
+        for (std::int64_t w : n[q])
+          if (distance.emplace(w, r + 1).second)
+          {
+            next.push_back(w);
+            low = std::min(low, values[w]);
+          }
+      frontier.swap(next);
+    }
+    out[p] = low;
+  }
+  return out;
+}
+
+TEST(MeshSteps, RingMinimumIsTheMinimumWithinTheGivenGraphDistance)
+{
+  SmallMesh m = Sheet(7, 6, 41, 0.3);
+  m.Build();
+  const auto values = Random(m.Points(), 43, 0.0, 5.0);
+  const std::vector<unsigned char> valid(m.Points(), 1);
+  for (int rings : { 1, 2, 4 })
+  {
+    const auto low = RingMinimum(m.mesh, valid, values, rings, 1);
+    const auto expected = RefRingMinimum(m, values, rings);
+    for (int p = 0; p < m.Points(); ++p)
+      EXPECT_EQ(low[p], expected[p]) << "point " << p << ", rings " << rings;
+  }
+  // An invalid point neither gives its value nor takes another's.
+  std::vector<unsigned char> some(valid);
+  const auto global = std::min_element(values.begin(), values.end()) - values.begin();
+  some[global] = 0;
+  const auto low = RingMinimum(m.mesh, some, values, 1, 1);
+  EXPECT_EQ(low[global], values[global]);
+  const auto neighbours = m.Neighbours();
+  for (std::int64_t w : neighbours[global])
+    EXPECT_GT(low[w], values[global]) << w;
+}
+
+TEST(MeshSteps, CurvatureContrastKeepsPeaksAndRemovesWhatVariesLessThanTheFactor)
+{
+  SmallMesh m = Sheet(9, 9, 47, 0.2);
+  m.Build();
+  const std::vector<unsigned char> valid(m.Points(), 1);
+  // A potential that varies by less than the factor (a curved surface): no potential left.
+  const auto gentle = Random(m.Points(), 53, 1.0, 1.9);
+  std::vector<double> p = gentle;
+  CurvatureContrast(m.mesh, valid, p, 2.0, 4, 1);
+  for (double v : p)
+    EXPECT_EQ(v, 0.0);
+  // A ridge over a zero floor (a blurred crease over flat sides): kept as it is.
+  std::vector<double> ridge(m.Points(), 0.0);
+  for (int p2 = 0; p2 < m.Points(); ++p2)
+  {
+    const double x = m.P(p2)[0] - 4.0;
+    ridge[p2] = std::exp(-x * x);
+  }
+  // (every point's 4 rings reach a point with x far enough from the ridge that its value is ~0)
+  std::vector<double> kept = ridge;
+  CurvatureContrast(m.mesh, valid, kept, 8.0, 4, 1);
+  const auto floor = RefRingMinimum(m, ridge, 4);
+  for (int q = 0; q < m.Points(); ++q)
+  {
+    EXPECT_EQ(kept[q], std::max(0.0, ridge[q] - 8.0 * floor[q])) << q;
+    EXPECT_NEAR(kept[q], ridge[q], 1e-3) << q;
+  }
+  // 0 is the paper: the potential to the last bit.
+  std::vector<double> paper = gentle;
+  CurvatureContrast(m.mesh, valid, paper, 0.0, 4, 1);
+  EXPECT_EQ(paper, gentle);
+}
+
 TEST(MeshSteps, TraceCrossesAnEdgeIntoTheUnfoldedNextTriangle)
 {
   // B leans back over A, so its flow away from the edge makes an obtuse angle

@@ -183,4 +183,51 @@ std::vector<double> TriangleFlow(const TriangleMesh& mesh, const std::vector<dou
   return flow;
 }
 
+std::vector<double> RingMinimum(const TriangleMesh& mesh, const std::vector<unsigned char>& validPoint,
+  const std::vector<double>& values, int rings, int threads)
+{
+  const CompressedLists& ring = mesh.OneRing();
+  std::vector<double> low = values;
+  std::vector<double> next(values.size());
+  for (int r = 0; r < rings; ++r)
+  {
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int64_t p = 0; p < mesh.NumberOfPoints(); ++p)
+    {
+      double m = low[static_cast<size_t>(p)];
+      if (validPoint[static_cast<size_t>(p)])
+      {
+        for (std::int64_t k = ring.Begin(p); k < ring.End(p); ++k)
+        {
+          const std::int64_t w = ring.items[static_cast<size_t>(k)];
+          if (validPoint[static_cast<size_t>(w)])
+          {
+            m = std::min(m, low[static_cast<size_t>(w)]);
+          }
+        }
+      }
+      next[static_cast<size_t>(p)] = m;
+    }
+    low.swap(next);
+  }
+  return low;
+}
+
+void CurvatureContrast(const TriangleMesh& mesh, const std::vector<unsigned char>& validPoint,
+  std::vector<double>& potential, double contrast, int rings, int threads)
+{
+  if (!(contrast > 0.0))
+  {
+    return; // the paper: the potential as it is
+  }
+  const std::vector<double> low = RingMinimum(mesh, validPoint, potential, rings, threads);
+  const auto n = static_cast<std::int64_t>(potential.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t p = 0; p < n; ++p)
+  {
+    const size_t i = static_cast<size_t>(p);
+    potential[i] = std::max(0.0, potential[i] - contrast * low[i]);
+  }
+}
+
 } // namespace shock

@@ -12,6 +12,13 @@
  *     the adjacent triangles (also how cell signals become point signals);
  *  4. UmbrellaSmooth again on the potential; TriangleFlow: u = 1/2 grad P.
  *
+ * Not the paper's, optional (MeshSignal::potentialContrast; geometry sharpening's
+ * default): between 3 and 4, RingMinimum and CurvatureContrast keep of the
+ * potential only what rises above `contrast` times its minimum over the
+ * surrounding rings, so that a surface whose |grad N|^2 (k1^2 + k2^2) varies
+ * little, a sphere or a torus however coarsely tessellated, has no flow, while
+ * a blurred crease (a peak over flat sides) keeps it.
+ *
  * Lengths are in units of `length` (the mean edge length l-bar in a run);
  * `valid*` arrays are per point or per triangle, 1 where the element takes part.
  */
@@ -58,6 +65,24 @@ void TrianglesToPoints(const TriangleMesh& mesh, int C, const double* cells,
 /// The flow u = 1/2 grad P per triangle (3 values, mesh axes); 0 on invalid triangles.
 std::vector<double> TriangleFlow(const TriangleMesh& mesh, const std::vector<double>& potential,
   const std::vector<unsigned char>& validTriangle, double length, int threads);
+
+/**
+ * The minimum of a per-point `values` over the points within `rings` one-rings
+ * (an erosion on the mesh graph: `rings` passes of the one-ring minimum);
+ * invalid points neither give nor take a value (theirs is kept).
+ */
+std::vector<double> RingMinimum(const TriangleMesh& mesh, const std::vector<unsigned char>& validPoint,
+  const std::vector<double>& values, int rings, int threads);
+
+/**
+ * The potential's contrast: P <- max(0, P - contrast * RingMinimum(P, rings)).
+ * 0 leaves P as it is (the paper). Where P varies by less than a factor
+ * `contrast` over the rings (a uniformly or slowly curved surface) the result
+ * is 0 and there is no flow; on a blurred crease the minimum is that of the
+ * flat sides (near 0) and the peak stays.
+ */
+void CurvatureContrast(const TriangleMesh& mesh, const std::vector<unsigned char>& validPoint,
+  std::vector<double>& potential, double contrast, int rings, int threads);
 
 } // namespace shock
 

@@ -262,6 +262,8 @@ Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& param
   signal.valueScale = 2.0; // unit normals: components span [-1, 1]
   signal.sampleAtTimeZero = true;
   signal.lengthScale = parameters.lengthScale > 0.0 ? parameters.lengthScale : mesh.MeanEdgeLength();
+  signal.potentialContrast = parameters.curvatureContrast;
+  signal.contrastRings = parameters.contrastRings;
   target.resize(static_cast<size_t>(3 * mesh.NumberOfTriangles())); // written in full by the advection
   const Status status =
     AdvectMeshSignal(advected, signal, target.data(), parameters.advection, &r.advection, fields, progress);
@@ -355,6 +357,11 @@ Status CheckSharpeningParameters(const SharpeningParameters& parameters)
   if (!(parameters.featureAngle >= 0.0 && parameters.featureAngle <= 180.0))
   {
     return { "the feature angle must be in [0, 180] degrees" };
+  }
+  if (!(parameters.curvatureContrast >= 0.0) || !std::isfinite(parameters.curvatureContrast) ||
+    parameters.contrastRings < 1)
+  {
+    return { "the curvature contrast must be finite and >= 0, over >= 1 rings" };
   }
   return CheckAdvectionParameters(parameters.advection);
 }

@@ -53,6 +53,15 @@ struct SharpeningParameters
   /// Length unit of the advection (0: the mesh's own mean edge length). A piece of a
   /// distributed mesh (fit.partition) passes the whole mesh's mean edge length.
   double lengthScale = 0.0;
+  /**
+   * Not the paper's: the advection's potential keeps only what exceeds this
+   * many times its minimum over `contrastRings` rings (MeshFlow.h,
+   * CurvatureContrast), so that smooth shapes, however coarsely tessellated,
+   * are not sharpened; 0 is the paper's potential (docs/sharpening.md,
+   * "Telling a smooth shape from a blurred crease").
+   */
+  double curvatureContrast = 16.0;
+  int contrastRings = 6; ///< rings of the contrast's minimum (>= 1)
 };
 
 /// What a sharpening run did.

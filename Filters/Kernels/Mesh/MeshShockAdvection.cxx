@@ -66,6 +66,8 @@ std::vector<double> ComputeFlow(const MeshRun& run, std::vector<double> signal, 
     TriangleEnergy(run.mesh, signal.data(), run.C, run.validTriangle, run.length, run.threads);
   std::vector<double> potential;
   TrianglesToPoints(run.mesh, 1, energy.data(), run.validTriangle, potential, run.threads);
+  CurvatureContrast(run.mesh, run.validPoint, potential, run.signal.potentialContrast,
+    run.signal.contrastRings, run.threads);
   UmbrellaSmooth(run.mesh, run.umbrellaWeight, run.validPoint, 1, potential,
     run.p.smoothingPasses, run.threads);
   flow = TriangleFlow(run.mesh, potential, run.validTriangle, run.length, run.threads);
@@ -377,6 +379,11 @@ Status AdvectMeshSignal(const TriangleMesh& mesh, const MeshSignal& signal, doub
     !(signal.lengthScale >= 0.0) || !std::isfinite(signal.lengthScale))
   {
     return { "the value and length scales must be finite and >= 0" };
+  }
+  if (!(signal.potentialContrast >= 0.0) || !std::isfinite(signal.potentialContrast) ||
+    signal.contrastRings < 1)
+  {
+    return { "the potential's contrast must be finite and >= 0, over >= 1 rings" };
   }
   AdvectionReport localReport;
   AdvectionReport& r = report ? *report : localReport;

@@ -82,6 +82,13 @@ struct MeshSignal
    * that every piece uses the serial unit.
    */
   double lengthScale = 0.0;
+  /**
+   * The potential's contrast (MeshFlow.h, CurvatureContrast): the potential
+   * keeps only what exceeds this many times its minimum over `contrastRings`
+   * rings, before its smoothing. 0 (the default) is the paper's potential.
+   */
+  double potentialContrast = 0.0;
+  int contrastRings = 6; ///< rings of the contrast's minimum (>= 1)
 };
 
 /**
