@@ -1,4 +1,4 @@
-// Tests of geometry sharpening (Filters/Kernels/Mesh/MeshSharpening): advected normals + screened Poisson fit.
+// Tests of geometry sharpening (Filters/Kernels/Sharpen/MeshSharpening): advected normals + screened Poisson fit.
 #include "MeshSharpening.h"
 #include "TestMeshes.h"
 
