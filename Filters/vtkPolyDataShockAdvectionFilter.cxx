@@ -93,8 +93,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   int association = -1;
   vtkDataArray* array = nullptr;
   std::string selection; // the filtered array, which every piece must agree on
-  ShockParallel::CarriedArrays carried; // the ghost rings carry the filtered array only
-  carried.all = false;
+  ShockParallel::CarriedArrays carried{ false, {}, {} }; // the ghost rings carry the filtered array only
   auto findArray = [&](vtkPolyData* surface) -> std::string {
     if (!started)
     {
@@ -106,11 +105,8 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
       selection = std::string("filtered ") +
         (association == vtkDataObject::FIELD_ASSOCIATION_CELLS ? "cell" : "point") + " array '" +
         (array->GetName() ? array->GetName() : "(unnamed)") + "';";
-      if (array->GetName())
-      {
-        (association == vtkDataObject::FIELD_ASSOCIATION_CELLS ? carried.cell : carried.point)
-          .push_back(array->GetName());
-      }
+      (association == vtkDataObject::FIELD_ASSOCIATION_CELLS ? carried.cell : carried.point)
+        .push_back(array->GetName() ? array->GetName() : "");
     }
     return array || surface->GetNumberOfPoints() == 0 ? "" : "no array to filter (see the message above)";
   };

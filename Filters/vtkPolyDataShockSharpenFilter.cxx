@@ -288,8 +288,7 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   // parallel, all agree, replicated data is recognised, pieces get ghost layers
   // (collective; at least one: the fit's rows need the one-rings of their points).
   // The ghost rings carry the positions, and the active normals (recomputed for the output) only.
-  ShockParallel::CarriedArrays carried;
-  carried.all = false;
+  ShockParallel::CarriedArrays carried{ false, {}, {} };
   auto wholeOrPieces = [&unknown, &carried, started](vtkPolyData* surface) -> std::string {
     if (!started)
     {

@@ -248,27 +248,40 @@ private:
     std::array<std::int64_t, D> c, std::int64_t f, double t, bool& truncated) const
   {
     static_assert(D == 2, "the planar tracer is for images");
-    std::array<double, D> start;
-    this->Load(f, start);
-    if (!(this->Dot(start, start) > 0.0))
+    const double hx = L.h2[0];
+    const double hy = L.h2[1];
+    double vx = this->V[2 * f];
+    double vy = this->V[2 * f + 1];
+    if (!(hx * vx * vx + hy * vy * vy > 0.0))
     {
       return 0;
     }
-    double vx = start[0], vy = start[1];
-    double x = q[0], y = q[1];
+    double x = q[0];
+    double y = q[1];
     int pinned = -1; // axis of the boundary the trace slides on; c is the lower face there
     std::int64_t steps = 0;
     while (t > 0.0)
     {
-      double distance, speed, reciprocal;
-      const int axis = PlanarExit(x, y, vx, vy, c, distance, speed, reciprocal);
+      const double sx = std::abs(vx);
+      const double sy = std::abs(vy);
+      // The reciprocal speeds depend on the velocity alone: computed here, the
+      // divisions run while the position's distances are found.
+      const double rx = 1.0 / sx;
+      const double ry = 1.0 / sy;
+      const double cx = static_cast<double>(c[0]);
+      const double cy = static_cast<double>(c[1]);
+      const double dx = std::max((cx + static_cast<double>(vx > 0.0) - x) * std::copysign(1.0, vx), 0.0);
+      const double dy = std::max((cy + static_cast<double>(vy > 0.0) - y) * std::copysign(1.0, vy), 0.0);
+      const int axis = (vx == 0.0 || dy * sx < dx * sy) ? 1 : 0;
+      const double distance = axis ? dy : dx;
+      const double speed = axis ? sy : sx;
       if (distance >= t * speed)
       {
         x += vx * t;
         y += vy * t;
         break; // the time is used up in this face
       }
-      const double exitTime = std::min(distance * reciprocal, t);
+      const double exitTime = std::min(distance * (axis ? ry : rx), t);
       x += vx * exitTime;
       y += vy * exitTime;
       t -= exitTime;
@@ -400,29 +413,6 @@ private:
   }
 
   /**
-   * ExitAhead on an image, without dividing: with d the distance to the
-   * boundary ahead along an axis and |v| the speed along it, the trace leaves
-   * along y first when d_y |v_x| < d_x |v_y|. Returns that axis, its distance,
-   * speed and reciprocal speed (computed from the velocity alone, the division
-   * runs while the distances are found). An axis slid along has v = 0 there.
-   */
-  static SHOCK_ALWAYS_INLINE int PlanarExit(double x, double y, double vx, double vy,
-    const std::array<std::int64_t, D>& c, double& distance, double& speed, double& reciprocal)
-  {
-    const double sx = std::abs(vx);
-    const double sy = std::abs(vy);
-    const double rx = 1.0 / sx;
-    const double ry = 1.0 / sy;
-    const double dx = std::max((static_cast<double>(c[0]) + static_cast<double>(vx > 0.0) - x) * std::copysign(1.0, vx), 0.0);
-    const double dy = std::max((static_cast<double>(c[1]) + static_cast<double>(vy > 0.0) - y) * std::copysign(1.0, vy), 0.0);
-    const int axis = (vx == 0.0 || dy * sx < dx * sy) ? 1 : 0;
-    distance = axis ? dy : dx;
-    speed = axis ? sy : sx;
-    reciprocal = axis ? ry : rx;
-    return axis;
-  }
-
-  /**
    * ExitAhead in a volume: the time to the boundary ahead along each axis is
    * the distance to it times the reciprocal speed (its division overlaps the
    * position's chain of operations); an axis without motion has an infinite
@@ -472,7 +462,14 @@ private:
     }
     const std::int64_t left = f;
     c[axis] = next;
-    f += dir * L.faceStride[axis];
+    if constexpr (D == 2)
+    {
+      f += axis ? dir * L.faceStride[1] : dir; // rows are contiguous: one load fewer on the image's hot path
+    }
+    else
+    {
+      f += dir * L.faceStride[axis];
+    }
     return this->EnterFace(c, f, left, axis, dir, pinned, v, w);
   }
 
