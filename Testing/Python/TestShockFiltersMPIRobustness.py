@@ -379,6 +379,20 @@ def compare_with_serial(label, records, serial, array_name):
               label, int((~(difference <= 1e-9)).sum()), worst))
 
 
+def succeeds_as_serial(label, records, whole):
+    """Every process succeeded without error, and their unmarked points equal
+    the serial advection of `whole` (the whole mesh)."""
+    print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+    check(all(r.get("rc") == 1 and not r.get("errors") for r in records),
+          "%s: every process succeeds without error" % label)
+    algorithm = vtkPolyDataShockAdvectionFilter()
+    algorithm.SetController(None)
+    algorithm.SetNumberOfThreads(1)
+    algorithm.SetInputData(whole)
+    algorithm.UpdatePiece(0, 1, 0)
+    compare_with_serial(label, records, algorithm.GetOutput(), "Elevation")
+
+
 def replicated_case():
     label = "replicated np=%d" % PROCESSES
 
@@ -388,15 +402,7 @@ def replicated_case():
         return record
 
     def judge(records):
-        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
-        check(all(r.get("rc") == 1 and not r.get("errors") for r in records),
-              "%s: every process succeeds without error" % label)
-        algorithm = vtkPolyDataShockAdvectionFilter()
-        algorithm.SetController(None)
-        algorithm.SetNumberOfThreads(1)
-        algorithm.SetInputData(make_polydata(*slab(48)))
-        algorithm.UpdatePiece(0, 1, 0)
-        compare_with_serial(label, records, algorithm.GetOutput(), "Elevation")
+        succeeds_as_serial(label, records, make_polydata(*slab(48)))
 
     return local, judge
 
@@ -462,15 +468,7 @@ def noncontiguous_array_case():
         return record
 
     def judge(records):
-        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
-        check(all(r.get("rc") == 1 and not r.get("errors") for r in records),
-              "%s: every process succeeds without error" % label)
-        algorithm = vtkPolyDataShockAdvectionFilter()
-        algorithm.SetController(None)
-        algorithm.SetNumberOfThreads(1)
-        algorithm.SetInputData(make_polydata(*slab(32)))
-        algorithm.UpdatePiece(0, 1, 0)
-        compare_with_serial(label, records, algorithm.GetOutput(), "Elevation")
+        succeeds_as_serial(label, records, make_polydata(*slab(32)))
 
     return local, judge
 
