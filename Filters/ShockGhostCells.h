@@ -141,6 +141,13 @@ struct Numbering
   LocalPoints local;                        ///< global id -> local point (own, then the rings' ghosts)
 };
 
+/**
+ * The points another piece may share, ascending (ShockGhostBorders.cxx):
+ * those on a vertex or line cell, and both ends of every edge of the polygons
+ * and strip triangles that exactly one side has.
+ */
+std::vector<vtkIdType> BorderPoints(const Cells& cells, vtkIdType np);
+
 /// Cells of `piece`, read in place from its four cell arrays.
 Cells ReadCells(vtkPolyData* piece);
 
