@@ -100,12 +100,18 @@ void WriteArray(Writer& out, vtkDataArray* array)
 
 vtkSmartPointer<vtkDataArray> ReadArray(Reader& in)
 {
-  std::string name(static_cast<size_t>(std::max<std::int64_t>(0, in.Word())), '\0');
+  const std::int64_t length = in.Word();
+  if (!in.ok || length < 0 || length > in.end - in.at)
+  {
+    in.ok = false; // a damaged buffer: sizes are checked before anything is allocated
+    return nullptr;
+  }
+  std::string name(static_cast<size_t>(length), '\0');
   in.Block(&name[0], name.size());
   const int type = static_cast<int>(in.Word());
   const int components = static_cast<int>(in.Word());
   const vtkIdType tuples = in.Word();
-  if (!in.ok || components < 1 || tuples < 0)
+  if (!in.ok || components < 1 || tuples < 0 || tuples > (in.end - in.at) / components)
   {
     in.ok = false;
     return nullptr;
