@@ -67,6 +67,16 @@ def copy_tree(work):
         if os.path.isfile(source):
             if not os.path.exists(target) or open(source, "rb").read() != open(target, "rb").read():
                 shutil.copyfile(source, target)  # a new mtime: make rebuilds
+    # Files an earlier copy left that are no longer tracked (moved or removed):
+    # a stale header of the same name on another include folder would be built.
+    tracked = set(filter(None, files))
+    for folder, subfolders, names in os.walk(src):
+        if folder == src:
+            subfolders[:] = [d for d in subfolders if d != "build"]  # the build tree lives in src/build
+        for name in names:
+            path = os.path.join(folder, name)
+            if os.path.relpath(path, src) not in tracked:
+                os.remove(path)
     return src
 
 
