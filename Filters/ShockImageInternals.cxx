@@ -33,6 +33,7 @@
 #include <algorithm>
 #include <limits>
 #include <memory>
+#include <vector>
 #include <sstream>
 #include <cmath>
 #include <cstring>
@@ -305,7 +306,8 @@ void AttachFlowArrays(vtkImageData* output, bool cellData, const shock::GridShap
           if (interior)
           {
             ToWorldAxes(output, &fields.flow[3 * face], world);
-            flow->SetTypedTuple(output->ComputePointId(ijk), world);
+            // The point's index from its zero-based coordinates (ComputePointId takes extent coordinates).
+            flow->SetTypedTuple(i + static_cast<vtkIdType>(dims[0]) * (j + static_cast<vtkIdType>(dims[1]) * k), world);
           }
         }
       }
@@ -427,5 +429,86 @@ void PieceExtent(vtkInformation* info, const int extent[6], int ghost, int piece
   std::copy(extent, extent + 6, whole);
   translator->PieceToExtentThreadSafe(info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
     UpdatePieces(info), ghost, whole, piece, mode, 0);
+}
+
+shock::SampleWriter KeepHiddenValues(const shock::SampleWriter& writer, vtkImageData* image, vtkDataArray* array,
+  bool cellData)
+{
+  // The blanked samples' own values, read here once (the writer runs on
+  // several threads at once: it reads only these plain vectors).
+  const int C = array->GetNumberOfComponents();
+  auto hiddenAt = std::make_shared<std::vector<std::int64_t>>(); // sorted sample indices
+  auto hiddenValues = std::make_shared<std::vector<double>>();
+  for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+  {
+    if (IsHidden(image, cellData, t))
+    {
+      hiddenAt->push_back(t);
+      for (int c = 0; c < C; ++c)
+      {
+        hiddenValues->push_back(array->GetComponent(t, c));
+      }
+    }
+  }
+  return [writer, C, hiddenAt, hiddenValues](std::int64_t first, std::int64_t count, const double* in) {
+    auto k = std::lower_bound(hiddenAt->begin(), hiddenAt->end(), first);
+    if (k == hiddenAt->end() || *k >= first + count)
+    {
+      writer(first, count, in); // no blanked sample in this run
+      return;
+    }
+    std::vector<double> values(in, in + count * C);
+    for (; k != hiddenAt->end() && *k < first + count; ++k)
+    {
+      const size_t which = static_cast<size_t>(k - hiddenAt->begin());
+      std::copy(hiddenValues->begin() + static_cast<long>(which * C),
+        hiddenValues->begin() + static_cast<long>((which + 1) * C), values.begin() + (*k - first) * C);
+    }
+    writer(first, count, values.data());
+  };
+}
+
+std::array<std::int64_t, 6> SamplesOfExtent(vtkImageData* image, const int extent[6], bool cellData)
+{
+  const int* whole = image->GetExtent();
+  std::array<std::int64_t, 6> samples{};
+  for (int a = 0; a < 3; ++a)
+  {
+    // Cells along an axis the image spans: one fewer than the points; a flat axis has one.
+    const bool spans = whole[2 * a + 1] > whole[2 * a];
+    const bool cells = cellData && spans;
+    samples[2 * a] = spans ? extent[2 * a] - whole[2 * a] : 0;
+    samples[2 * a + 1] = spans ? extent[2 * a + 1] - whole[2 * a] - (cells ? 1 : 0) : 0;
+  }
+  return samples;
+}
+
+shock::SampleWriter BoxWriter(const shock::SampleWriter& writer, const shock::GridShape& grid,
+  const std::array<std::int64_t, 6>& samples, int components)
+{
+  const std::int64_t nx = grid.dimensions[0];
+  const std::int64_t ny = grid.dimensions[1];
+  return [writer, nx, ny, samples, components](std::int64_t first, std::int64_t count, const double* values) {
+    const std::int64_t bx = samples[1] - samples[0] + 1;
+    const std::int64_t by = samples[3] - samples[2] + 1;
+    while (count > 0)
+    {
+      // The rest of the run in the grid row of sample `first`.
+      const std::int64_t x = first % nx;
+      const std::int64_t y = (first / nx) % ny;
+      const std::int64_t z = first / nx / ny;
+      const std::int64_t inRow = std::min(count, nx - x);
+      const std::int64_t from = std::max(x, samples[0]);
+      const std::int64_t to = std::min(x + inRow - 1, samples[1]);
+      if (y >= samples[2] && y <= samples[3] && z >= samples[4] && z <= samples[5] && from <= to)
+      {
+        writer(((z - samples[4]) * by + (y - samples[2])) * bx + (from - samples[0]), to - from + 1,
+          values + (from - x) * components);
+      }
+      first += inRow;
+      count -= inRow;
+      values += inRow * components;
+    }
+  };
 }
 }

@@ -13,6 +13,8 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include <array>
+#include <cstdint>
 #include <string>
 
 class vtkDataArray;
@@ -38,6 +40,41 @@ bool AnyHidden(vtkImageData* image, vtkDataArray* array, bool cellData);
 
 /// A double copy of `array` with its blanked samples NaN, or nullptr when none is blanked.
 vtkSmartPointer<vtkDataArray> MaskHiddenSamples(vtkImageData* image, vtkDataArray* array, bool cellData);
+
+/**
+ * A writer that keeps the blanked samples' own values (read here once from
+ * `array` on `image`) in place of the kernel's results, then hands on to `writer`.
+ */
+shock::SampleWriter KeepHiddenValues(const shock::SampleWriter& writer, vtkImageData* image, vtkDataArray* array,
+  bool cellData);
+
+/**
+ * Where the filtered samples go: `output`, in which they replace `replaced`
+ * (the filtered array, or a piece's own array), and the extent they cover:
+ * null for every sample of the filtered image, else a sub-extent of it (a
+ * piece's extent within the piece with its halo).
+ */
+struct SampleTarget
+{
+  vtkImageData* output;
+  vtkDataArray* replaced;
+  const int* extent = nullptr;
+};
+
+/**
+ * The samples (points, or cells for cell data) of `image` within the
+ * sub-extent `extent`, per axis the first and the last index of the sample
+ * grid (AdvectionParameters::writtenSamples).
+ */
+std::array<std::int64_t, 6> SamplesOfExtent(vtkImageData* image, const int extent[6], bool cellData);
+
+/**
+ * A writer of the samples of `grid` that hands those in the box `samples`
+ * (per axis first and last) to `writer`, numbered within the box: any run of
+ * samples, split into the box's rows.
+ */
+shock::SampleWriter BoxWriter(const shock::SampleWriter& writer, const shock::GridShape& grid,
+  const std::array<std::int64_t, 6>& samples, int components);
 
 /// "" when `array` (of `association`) can be filtered on `image`, else the message.
 std::string CheckImageArray(vtkImageData* image, vtkDataArray* array, int association);

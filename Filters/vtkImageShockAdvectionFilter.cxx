@@ -147,57 +147,38 @@ int vtkImageShockAdvectionFilter::FilterImage(
 int vtkImageShockAdvectionFilter::FilterImageArray(
   vtkImageData* input, vtkDataArray* array, int association, vtkImageData* output)
 {
+  // Everything checked: the output starts as the input, arrays shared.
+  output->ShallowCopy(input);
+  return this->FilterSamples(input, array, association, ShockImageInternals::SampleTarget{ output, array });
+}
+
+int vtkImageShockAdvectionFilter::FilterSamples(
+  vtkImageData* input, vtkDataArray* array, int association, const ShockImageInternals::SampleTarget& target)
+{
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
   const shock::GridShape grid = SampleGrid(input, cellData);
-  // Everything checked: the output starts as the input, arrays shared. The
-  // kernel reads the array in place when it is float or double, and writes its
-  // results straight into a new array of the input's type.
-  output->ShallowCopy(input);
-  ShockFilterInternals::KernelOutput filtered = ShockFilterInternals::OutputForKernel(array);
+  // The kernel reads the array in place when it is float or double, and writes
+  // its results straight into a new array of the input's type: of the target's
+  // samples (a box of the grid's, for a piece with its halo).
+  ShockFilterInternals::KernelOutput filtered = ShockFilterInternals::OutputForKernel(target.replaced);
+  std::array<std::int64_t, 6> written{ { 0, -1, 0, -1, 0, -1 } };
+  if (target.extent)
+  {
+    written = SamplesOfExtent(input, target.extent, cellData);
+    filtered.writer = BoxWriter(filtered.writer, grid, written, array->GetNumberOfComponents());
+  }
   // Blanked samples (vtkGhostType HIDDENPOINT, or HIDDENCELL for cell data)
   // neither feed nor receive values: the kernel sees them as NaN (a sample
   // that carries no flow and is never interpolated) and they keep their own.
   vtkSmartPointer<vtkDataArray> masked = MaskHiddenSamples(input, array, cellData);
   if (masked)
   {
-    // The blanked samples' own values, read here once (the writer runs on
-    // several threads at once: it reads only these plain vectors).
-    const int C = array->GetNumberOfComponents();
-    auto hiddenAt = std::make_shared<std::vector<std::int64_t>>(); // sorted sample indices
-    auto hiddenValues = std::make_shared<std::vector<double>>();
-    for (vtkIdType t = 0; t < masked->GetNumberOfTuples(); ++t)
-    {
-      if (IsHidden(input, cellData, t))
-      {
-        hiddenAt->push_back(t);
-        for (int c = 0; c < C; ++c)
-        {
-          hiddenValues->push_back(array->GetComponent(t, c));
-        }
-      }
-    }
-    const shock::SampleWriter typed = filtered.writer;
-    filtered.writer = [typed, C, hiddenAt, hiddenValues](std::int64_t first, std::int64_t count, const double* in) {
-      auto k = std::lower_bound(hiddenAt->begin(), hiddenAt->end(), first);
-      if (k == hiddenAt->end() || *k >= first + count)
-      {
-        typed(first, count, in); // no blanked sample in this run
-        return;
-      }
-      std::vector<double> values(in, in + count * C);
-      for (; k != hiddenAt->end() && *k < first + count; ++k)
-      {
-        const size_t which = static_cast<size_t>(k - hiddenAt->begin());
-        std::copy(hiddenValues->begin() + static_cast<long>(which * C),
-          hiddenValues->begin() + static_cast<long>((which + 1) * C), values.begin() + (*k - first) * C);
-      }
-      typed(first, count, values.data());
-    };
+    filtered.writer = KeepHiddenValues(filtered.writer, input, array, cellData);
   }
   shock::GridFlowFields fields;
   bool aborted = false;
-  const bool ran = this->RunKernel(
-    grid, masked ? masked.GetPointer() : array, filtered, this->GenerateFlowArrays ? &fields : nullptr, aborted);
+  const bool ran = this->RunKernel(grid, masked ? masked.GetPointer() : array, filtered,
+    this->GenerateFlowArrays ? &fields : nullptr, written, aborted);
   if (!ran)
   {
     return 0;
@@ -206,13 +187,26 @@ int vtkImageShockAdvectionFilter::FilterImageArray(
   {
     return 1; // aborted: the output holds the unfiltered input
   }
-
+  vtkImageData* output = target.output;
   vtkDataSetAttributes* attributes =
     cellData ? static_cast<vtkDataSetAttributes*>(output->GetCellData()) : output->GetPointData();
-  ShockFilterInternals::ReplaceArray(attributes, array, filtered.array);
+  ShockFilterInternals::ReplaceArray(attributes, target.replaced, filtered.array);
   if (this->GenerateFlowArrays)
   {
-    AttachFlowArrays(output, cellData, grid, fields);
+    if (!target.extent)
+    {
+      AttachFlowArrays(output, cellData, grid, fields);
+      return 1;
+    }
+    // The flow of the grid with its halo, cropped to the target's extent.
+    vtkNew<vtkImageData> flow;
+    flow->CopyStructure(input);
+    AttachFlowArrays(flow, cellData, grid, fields);
+    if (!CropByRows(flow, target.extent))
+    {
+      flow->Crop(target.extent);
+    }
+    TakeResultArrays(flow, output, nullptr);
   }
   return 1;
 }
@@ -262,24 +256,14 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
     output->ShallowCopy(input); // an empty piece of a parallel run is normal
     return 1;
   }
-  vtkNew<vtkImageData> filtered;
   vtkDataArray* grownArray = (cellData ? static_cast<vtkDataSetAttributes*>(withHalo->GetCellData())
                                         : static_cast<vtkDataSetAttributes*>(withHalo->GetPointData()))
                                ->GetScalars();
-  if (!this->FilterImageArray(withHalo, grownArray, association, filtered))
-  {
-    return 0;
-  }
-  // Back to the piece: its rows of the filtered array and of the flow arrays.
-  int crop[6];
-  input->GetExtent(crop);
-  if (!CropByRows(filtered, crop))
-  {
-    filtered->Crop(crop);
-  }
+  // The kernel traces the piece's own samples only (the halo feeds their
+  // flow and traces) and writes them straight into the piece's new array.
   output->ShallowCopy(input);
-  TakeResultArrays(filtered, output, array);
-  return 1;
+  return this->FilterSamples(withHalo, grownArray, association,
+    ShockImageInternals::SampleTarget{ output, array, input->GetExtent() });
 }
 
 namespace ShockFilterInternals
@@ -293,12 +277,13 @@ struct GridRun
   const shock::SampleWriter& output;
   shock::GridFlowFields* fields;
   shock::ProgressFunction progress;
+  const std::array<std::int64_t, 6>& written; ///< AdvectionParameters::writtenSamples
 };
 }
 
 bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDataArray* array,
   const ShockFilterInternals::KernelOutput& filtered, shock::GridFlowFields* fields,
-  bool& aborted)
+  const std::array<std::int64_t, 6>& written, bool& aborted)
 {
   // The phase a fraction belongs to (the gradient domain solves after 0.8).
   const bool gradients = this->Domain == GRADIENTS && this->Method == ADVECTION;
@@ -308,7 +293,7 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDa
       fraction, gradients && fraction >= 0.8 ? "integrating the advected gradients" : tracing);
   };
   ShockFilterInternals::GridRun run{ grid, array, ShockFilterInternals::SignalForKernel(array, this->NumberOfThreads),
-    filtered.writer, fields, progress };
+    filtered.writer, fields, progress, written };
   shock::Status status;
   if (this->Domain == GRADIENTS && this->Method != ADVECTION)
   {
@@ -341,6 +326,7 @@ shock::Status vtkImageShockAdvectionFilter::RunAdvection(const ShockFilterIntern
   shock::AdvectionReport report;
   shock::AdvectionParameters parameters = ShockFilterInternals::MakeParameters(this);
   parameters.hierarchyLevels = this->HierarchyLevels;
+  parameters.writtenSamples = run.written;
   shock::GradientDomainParameters domain;
   domain.screening = this->GradientScreening;
   const auto advect = [&](const auto* values) {

@@ -68,6 +68,9 @@
 #include "vtkShockAdvectionFilter.h"
 #include "vtkFiltersShockModule.h" // for export macro
 
+#include <array>   // for the written samples
+#include <cstdint> // for the written samples
+
 class vtkDataArray;
 class vtkImageData;
 class vtkMultiProcessController;
@@ -76,6 +79,10 @@ namespace shock
 struct GridShape;
 struct GridFlowFields;
 struct Status;
+}
+namespace ShockImageInternals
+{
+struct SampleTarget;
 }
 namespace ShockFilterInternals
 {
@@ -228,6 +235,11 @@ protected:
   /// Filter `array` (checked, of `association`) of `input` into `output` (which starts as `input`).
   int FilterImageArray(vtkImageData* input, vtkDataArray* array, int association, vtkImageData* output);
 
+  /// Filter `array` (checked, of `association`) of `input`: the results of the
+  /// target's samples replace its array (see SampleTarget).
+  int FilterSamples(vtkImageData* input, vtkDataArray* array, int association,
+    const ShockImageInternals::SampleTarget& target);
+
   /**
    * A piece of a distributed image (collective on `controller`): every process
    * checks its piece and they agree, the piece gets GhostLevels samples of halo
@@ -253,7 +265,7 @@ private:
   /// vtkErrorMacro) on failure.
   bool RunKernel(const shock::GridShape& grid, vtkDataArray* array,
     const ShockFilterInternals::KernelOutput& output, shock::GridFlowFields* fields,
-    bool& aborted);
+    const std::array<std::int64_t, 6>& written, bool& aborted);
   /// The paper's advection (Method ADVECTION), of the values or of their gradients (Domain).
   shock::Status RunAdvection(const ShockFilterInternals::GridRun& run, bool& aborted);
   /// The Osher-Rudin PDE, integrated explicitly (Method PDE), on a double copy of the signal.

@@ -269,6 +269,40 @@ TEST(ImageShockAdvectionFilter, CellDataIsFilteredOnTheGridOfCellCentres)
   EXPECT_EQ(flow->GetNumberOfTuples(), cellImage->GetNumberOfPoints());
 }
 
+TEST(ImageShockAdvectionFilter, CellDataFlowArraysDoNotDependOnWhereTheExtentStarts)
+{
+  // The same cells with their extent from 0 and from elsewhere (a piece of a
+  // larger image): the flow on the points between cell centres is the same.
+  const auto flowOf = [](const int extent[6]) {
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->SetExtent(const_cast<int*>(extent));
+    vtkNew<vtkDoubleArray> values;
+    values->SetName("CellIntensity");
+    values->SetNumberOfTuples(image->GetNumberOfCells());
+    for (vtkIdType c = 0; c < image->GetNumberOfCells(); ++c)
+    {
+      values->SetValue(c, std::sin(0.37 * static_cast<double>(c)) + 0.01 * static_cast<double>(c % 17));
+    }
+    image->GetCellData()->SetScalars(values);
+    vtkNew<vtkImageShockAdvectionFilter> filter;
+    filter->SetInputData(image);
+    filter->SetFlowTime(16.0);
+    filter->SetGenerateFlowArrays(true);
+    filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "CellIntensity");
+    filter->Update();
+    vtkDataArray* flow = filter->GetOutput()->GetPointData()->GetArray("ShockFlow");
+    EXPECT_NE(flow, nullptr);
+    return flow ? Values(flow) : std::vector<double>();
+  };
+  const int fromZero[6] = { 0, 9, 0, 7, 0, 6 };
+  const int elsewhere[6] = { -4, 5, 11, 18, -30, -24 };
+  const auto reference = flowOf(fromZero);
+  const auto shifted = flowOf(elsewhere);
+  ASSERT_EQ(reference.size(), static_cast<size_t>(10 * 8 * 7 * 3));
+  ASSERT_EQ(shifted, reference);
+  EXPECT_TRUE(std::any_of(reference.begin(), reference.end(), [](double v) { return v != 0.0; }));
+}
+
 TEST(ImageShockAdvectionFilter, FlowArraysAreInWorldAxes)
 {
   vtkNew<vtkDoubleArray> values;

@@ -242,7 +242,7 @@ TEST(GridSteps, AdvectVerticesReadsWhereTracesThatStayInTheirFacesEnd)
   const ProgressFunction none;
   const AdvectionContext<3> ctx{ L, C, 1, Sampling::Linear, nullptr, none, report };
   std::vector<double> out(values.size());
-  ASSERT_TRUE(AdvectVertices<3>(ctx, tracer, t, values.data(), Into(out, C), nullptr, 0.0, 1.0));
+  ASSERT_TRUE(AdvectVertices<3>(ctx, tracer, t, values.data(), Into(out, C), nullptr, RowBlocks<3>(L.n), 0.0, 1.0));
 
   const int mx = g.n[0] - 1, my = g.n[1] - 1;
   int handChecked = 0, leaving = 0;
@@ -344,7 +344,7 @@ std::vector<double> AdvectRandom(const RefGrid& g, int C, const std::vector<doub
   const double t = 1.0;
   EXPECT_EQ(TriesWithinFaceFirst<D>(L, tracer, t), withinFirst) << "share of slow faces " << slow;
   std::vector<double> out(signal.size());
-  EXPECT_TRUE(AdvectVertices<D>(ctx, tracer, t, signal.data(), Into(out, C), nullptr, 0.0, 1.0));
+  EXPECT_TRUE(AdvectVertices<D>(ctx, tracer, t, signal.data(), Into(out, C), nullptr, RowBlocks<D>(L.n), 0.0, 1.0));
   constexpr int Corners = Lattice<D>::Corners;
   const Neighbourhood<D> hood(L, C);
   int stay = 0, leave = 0;
@@ -528,7 +528,7 @@ std::vector<double> AdvectAlongRandomFlow(const RefGrid& g, int C, const std::ve
   const ProgressFunction none;
   const AdvectionContext<D> ctx{ L, C, threads, Sampling::Linear, nullptr, none, report };
   std::vector<double> out(signal.size());
-  EXPECT_TRUE(AdvectVertices<D>(ctx, tracer, t, signal.data(), Into(out, C), nullptr, 0.0, 1.0));
+  EXPECT_TRUE(AdvectVertices<D>(ctx, tracer, t, signal.data(), Into(out, C), nullptr, RowBlocks<D>(L.n), 0.0, 1.0));
   return out;
 }
 } // namespace

@@ -343,7 +343,7 @@ TEST(GridSteps, AdvectVerticesAveragesTheTracesFromTheOffsetsIntoTheAdjacentFace
   const AdvectionContext<2> ctx{ L, C, 1, Sampling::Linear, nullptr, none, report };
   const double t = 1.7;
   std::vector<double> out(values.size());
-  ASSERT_TRUE(AdvectVertices<2>(ctx, tracer, t, values.data(), Into(out, C), nullptr, 0.0, 1.0));
+  ASSERT_TRUE(AdvectVertices<2>(ctx, tracer, t, values.data(), Into(out, C), nullptr, RowBlocks<2>(L.n), 0.0, 1.0));
   const double vx = static_cast<float>(v[0]), vy = static_cast<float>(v[1]);
   for (int j = 0; j < g.n[1]; ++j)
     for (int i = 0; i < g.n[0]; ++i)

@@ -149,9 +149,28 @@ def blank(image):
     return out
 
 
-def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=None, cells=False, blanked=False):
-    """Filter in parallel and serially; equality outside `band` samples of the
-    piece boundaries, and at most `bound` of the samples differing."""
+def boundary_distance(extent, pieces, cells):
+    """Distance (in samples) of every sample (points, or cells) to the nearest boundary between pieces."""
+    dims = [extent[2 * i + 1] - extent[2 * i] + (0 if cells and extent[2 * i + 1] > extent[2 * i] else 1)
+            for i in range(3)]
+    index = np.indices(dims[::-1])
+    distance = np.full(int(np.prod(dims)), np.inf)
+    for piece in pieces:
+        for axis in range(3):
+            for side, limit in ((0, extent[2 * axis]), (1, extent[2 * axis + 1])):
+                boundary = piece[2 * axis + side]
+                if boundary == limit:
+                    continue  # a side of the whole image, not a piece boundary
+                position = index[2 - axis].ravel() + extent[2 * axis] + (0.5 if cells else 0.0)
+                distance = np.minimum(distance, np.abs(position - boundary))
+    return distance
+
+
+def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=None, cells=False, blanked=False,
+               **properties):
+    """Filter in parallel and serially (both with `properties` besides); equality
+    outside `band` samples of the piece boundaries, and at most `bound` of the
+    samples differing, in the filtered array and in the flow arrays if asked for."""
     name = "Step" if expression else "RTData"
     association = "CELLS" if cells else "POINTS"
     # Serial reference.
@@ -170,7 +189,8 @@ def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=N
         producer.SetOutput(blank(last.GetOutputDataObject(0)))
         keep.append(producer)
         last = producer
-    serial = serial_filter("ImageShockAdvection", last, InputArray=[association, name], FlowTime=flow_time)
+    serial = serial_filter("ImageShockAdvection", last, InputArray=[association, name], FlowTime=flow_time,
+                           **properties)
     # Parallel run (fresh proxies: a source keeps the ghost layers of an earlier request).
     proxies = [Wavelet(WholeExtent=extent)]
     if expression:
@@ -180,7 +200,7 @@ def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=N
     if blanked:
         proxies.append(ProgrammableFilter(Input=proxies[-1], Script=BLANK_SCRIPT))
     filtered = ImageShockAdvection(Input=proxies[-1], InputArray=[association, name], FlowTime=flow_time,
-                                   GhostLevels=ghost_levels)
+                                   GhostLevels=ghost_levels, **properties)
     path = os.path.join(OUTPUT, "image_%s.pvti" % label)
     SaveData(path, proxy=filtered)
     if blanked:
@@ -208,24 +228,36 @@ def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=N
             check(min(o for o, s in zip(overlap, spans) if s) <= 0,
                   "%s: pieces %s and %s overlap by more than a layer" % (label, pieces[a], pieces[b]))
     data = image.GetCellData() if cells else image.GetPointData()
-    reference = serial.GetCellData() if cells else serial.GetPointData()
-    parallel = vtk_to_numpy(data.GetArray(name)).astype(float)
-    expected = vtk_to_numpy(reference.GetArray(name)).astype(float)
-    if not check(parallel.shape == expected.shape, "%s: %s vs %s samples" % (label, parallel.shape, expected.shape)):
+    parallel = compare_image_array(label, image, serial, name, cells, extent, pieces, flow_time, ghost_levels,
+                                   band, bound)
+    if parallel is None:
         return
-    # Distance (in samples) of every sample to the nearest boundary between pieces.
-    dims = [extent[2 * i + 1] - extent[2 * i] + (0 if cells and extent[2 * i + 1] > extent[2 * i] else 1)
-            for i in range(3)]
-    index = np.indices(dims[::-1])
-    distance = np.full(parallel.shape, np.inf)
-    for piece in pieces:
-        for axis in range(3):
-            for side, limit in ((0, extent[2 * axis]), (1, extent[2 * axis + 1])):
-                boundary = piece[2 * axis + side]
-                if boundary == limit:
-                    continue  # a side of the whole image, not a piece boundary
-                position = index[2 - axis].ravel() + extent[2 * axis] + (0.5 if cells else 0.0)
-                distance = np.minimum(distance, np.abs(position - boundary))
+    if properties.get("GenerateFlowArrays"):
+        # The potential lives on the filtered samples, the flow on the faces between them.
+        compare_image_array(label + "/potential", image, serial, "ShockPotential", cells, extent, pieces, flow_time,
+                            ghost_levels, band, bound)
+        compare_image_array(label + "/flow", image, serial, "ShockFlow", not cells, extent, pieces, flow_time,
+                            ghost_levels, band, bound)
+    if blanked:
+        from vtkmodules.vtkCommonDataModel import vtkDataSetAttributes
+        hidden = vtk_to_numpy(data.GetArray("vtkGhostType")) & vtkDataSetAttributes.HIDDENPOINT != 0
+        check(hidden.any() and np.all(parallel[hidden] == 1e4), "%s: the blanked samples keep their values" % label)
+        check(np.all(parallel[~hidden] < 1e3), "%s: nothing under the blanking reached a visible sample" % label)
+
+
+def compare_image_array(label, image, serial, name, cells, extent, pieces, flow_time, ghost_levels, band, bound):
+    """The parallel array `name` (of the cells or the points) against serial; its values, or None."""
+    data = image.GetCellData() if cells else image.GetPointData()
+    reference = serial.GetCellData() if cells else serial.GetPointData()
+    if not check(data.GetArray(name) is not None and reference.GetArray(name) is not None,
+                 "%s: the array %s is in both outputs" % (label, name)):
+        return None
+    parallel = vtk_to_numpy(data.GetArray(name)).astype(float).reshape(-1)
+    expected = vtk_to_numpy(reference.GetArray(name)).astype(float).reshape(-1)
+    if not check(parallel.shape == expected.shape, "%s: %s vs %s samples" % (label, parallel.shape, expected.shape)):
+        return None
+    components = data.GetArray(name).GetNumberOfComponents()
+    distance = np.repeat(boundary_distance(extent, pieces, cells), components)
     scale = max(np.ptp(expected), 1e-300)
     differ = np.abs(parallel - expected) > 1e-12 * scale
     fraction = differ.mean()
@@ -238,11 +270,7 @@ def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=N
     check(not outside.any(), "%s: %d samples differ farther than %d samples from a piece boundary"
           % (label, outside.sum(), band))
     check(fraction <= bound, "%s: %.4f%% of the samples differ (bound %.4f%%)" % (label, 100 * fraction, 100 * bound))
-    if blanked:
-        from vtkmodules.vtkCommonDataModel import vtkDataSetAttributes
-        hidden = vtk_to_numpy(data.GetArray("vtkGhostType")) & vtkDataSetAttributes.HIDDENPOINT != 0
-        check(hidden.any() and np.all(parallel[hidden] == 1e4), "%s: the blanked samples keep their values" % label)
-        check(np.all(parallel[~hidden] < 1e3), "%s: nothing under the blanking reached a visible sample" % label)
+    return parallel
 
 
 def unsplit_image_case():
@@ -581,6 +609,10 @@ cases = [
     lambda: image_case("wavelet2d_cells", [0, 255, 0, 255, 0, 0], 64, 16, 16, 0.005, cells=True),
     lambda: image_case("wavelet2d_blanked", [0, 255, 0, 255, 0, 0], 64, 16, 16, 0.005, blanked=True),
     lambda: image_case("wavelet3d", [0, 95, 0, 95, 0, 95], 256, 16, 16, 0.005),
+    lambda: image_case("wavelet3d_flow_arrays", [0, 47, 0, 39, 0, 35], 64, 16, 16, 0.005, GenerateFlowArrays=1),
+    lambda: image_case("wavelet3d_cells_flow_arrays", [0, 47, 0, 39, 0, 35], 64, 16, 16, 0.005, cells=True,
+                       GenerateFlowArrays=1),
+    lambda: image_case("wavelet3d_pde", [0, 47, 0, 39, 0, 35], 16, 16, 16, 0.005, Method="PDE"),
     unsplit_image_case,
     surface_cases,
 ]

@@ -21,6 +21,7 @@
 #define SHOCK_NOINLINE
 #endif
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -82,6 +83,12 @@ struct AdvectionParameters
   /// 1 is the paper's single level. Levels the grid is too small for are not built.
   /// Ignored by the mesh kernels.
   int hierarchyLevels = 1;
+  /// The samples whose results the grid advection hands to its output: per grid
+  /// axis x, y, z the first and the last sample index, the whole axis when the
+  /// first is past the last (the default: every sample). A piece of a distributed
+  /// image asks for its own samples: the halo around them feeds the flow and the
+  /// traces, and is not traced itself. The other kernels (mesh, PDE) hand every sample.
+  std::array<std::int64_t, 6> writtenSamples{ { 0, -1, 0, -1, 0, -1 } };
 };
 
 /// What a run did, for logs, timings and tests.

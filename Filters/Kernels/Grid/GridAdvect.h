@@ -18,8 +18,9 @@ namespace grid
 {
 
 /**
- * Appendix A AdvectVertices: every valid sample is traced from an offset into
- * each adjacent face, the source signal is sampled at the traced points and the
+ * Appendix A AdvectVertices: every valid sample of the pass's blocks (the
+ * whole grid, or the samples a run writes) is traced from an offset into each
+ * adjacent face, the source signal is sampled at the traced points and the
  * results are averaged. With `positions` (Composed flow; D floats per sample and
  * corner pattern), traces resume from and update the stored positions instead
  * of starting at the offsets.
@@ -51,7 +52,7 @@ struct VertexAdvection
   std::int64_t lastLower;
 
   VertexAdvection(const AdvectionContext<D>& context, const GridTracer<D>& tracer_, double time_,
-    const T* source_, const SampleWriter& out_, float* positions_)
+    const T* source_, const SampleWriter& out_, float* positions_, const RowBlocks<D>& blocks_)
     : ctx(context)
     , tracer(tracer_)
     , time(time_)
@@ -59,7 +60,7 @@ struct VertexAdvection
     , out(out_)
     , positions(positions_)
     , hood(context.L, context.C)
-    , blocks(context.L.n)
+    , blocks(blocks_)
     , shortRoad(!positions_ && !context.valid && context.sampling == Sampling::Linear &&
         tracer_.CrossesFaces())
     , withinFirst(this->shortRoad && TriesWithinFaceFirst<D>(context.L, tracer_, time_))
@@ -238,13 +239,13 @@ SHOCK_TARGET_AVX2 void RunVertexAdvectionAvx2(const VertexAdvection<D, T>& pass,
 }
 #endif
 
-/// AdvectVertices (see VertexAdvection); false when aborted through the progress callback.
+/// AdvectVertices (see VertexAdvection) on the samples of `blocks`; false when aborted through the progress callback.
 template <int D, typename T>
 bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, double time,
-  const T* source, const SampleWriter& out, float* positions, double progressStart,
-  double progressSpan)
+  const T* source, const SampleWriter& out, float* positions, const RowBlocks<D>& blocks,
+  double progressStart, double progressSpan)
 {
-  const VertexAdvection<D, T> pass(ctx, tracer, time, source, out, positions);
+  const VertexAdvection<D, T> pass(ctx, tracer, time, source, out, positions, blocks);
   // The blocks are independent: the threads take them one at a time as they come.
   ParallelItems items(pass.blocks.Count(), 1, ctx.progress, progressStart, progressSpan);
   std::uint64_t steps = 0;

@@ -55,6 +55,16 @@ Status CheckGridRun(const GridShape& shape, int components, const T* input,
   {
     return { "input and output must be distinct, non-null buffers" };
   }
+  for (int a = 0; a < 3; ++a)
+  {
+    const std::int64_t first = parameters.writtenSamples[2 * a];
+    const std::int64_t last = parameters.writtenSamples[2 * a + 1];
+    if (first <= last && (first < 0 || last >= shape.dimensions[a]))
+    {
+      return { "the written samples along axis " + std::to_string(a) + " (" + std::to_string(first) + " to " +
+        std::to_string(last) + ") must lie in the grid's " + std::to_string(shape.dimensions[a]) + " samples" };
+    }
+  }
   return CheckAdvectionParameters(parameters);
 }
 

@@ -132,13 +132,23 @@ class RowBlocks
 {
 public:
   explicit RowBlocks(const std::array<std::int64_t, D>& extent)
-    : Extent(extent)
-    , PerRow((extent[0] + BlockLength - 1) / BlockLength)
+    : RowBlocks(std::array<std::int64_t, D>{}, extent)
   {
+  }
+
+  /// The blocks of the box from `begin` (included) to `end` (excluded) per axis.
+  RowBlocks(const std::array<std::int64_t, D>& begin, const std::array<std::int64_t, D>& end)
+    : Begin(begin)
+  {
+    for (int d = 0; d < D; ++d)
+    {
+      this->Extent[d] = std::max<std::int64_t>(0, end[d] - begin[d]);
+    }
+    this->PerRow = (this->Extent[0] + BlockLength - 1) / BlockLength;
     this->Total = this->PerRow;
     for (int d = 1; d < D; ++d)
     {
-      this->Total *= extent[d];
+      this->Total *= this->Extent[d];
     }
   }
 
@@ -148,20 +158,42 @@ public:
   std::int64_t Get(std::int64_t k, std::array<std::int64_t, D>& first) const
   {
     std::int64_t row = k / this->PerRow;
-    first[0] = (k - row * this->PerRow) * BlockLength;
+    first[0] = this->Begin[0] + (k - row * this->PerRow) * BlockLength;
     for (int d = 1; d < D; ++d)
     {
-      first[d] = row % this->Extent[d];
+      first[d] = this->Begin[d] + row % this->Extent[d];
       row /= this->Extent[d];
     }
-    return std::min(BlockLength, this->Extent[0] - first[0]);
+    return std::min(BlockLength, this->Begin[0] + this->Extent[0] - first[0]);
   }
 
 private:
+  std::array<std::int64_t, D> Begin;
   std::array<std::int64_t, D> Extent;
   std::int64_t PerRow;
   std::int64_t Total = 0;
 };
+
+/**
+ * The blocks of the samples whose results a run hands to its output
+ * (AdvectionParameters::writtenSamples, given per grid axis): every sample by default.
+ */
+template <int D>
+RowBlocks<D> WrittenBlocks(const Lattice<D>& L, const std::array<std::int64_t, 6>& written)
+{
+  std::array<std::int64_t, D> begin{};
+  std::array<std::int64_t, D> end = L.n;
+  for (int d = 0; d < D; ++d)
+  {
+    const int a = L.axis[d];
+    if (written[2 * a] <= written[2 * a + 1])
+    {
+      begin[d] = written[2 * a];
+      end[d] = written[2 * a + 1] + 1;
+    }
+  }
+  return RowBlocks<D>(begin, end);
+}
 
 /**
  * The faces adjacent to the samples of one row. A sample's face through corner
@@ -349,6 +381,26 @@ void WriteSignal(std::int64_t numSamples, int C, const T* values, const SampleWr
     {
       const std::int64_t first = r * run;
       const std::int64_t count = std::min(run, numSamples - first);
+      std::copy(values + first * C, values + (first + count) * C, row.data());
+      output(first, count, row.data());
+    }
+  }
+}
+
+/// The samples of `blocks` handed unchanged to `output` (the values of a run without flow).
+template <int D, typename T>
+void WriteSignal(const Lattice<D>& L, const RowBlocks<D>& blocks, int C, const T* values,
+  const SampleWriter& output, int threads)
+{
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<double> row(static_cast<size_t>(BlockLength * C));
+#pragma omp for schedule(static)
+    for (std::int64_t k = 0; k < blocks.Count(); ++k)
+    {
+      std::array<std::int64_t, D> i;
+      const std::int64_t count = blocks.Get(k, i);
+      const std::int64_t first = L.SampleIndex(i);
       std::copy(values + first * C, values + (first + count) * C, row.data());
       output(first, count, row.data());
     }

@@ -43,12 +43,12 @@ void ComputeFlow(const Lattice<D>& L, FlowComputation<D>& flow, const T* signal,
 template <int D, typename T>
 bool AdvectUpdate(const AdvectionContext<D>& ctx, const FlowComputation<D>& flow,
   const AdvectionParameters& p, double stepTime, const T* source, const SampleWriter& target,
-  float* positions, double progressStart, double progressSpan)
+  float* positions, const RowBlocks<D>& blocks, double progressStart, double progressSpan)
 {
   const auto advectStart = Clock::now();
   const GridTracer<D> tracer(ctx.L, flow.Velocity(), p);
   const bool completed = AdvectVertices<D>(
-    ctx, tracer, stepTime, source, target, positions, progressStart, progressSpan);
+    ctx, tracer, stepTime, source, target, positions, blocks, progressStart, progressSpan);
   ctx.report.advectionSeconds += SecondsSince(advectStart);
   return completed;
 }
@@ -64,8 +64,8 @@ SampleWriter BufferWriter(double* buffer, int C)
 /**
  * The flow updates of one run (Appendix A: the flow, then AdvectVertices, per
  * update). A Fixed flow has one update; the Composed and Naive flows keep the
- * results of the updates before the last in double buffers, and the last
- * update hands its results to the run's output.
+ * results of the updates before the last in double buffers (every sample), and
+ * the last update hands the results of the written samples to the run's output.
  */
 template <int D, typename T>
 class FlowUpdates
@@ -85,6 +85,8 @@ public:
     , Updates(p.flowMode == FlowMode::Fixed ? 1 : std::max(1, p.flowUpdates))
     , StepTime(p.time / Updates)
     , Levels(PyramidShapes(shape, p.hierarchyLevels))
+    , Everything(ctx.L.n)
+    , Written(WrittenBlocks<D>(ctx.L, p.writtenSamples))
   {
     const std::int64_t count = ctx.L.numSamples * C;
     if (p.time > 0.0 && this->Updates > 1)
@@ -128,7 +130,8 @@ public:
       // Fixed and Composed flows sample the input (Composed from the composed
       // positions, its result feeding the next flow); Naive resamples the last result.
       double* buffer = last ? nullptr : this->Work[this->Naive ? k % 2 : 0].get();
-      if (!this->Advect(buffer ? BufferWriter(buffer, this->C) : output, progressStart))
+      if (!this->Advect(buffer ? BufferWriter(buffer, this->C) : output, last ? this->Written : this->Everything,
+            progressStart))
       {
         return false;
       }
@@ -169,22 +172,22 @@ private:
   }
 
   /// The advection of this update's source (the input, the carried signal, or the Naive flow's last result).
-  bool Advect(const SampleWriter& target, double progressStart)
+  bool Advect(const SampleWriter& target, const RowBlocks<D>& blocks, double progressStart)
   {
     const double span = 0.9 / this->Updates;
     float* positions = this->Positions.get();
     if (this->Carried)
     {
       return AdvectUpdate<D>(this->Ctx, this->Flow, this->P, this->StepTime, this->Carried->values, target,
-        positions, progressStart, span);
+        positions, blocks, progressStart, span);
     }
     if (this->Naive && this->Previous)
     {
-      return AdvectUpdate<D>(
-        this->Ctx, this->Flow, this->P, this->StepTime, this->Previous, target, positions, progressStart, span);
+      return AdvectUpdate<D>(this->Ctx, this->Flow, this->P, this->StepTime, this->Previous, target, positions,
+        blocks, progressStart, span);
     }
     return AdvectUpdate<D>(
-      this->Ctx, this->Flow, this->P, this->StepTime, this->Input, target, positions, progressStart, span);
+      this->Ctx, this->Flow, this->P, this->StepTime, this->Input, target, positions, blocks, progressStart, span);
   }
 
   const AdvectionContext<D>& Ctx; ///< its C: the advected signal's components (the carried signal's, if any)
@@ -199,6 +202,8 @@ private:
   const int Updates;
   const double StepTime;
   const std::vector<GridShape> Levels;
+  const RowBlocks<D> Everything;
+  const RowBlocks<D> Written; ///< the samples the run hands to its output
   std::array<LargeArray<double>, 2> Work;
   LargeArray<float> Positions;
   const double* Previous = nullptr; ///< the last update's result; null: the input
@@ -226,14 +231,15 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
     ZeroFlowFields(L.numSamples, L.numFaces, *fields);
   }
   // What the traces sample and hand to `output`: the input, or the carried signal.
+  const RowBlocks<D> written = WrittenBlocks<D>(L, p.writtenSamples);
   const auto writeUnchanged = [&] {
     if (carried)
     {
-      WriteSignal(L.numSamples, carried->components, carried->values, output, threads);
+      WriteSignal<D>(L, written, carried->components, carried->values, output, threads);
     }
     else
     {
-      WriteSignal(L.numSamples, C, input, output, threads);
+      WriteSignal<D>(L, written, C, input, output, threads);
     }
   };
   if (!(range > 0.0) || !std::isfinite(range))
