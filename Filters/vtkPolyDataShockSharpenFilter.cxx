@@ -137,11 +137,12 @@ void ReportRun(vtkPolyDataShockSharpenFilter* self, const shock::SharpeningRepor
   output->SetFieldData(field);
   vtkLogF(1,
     "vtkPolyDataShockSharpenFilter: %d solver iterations, relative residual %.3g%s, %lld flipped "
-    "triangles, max displacement %.3g of the bounding-box diagonal",
+    "triangles, max displacement %.3g of the bounding-box diagonal, %lld feature edges",
     report.fit.iterations, report.fit.residual,
     // The paper's fixed 25 iterations do not aim at a tolerance: only flag the modes that do.
     (self->GetSolver() == vtkPolyDataShockSharpenFilter::CONJUGATE_GRADIENT || report.fit.converged) ? "" : " (above the tolerance)",
-    static_cast<long long>(report.flippedTriangles), report.maxDisplacement);
+    static_cast<long long>(report.flippedTriangles), report.maxDisplacement,
+    static_cast<long long>(report.featureEdges));
   if (report.fit.invalidTargets > 0)
   {
     vtkWarningWithObjectMacro(self, << report.fit.invalidTargets
