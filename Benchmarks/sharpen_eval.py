@@ -30,8 +30,8 @@ parameters for every model (in units of the mesh: iterations, edge lengths):
 
 The blurred points are kept in OUT/blurred/ for later runs. Each blurred mesh
 is sharpened by vtkPolyDataShockSharpenFilter with its defaults (or --set) at
-FlowTime 64 (the default) and 256, 512, 1024, 2048, 4096, on one thread (the
-result does not depend on it). Measured against the original (same
+the default FlowTime (read from the filter: 256, 64 before issue 33) and 256, 512, 1024,
+2048, 4096, on one thread (the result does not depend on it). Measured against the original (same
 connectivity, so per face and per point): the normal error (mean angle between
 the face normals, weighted by the original's areas, degrees); the RMS point
 distance (same vertex correspondence, % of the diagonal; the table also gives
