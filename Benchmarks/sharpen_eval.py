@@ -9,6 +9,8 @@ parts").
         [--set Name=Value ...] [--correct NAME] [--no-smooth]
     nice -n 19 /usr/bin/python3 Benchmarks/sharpen_eval.py study [same options]
         [--variants "defaults,FeatureAngle 60"] [--correct all|NAME,...]
+    nice -n 19 /usr/bin/python3 Benchmarks/sharpen_eval.py times [same options] [--times 64,128,...]
+    nice -n 19 /usr/bin/python3 Benchmarks/sharpen_eval.py widths [--set ...] [--times 16,32,...]
 
 Models: ten closed CAD parts of CGAL's data (get_cad_meshes.sh), cleaned,
 triangulated, linearly subdivided (vtkLinearSubdivisionFilter: creases and
@@ -28,8 +30,8 @@ parameters for every model (in units of the mesh: iterations, edge lengths):
 
 The blurred points are kept in OUT/blurred/ for later runs. Each blurred mesh
 is sharpened by vtkPolyDataShockSharpenFilter with its defaults (or --set) at
-FlowTime 64 (the default) and 256, 512, 1024, 2048, 4096, on one thread (the
-result does not depend on it). Measured against the original (same
+the default FlowTime (read from the filter: 256, 64 before issue 33) and 256, 512, 1024,
+2048, 4096, on one thread (the result does not depend on it). Measured against the original (same
 connectivity, so per face and per point): the normal error (mean angle between
 the face normals, weighted by the original's areas, degrees); the RMS point
 distance (same vertex correspondence, % of the diagonal; the table also gives
@@ -56,6 +58,25 @@ only), one line per variant and correction (about 40 s per variant without
 corrections); OUT/sharpen_study.csv has the per-pair rows. --set Name=Value
 calls the filter's SetName (repeatable), e.g. --set ScreeningWeight=10;
 --correct applies a correction in `table` too.
+
+`times` (the measurements behind the default FlowTime, docs/sharpening.md
+"Choosing the flow time"; about 6 minutes): every model and blur, plus a
+uniform box (48 x 32 x 24 squares of side 1/32, two triangles each) blurred by
+a Gaussian of its positions (sigma 1.5 and 3 edges, no noise) and rounded
+with radius 2, 4 and 8 cells (its points moved onto the inner box grown by a
+ball: evenly spaced across the rounding, as a scanner samples it), sharpened
+at each t of DEFAULT_TIMES (or --times): per pair the normal error and RMS
+ratios; per group and t the medians, the pairs visibly sharpened (normal
+ratio <= VISIBLE), the pairs worse than the input (a ratio > WORSE), the worst
+ratios; the smooth shapes' largest displacement at every t.
+OUT/sharpen_times.md and .csv.
+
+`widths` (which t sharpens which blur width: the guidance table; about 1
+minute): the box Gaussian-blurred (BOX_SIGMAS) and rounded (BOX_RADII); for
+each, the width of its creases' band (faces turned by >= BAND_DEGREES from
+every side, counted in rows of squares), the normal error and RMS ratios at
+each of WIDTH_TIMES, and the smallest t within SHARP_MARGIN of the lowest
+normal ratio. OUT/sharpen_widths.md and .csv.
 """
 import argparse
 import csv
@@ -75,12 +96,32 @@ ROOT = os.path.dirname(HERE)
 MODELS = [("fandisk", 1), ("anchor_dense", 1), ("rotor_small", 2), ("couplingdown", 2),
           ("pinion", 3), ("spool", 3), ("oblong", 3), ("joint", 4), ("part", 4), ("dragknob", 4)]
 BLURS = ["sinc1", "sinc2", "laplace1", "laplace2", "gauss1", "gauss2"]
-DEFAULT_T = 64.0
+# DEFAULT_T, the filter's default FlowTime, is read from the filter (after the imports below)
 TIMES = [256.0, 512.0, 1024.0, 2048.0, 4096.0]
 SMOOTH_TIMES = [64.0, 2048.0]
 GOAL_NORMAL = 0.70
 GOAL_RMS = 1.0
 GOAL_SMOOTH = 1.0  # % of the diagonal
+# times: the flow times compared for the default; widths: the times tried per blur width
+DEFAULT_TIMES = [64.0, 128.0, 256.0, 512.0, 1024.0, 2048.0]
+WIDTH_TIMES = [16.0, 32.0, 64.0, 128.0, 256.0, 512.0, 1024.0, 2048.0, 4096.0, 8192.0]
+# times: a normal error ratio at or below VISIBLE is a visible sharpening (the
+# width of the blended band of normals falls by a fifth); a ratio above WORSE
+# (normal error or RMS distance) is worse than the blurred input.
+VISIBLE = 0.8
+WORSE = 1.02
+# widths: the box (cells of side 1/BOX_CELLS: 48 x 32 x 24), the blurs (Gaussian of
+# the positions, sigma in edge lengths, no noise) and what counts as the band
+# of a blurred crease (faces turned by at least BAND_DEGREES from both sides: 10 %
+# of the box's 90 degrees, the 10-90 % rise of README's "Choosing t").
+BOX_CELLS = 32
+BOX_SIZE = (48, 32, 24)
+BOX_SIGMAS = [1.0, 2.0, 3.0, 4.0]
+BOX_RADII = [1.0, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0]
+BAND_DEGREES = 9.0
+# widths: the t that sharpens a blur is the smallest whose normal error ratio is within
+# SHARP_MARGIN of the lowest over WIDTH_TIMES (the rest of the reduction is no longer visible)
+SHARP_MARGIN = 0.05
 NOISE = 0.02       # of the mean length of the edges at each point
 
 # The study: one filter setting at a time, then combinations (a dict of Set* calls).
@@ -111,7 +152,7 @@ STUDY = [
 
 def arguments():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("mode", choices=["table", "study"])
+    parser.add_argument("mode", choices=["table", "study", "times", "widths"])
     parser.add_argument("--build", default=os.path.join(ROOT, "build"),
                         help="build tree (its lib/python3.*/site-packages has shockfilters)")
     parser.add_argument("--cad", default=os.environ.get("SHOCK_CAD_DIR", os.path.join(
@@ -122,6 +163,9 @@ def arguments():
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
     parser.add_argument("--correct", default="none")
     parser.add_argument("--no-smooth", action="store_true", help="skip the smooth shapes")
+    parser.add_argument("--times", default=None,
+                        help="times, widths: comma-separated flow times (default: %s; widths: %s)"
+                        % (",".join("%g" % t for t in DEFAULT_TIMES), ",".join("%g" % t for t in WIDTH_TIMES)))
     parser.add_argument("--variants", default=None,
                         help="study: comma-separated variant names (default: all)")
     return parser.parse_args()
@@ -142,6 +186,8 @@ from vtkmodules.vtkFiltersModeling import vtkLinearSubdivisionFilter  # noqa: E4
 from vtkmodules.vtkFiltersSources import (vtkParametricFunctionSource,  # noqa: E402
                                           vtkPlatonicSolidSource, vtkSphereSource)
 import scipy.sparse as sparse  # noqa: E402
+
+DEFAULT_T = vtkPolyDataShockSharpenFilter().GetFlowTime()
 
 
 # ---------------------------------------------------------------- meshes
@@ -265,7 +311,7 @@ def laplacian(mesh, iterations):
     return vtk_blur(mesh, f)
 
 
-def gaussian(mesh, sigma_edges, seed):
+def gaussian(mesh, sigma_edges, seed, noise=NOISE):
     """Gaussian of the positions over the points within ceil(3 sigma) edges, plus noise."""
     p = mesh.points
     sigma = sigma_edges * mesh.edge_length
@@ -287,7 +333,7 @@ def gaussian(mesh, sigma_edges, seed):
     local = np.bincount(e.ravel(), np.r_[length, length], len(p)) / np.maximum(
         np.bincount(e.ravel(), minlength=len(p)), 1)
     rng = np.random.default_rng(seed)
-    return out + rng.normal(0.0, 1.0, p.shape) * (NOISE * local)[:, None]
+    return out + rng.normal(0.0, 1.0, p.shape) * (noise * local)[:, None]
 
 
 BLUR_PARAMETERS = {"sinc1": ("pass band", 0.05), "sinc2": ("pass band", 0.005),
@@ -523,8 +569,8 @@ def table(cases, settings, correction, shapes):
     os.makedirs(ARGS.out, exist_ok=True)
     lines = ["| model | points | blur | input: normal error (deg), RMS (% diag) | best t "
              "| normal error ratio | RMS ratio | surface RMS input → output (% diag) "
-             "| volume input → output (%) | flipped input → output (filter) | t = 64: normal, RMS ratio "
-             "| goal |",
+             "| volume input → output (%) | flipped input → output (filter) | t = DEFAULT (default): normal, RMS ratio "
+             "| goal |".replace("DEFAULT", "%g" % DEFAULT_T),
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     allrows = []
     passed = 0
@@ -629,13 +675,196 @@ def study(cases, shapes):
         w.writerows(out)
 
 
+# ---------------------------------------------------------------- default flow time, blur widths
+def box_mesh():
+    """The faces of a box of BOX_SIZE cells of side 1/BOX_CELLS, two triangles per square,
+    centred (a uniform mesh whose sharp original is known)."""
+    size = BOX_SIZE
+    ids, points, faces = {}, [], []
+
+    def point(g):
+        if g not in ids:
+            ids[g] = len(points)
+            points.append([(g[a] - size[a] / 2.0) / BOX_CELLS for a in range(3)])
+        return ids[g]
+
+    for axis in range(3):
+        u, v = (axis + 1) % 3, (axis + 2) % 3
+        for side in (0, 1):
+            for i in range(size[u]):
+                for j in range(size[v]):
+                    quad = []
+                    for du, dv in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                        g = [0, 0, 0]
+                        g[axis] = side * size[axis]
+                        g[u], g[v] = i + du, j + dv
+                        quad.append(point(tuple(g)))
+                    if not side:
+                        quad.reverse()  # outward normals
+                    faces += [[quad[0], quad[1], quad[2]], [quad[0], quad[2], quad[3]]]
+    pd = vtkPolyData()
+    p = vtkPoints()
+    p.SetData(numpy_to_vtk(np.asarray(points, dtype=float), deep=1))
+    pd.SetPoints(p)
+    from vtkmodules.vtkCommonDataModel import vtkCellArray
+    cells = vtkCellArray()
+    for f in faces:
+        cells.InsertNextCell(3, f)
+    pd.SetPolys(cells)
+    return Mesh(pd)
+
+
+def band_width(mesh, points):
+    """Width of a blurred box's creases in cells of the grid (the rows of squares a user
+    counts across a rounded band): the faces turned by at least BAND_DEGREES from every
+    side of the box (the 10-90 % rise of the normal across a 90-degree crease), counted by
+    their area in the original (2 triangles a cell), over the length of the 12 creases."""
+    n, _ = face_normals(points, mesh.faces)
+    turned = np.degrees(np.arccos(np.clip(np.abs(n).max(1), 0.0, 1.0)))
+    _, area = face_normals(mesh.points, mesh.faces)
+    length = 4.0 * sum(BOX_SIZE) / BOX_CELLS
+    return float(area[turned >= BAND_DEGREES].sum()) / length * BOX_CELLS
+
+
+def rounded(mesh, radius_cells):
+    """The box's points moved onto the box rounded with radius `radius_cells` cells (the
+    inner box grown by a ball, as Examples/sharpen_mesh_geometry.py makes it): each point
+    goes to the nearest point of the inner box plus `radius` along the way out. The points
+    stay nearly evenly spaced across the rounding, as a scanner samples a rounded crease."""
+    half = 0.5 * np.asarray(BOX_SIZE, dtype=float) / BOX_CELLS
+    r = radius_cells / BOX_CELLS
+    x = mesh.points
+    nearest = np.clip(x, -(half - r), half - r)
+    away = x - nearest
+    length = np.linalg.norm(away, axis=1)[:, None]
+    return nearest + r * away / np.where(length > 0, length, 1.0)
+
+
+def box_cases(sigmas, radii=()):
+    """The box blurred by a Gaussian of its positions (sigma in edge lengths, no noise) and
+    rounded with each radius (in cells)."""
+    mesh = box_mesh()
+    ref = Reference(mesh)
+    cases = []
+    blurs = [("gauss %g" % s, gaussian(mesh, s, seed=k, noise=0.0)) for k, s in enumerate(sigmas)]
+    blurs += [("round %g" % r, rounded(mesh, r)) for r in radii]
+    for name, points in blurs:
+        cases.append({"model": "box", "blur": name, "mesh": mesh, "ref": ref,
+                      "blurred": points, "input": ref.measure(points),
+                      "width": band_width(mesh, points)})
+    return cases
+
+
+def parse_times(default):
+    return [float(t) for t in ARGS.times.split(",")] if ARGS.times else list(default)
+
+
+def times(cases, settings, shapes):
+    """Normal error and RMS ratios at each flow time, per pair and summed up, and how far the
+    smooth shapes move at each (the measurements behind the default FlowTime)."""
+    os.makedirs(ARGS.out, exist_ok=True)
+    ts = parse_times(DEFAULT_TIMES)
+    lines = ["| model | blur | input: normal (deg), RMS (% diag) | " + " | ".join(
+        "t = %g: normal / RMS ratio" % t for t in ts) + " |", "|---|---|---|" + "---|" * len(ts)]
+    rows = []
+    for case in cases:
+        measured = measure_case(case, sharpen(case["mesh"], case["blurred"], settings, ts), "none")
+        lines.append("| %s | %s | %.2f, %.3f | %s |" % (
+            case["model"], case["blur"], case["input"]["normal_deg"], case["input"]["rms_pct"],
+            " | ".join("%.2f / %.2f" % (r["normal_ratio"], r["rms_ratio"]) for r in measured)))
+        print(lines[-1], flush=True)
+        for r in measured:
+            rows.append(dict(model=case["model"], blur=case["blur"], t=r["t"],
+                             input_normal_deg=case["input"]["normal_deg"], input_rms_pct=case["input"]["rms_pct"],
+                             normal_ratio=r["normal_ratio"], rms_ratio=r["rms_ratio"],
+                             flipped_in=case["input"]["flipped"], flipped_out=r["flipped"]))
+    groups = [("CAD parts (all ten)", lambda r: r["model"] != "box"),
+              ("uniform meshes (fandisk, anchor_dense)", lambda r: r["model"] in ("fandisk", "anchor_dense")),
+              ("CAD tessellations (the other eight parts)",
+               lambda r: r["model"] not in ("fandisk", "anchor_dense", "box")),
+              ("boxes (Gaussian sigma 1.5, 3 edges; rounded r = 2, 4, 8 cells)", lambda r: r["model"] == "box")]
+    lines += ["", "| pairs | t | median normal / RMS ratio | normal ratio ≤ %.2f (visible) | worse than the "
+              "input (a ratio > %.2f): normal, RMS | worst normal / RMS ratio | more flipped triangles than the input |"
+              % (VISIBLE, WORSE), "|---|---|---|---|---|---|---|"]
+    for gname, member in groups:
+        for t in ts:
+            sel = [r for r in rows if r["t"] == t and member(r)]
+            if not sel:
+                continue
+            lines.append("| %s (%d) | %g | %.2f / %.2f | %d | %d, %d | %.2f / %.2f | %d |" % (
+                gname, len(sel), t, statistics.median(r["normal_ratio"] for r in sel),
+                statistics.median(r["rms_ratio"] for r in sel),
+                sum(r["normal_ratio"] <= VISIBLE for r in sel),
+                sum(r["normal_ratio"] > WORSE for r in sel), sum(r["rms_ratio"] > WORSE for r in sel),
+                max(r["normal_ratio"] for r in sel), max(r["rms_ratio"] for r in sel),
+                sum(r["flipped_out"] > r["flipped_in"] for r in sel)))
+            print(lines[-1], flush=True)
+    if shapes:
+        lines += ["", "| smooth shape | points | " + " | ".join("t = %g" % t for t in ts) +
+                  " | goal (≤ 1 % at every t) |", "|---|---|" + "---|" * (len(ts) + 1)]
+        for name, mesh in shapes:
+            moved = [100 * float(np.linalg.norm(p - mesh.points, axis=1).max()) / mesh.diagonal
+                     for _, p, _ in sharpen(mesh, mesh.points, settings, ts)]
+            lines.append("| %s | %d | %s | %s |" % (name, len(mesh.points), " | ".join("%.3f" % m for m in moved),
+                                                    "pass" if max(moved) <= GOAL_SMOOTH else "fail"))
+            print(lines[-1], flush=True)
+            for t, m in zip(ts, moved):
+                rows.append(dict(model=name, blur="none", t=t, input_normal_deg="", input_rms_pct="",
+                                 normal_ratio="", rms_ratio=m, flipped_in="", flipped_out=""))
+    with open(os.path.join(ARGS.out, "sharpen_times.csv"), "w", newline="") as out:
+        w = csv.DictWriter(out, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: ("%.6g" % v if isinstance(v, float) else v) for k, v in r.items()})
+    with open(os.path.join(ARGS.out, "sharpen_times.md"), "w") as out:
+        out.write("\n".join(lines) + "\n")
+
+
+def widths(settings):
+    """Which flow time sharpens which blur width: Gaussian-blurred boxes (BOX_SIGMAS), the band
+    of each measured in edge lengths, the normal error and RMS ratios at each of WIDTH_TIMES."""
+    os.makedirs(ARGS.out, exist_ok=True)
+    ts = parse_times(WIDTH_TIMES)
+    lines = ["| blur | crease band (cells) | input: normal (deg), RMS (% diag) | " +
+             " | ".join("t = %g" % t for t in ts) + " | t that sharpens |", "|---|---|---|" + "---|" * (len(ts) + 1)]
+    rows = []
+    for case in box_cases(BOX_SIGMAS, BOX_RADII):
+        measured = measure_case(case, sharpen(case["mesh"], case["blurred"], settings, ts), "none")
+        lowest = min(r["normal_ratio"] for r in measured)
+        enough = next(r for r in measured if r["normal_ratio"] <= lowest + SHARP_MARGIN)
+        lines.append("| %s | %.1f | %.2f, %.3f | %s | %g (%.2f / %.2f) |" % (
+            case["blur"], case["width"], case["input"]["normal_deg"], case["input"]["rms_pct"],
+            " | ".join("%.2f / %.2f" % (r["normal_ratio"], r["rms_ratio"]) for r in measured),
+            enough["t"], enough["normal_ratio"], enough["rms_ratio"]))
+        print(lines[-1], flush=True)
+        for r in measured:
+            rows.append(dict(blur=case["blur"], band_cells=case["width"], t=r["t"],
+                             input_normal_deg=case["input"]["normal_deg"], input_rms_pct=case["input"]["rms_pct"],
+                             normal_ratio=r["normal_ratio"], rms_ratio=r["rms_ratio"], sharpens=int(r is enough)))
+    with open(os.path.join(ARGS.out, "sharpen_widths.csv"), "w", newline="") as out:
+        w = csv.DictWriter(out, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: ("%.6g" % v if isinstance(v, float) else v) for k, v in r.items()})
+    with open(os.path.join(ARGS.out, "sharpen_widths.md"), "w") as out:
+        out.write("\n".join(lines) + "\n")
+
+
 def main():
     t0 = time.time()
-    cases = prepare(ARGS.models.split(","), ARGS.blurs.split(","))
+    if ARGS.mode == "widths":
+        widths(parse_settings(ARGS.set))
+        sys.stderr.write("%.0f s\n" % (time.time() - t0))
+        return
+    cases = prepare(ARGS.models.split(","), ARGS.blurs.split(",")) if ARGS.models else []
+    if ARGS.mode == "times":
+        cases += box_cases([1.5, 3.0], [2.0, 4.0, 8.0])
     shapes = [] if ARGS.no_smooth else smooth_shapes()
     sys.stderr.write("prepared %d blurred meshes in %.0f s\n" % (len(cases), time.time() - t0))
     if ARGS.mode == "table":
         table(cases, parse_settings(ARGS.set), ARGS.correct, shapes)
+    elif ARGS.mode == "times":
+        times(cases, parse_settings(ARGS.set), shapes)
     else:
         study(cases, shapes)
     sys.stderr.write("%.0f s\n" % (time.time() - t0))

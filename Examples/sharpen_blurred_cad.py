@@ -68,8 +68,7 @@ blur.Update()
 self.GetPolyDataOutput().ShallowCopy(blur.GetOutput())
 '''
 blurred = simple.ProgrammableSource(OutputDataSetType="vtkPolyData", Script=PART)
-sharp = simple.SurfaceShockSharpen(Input=blurred)
-sharp.FlowTime = 256.0
+sharp = simple.SurfaceShockSharpen(Input=blurred)   # the defaults (FlowTime 256)
 
 
 shock_example.before_after(blurred, sharp, shock_example.show_normal_colours,

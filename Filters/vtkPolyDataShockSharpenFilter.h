@@ -24,6 +24,13 @@
  * what stands out CurvatureContrast times above its surroundings, so that a
  * coarsely tessellated smooth shape is not sharpened (0 reproduces the paper).
  *
+ * FlowTime (of the base class) defaults to 256 here, not 64: a crease rounded
+ * over 4 rows of triangles is sharp again from t = 128, over 6 rows from 512,
+ * over 8 rows from 1024 (the time grows about like the fourth power of the
+ * width); a crease that still turns by more than FeatureAngle from one triangle
+ * to the next is kept as it is at any t (raise FeatureAngle). Smooth shapes do
+ * not move more at longer times (docs/sharpening.md, "Choosing the flow time").
+ *
  * Parameters specific to this filter: FeatureAngle, CurvatureContrast, FitTarget,
  * NormalSmoothingPasses (pre-mollification of noisy normals), ScreeningWeight
  * (eps), Solver, SolverIterations, SolverTolerance, MergeCoincidentPoints,

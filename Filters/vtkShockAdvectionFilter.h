@@ -77,7 +77,7 @@ public:
    * the processed array, lengths by the mean edge length). Must be finite and
    * >= 0; a negative or non-finite value makes RequestData fail with an error.
    * t = 0 returns the input exactly. Typical values 1 to 4096; the result
-   * converges to a steady state as t grows. Default 64.
+   * converges to a steady state as t grows. Default 64 (vtkPolyDataShockSharpenFilter: 256).
    */
   vtkSetMacro(FlowTime, double);
   vtkGetMacro(FlowTime, double);
