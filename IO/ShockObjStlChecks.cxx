@@ -33,6 +33,48 @@ bool ObjIdInRange(std::string_view word, std::int64_t soFar, std::int64_t total)
   return code == std::errc() && stop == end && (id > 0 ? id <= total : id < 0 && soFar + id >= 0);
 }
 
+/// Counts of the elements of an OBJ file that its ids refer to.
+struct ObjElements
+{
+  std::int64_t vertices = 0;
+  std::int64_t tcoords = 0;
+  std::int64_t normals = 0;
+};
+
+/**
+ * What is wrong with one id ("v", "v/t", "v//n" or "v/t/n") of a face, line or
+ * point (`command` f, l or p), given the elements read so far and in all:
+ * "vertex id ..." (or texture coordinate, normal) when it refers to none, ""
+ * when it is right. Lines and points use the vertex id only.
+ */
+std::string ObjIdProblem(
+  std::string_view command, std::string_view id, const ObjElements& soFar, const ObjElements& all)
+{
+  const size_t slash = id.find('/');
+  const std::string_view vertex = id.substr(0, slash);
+  if (!ObjIdInRange(vertex, soFar.vertices, all.vertices))
+  {
+    return "vertex id " + Quoted(vertex);
+  }
+  if (command != "f" || slash == std::string_view::npos)
+  {
+    return "";
+  }
+  const std::string_view rest = id.substr(slash + 1);
+  const size_t second = rest.find('/');
+  const std::string_view tcoord = rest.substr(0, second);
+  // VTK's sscanf would read "v/" on into the next id: only "v//n" leaves one out.
+  if (second != 0 && !ObjIdInRange(tcoord, soFar.tcoords, all.tcoords))
+  {
+    return "texture coordinate id " + Quoted(tcoord);
+  }
+  if (second != std::string_view::npos && !ObjIdInRange(rest.substr(second + 1), soFar.normals, all.normals))
+  {
+    return "normal id " + Quoted(rest.substr(second + 1));
+  }
+  return "";
+}
+
 } // namespace
 
 /**
@@ -93,16 +135,16 @@ bool CheckObj(const std::string& path, std::string& error)
         return !words.empty() && words[0] == command;
       }));
   };
-  const std::int64_t vertices = count("v"), tcoords = count("vt"), normals = count("vn");
-  std::int64_t verticesSoFar = 0, tcoordsSoFar = 0, normalsSoFar = 0;
+  const ObjElements all{ count("v"), count("vt"), count("vn") };
+  ObjElements soFar;
   for (size_t l = 0; l < lines.size(); ++l)
   {
     const std::string at = "line " + std::to_string(l + 1) + ": ";
     const std::vector<std::string_view>& words = lines[l];
     const std::string_view command = words.empty() ? std::string_view() : words[0];
-    verticesSoFar += command == "v";
-    tcoordsSoFar += command == "vt";
-    normalsSoFar += command == "vn";
+    soFar.vertices += command == "v";
+    soFar.tcoords += command == "vt";
+    soFar.normals += command == "vn";
     if (command == "v" || command == "vn" || command == "vt")
     {
       // vtkOBJReader reads what is not a number ("nan", "1x") as 0.
@@ -135,30 +177,7 @@ bool CheckObj(const std::string& path, std::string& error)
     }
     for (const std::string_view id : ids)
     {
-      // Lines and points use the vertex id only.
-      const size_t slash = id.find('/');
-      const std::string_view vertex = id.substr(0, slash);
-      std::string problem;
-      if (!ObjIdInRange(vertex, verticesSoFar, vertices))
-      {
-        problem = "vertex id " + Quoted(vertex);
-      }
-      else if (command == "f" && slash != std::string_view::npos)
-      {
-        const std::string_view rest = id.substr(slash + 1);
-        const size_t second = rest.find('/');
-        const std::string_view tcoord = rest.substr(0, second);
-        // VTK's sscanf would read "v/" on into the next id: only "v//n" leaves one out.
-        if (second != 0 && !ObjIdInRange(tcoord, tcoordsSoFar, tcoords))
-        {
-          problem = "texture coordinate id " + Quoted(tcoord);
-        }
-        else if (second != std::string_view::npos &&
-          !ObjIdInRange(rest.substr(second + 1), normalsSoFar, normals))
-        {
-          problem = "normal id " + Quoted(rest.substr(second + 1));
-        }
-      }
+      const std::string problem = ObjIdProblem(command, id, soFar, all);
       if (!problem.empty())
       {
         error = path + ": " + at + problem + " refers to nothing";

@@ -209,6 +209,69 @@ bool ReadPlyHeader(std::string_view text, PlyHeader& header, std::string& proble
 }
 
 /**
+ * The first of the properties `names` of `element` that VTK's PLY reader
+ * would read as a colour but that is no 8-bit integer (a list is
+ * MisdeclaredPlyProperty's concern); with `wholeSet`, none unless the first
+ * three names are all there (VTK reads no partial triple). Null when all are bytes.
+ */
+const PlyProperty* NonByteColour(
+  const PlyElement& element, std::initializer_list<const char*> names, bool wholeSet)
+{
+  std::vector<const PlyProperty*> found;
+  for (const char* name : names)
+  {
+    if (const PlyProperty* property = FindPlyProperty(element, name))
+    {
+      found.push_back(property);
+    }
+  }
+  if (wholeSet && found.size() < 3)
+  {
+    return nullptr; // no triple: VTK reads none of them
+  }
+  for (const PlyProperty* property : found)
+  {
+    if (!property->countType && !(property->type.integer && property->type.size == 1))
+    {
+      return property;
+    }
+  }
+  return nullptr;
+}
+
+/**
+ * VTK's PLY reader stores the colours it reads as 8-bit values whatever their
+ * type: 0..1 floats would turn black and 16-bit values wrap (60000 -> 96). It
+ * reads a vertex's red, green, blue (and alpha) triple, else its diffuse_red,
+ * _green, _blue triple, a face's red, green, blue triple and its intensity;
+ * those are checked, nothing it skips. `elements` are laid out as
+ * CheckPlyLayout requires (vertices first, `faces` next when there are any).
+ * False with a `problem` text when one is no byte.
+ */
+bool CheckPlyColourTypes(const std::vector<PlyElement>& elements, bool faces, std::string& problem)
+{
+  const bool vertexRgb = FindPlyProperty(elements[0], "red") && FindPlyProperty(elements[0], "green") &&
+    FindPlyProperty(elements[0], "blue");
+  const PlyProperty* wrong = vertexRgb ? NonByteColour(elements[0], { "red", "green", "blue", "alpha" }, true)
+                                       : NonByteColour(elements[0], { "diffuse_red", "diffuse_green", "diffuse_blue" }, true);
+  const PlyElement* wrongElement = &elements[0];
+  if (!wrong && faces)
+  {
+    wrongElement = &elements[1];
+    wrong = NonByteColour(elements[1], { "red", "green", "blue" }, true);
+    wrong = wrong ? wrong : NonByteColour(elements[1], { "intensity" }, false);
+  }
+  if (wrong)
+  {
+    problem = "the PLY colour '" + std::string(wrong->name) + "' of the " + std::string(wrongElement->name) +
+      " element is " + (wrong->type.integer ? std::to_string(8 * wrong->type.size) + "-bit" : "a real number") +
+      ", but VTK's PLY reader reads colours as 8-bit (0..255) values and would change them; store them as uchar";
+    return false;
+  }
+  return true;
+}
+
+/**
  * Whether vtkPLYReader takes the elements of a header: every element with
  * properties, the vertex element first, with x, y and z values, then optionally the face element with a list
  * of integer vertex_indices, and no property declared a list where it reads a
@@ -268,50 +331,8 @@ bool CheckPlyLayout(const std::vector<PlyElement>& elements, std::string& proble
       (misdeclared->countType ? "list" : "single value") + ", which VTK's PLY reader does not take";
     return false;
   }
-  // VTK's PLY reader stores the colours it reads as 8-bit values whatever
-  // their type: 0..1 floats would turn black and 16-bit values wrap (60000 ->
-  // 96). It reads a vertex's red, green, blue (and alpha) triple, else its
-  // diffuse_red, _green, _blue triple, a face's red, green, blue triple and
-  // its intensity; those are checked, nothing it skips.
-  const auto notBytes = [&](const PlyElement& element, std::initializer_list<const char*> names,
-                          bool wholeSet) -> const PlyProperty* {
-    std::vector<const PlyProperty*> found;
-    for (const char* name : names)
-    {
-      if (const PlyProperty* property = FindPlyProperty(element, name))
-      {
-        found.push_back(property);
-      }
-    }
-    if (wholeSet && found.size() < 3)
-    {
-      return nullptr; // no triple: VTK reads none of them
-    }
-    for (const PlyProperty* property : found)
-    {
-      if (!property->countType && !(property->type.integer && property->type.size == 1))
-      {
-        return property;
-      }
-    }
-    return nullptr;
-  };
-  const bool vertexRgb = FindPlyProperty(elements[0], "red") && FindPlyProperty(elements[0], "green") &&
-    FindPlyProperty(elements[0], "blue");
-  const PlyProperty* wrong = vertexRgb ? notBytes(elements[0], { "red", "green", "blue", "alpha" }, true)
-                                       : notBytes(elements[0], { "diffuse_red", "diffuse_green", "diffuse_blue" }, true);
-  const PlyElement* wrongElement = &elements[0];
-  if (!wrong && faceElement == 1)
+  if (!CheckPlyColourTypes(elements, faceElement == 1, problem))
   {
-    wrongElement = &elements[1];
-    wrong = notBytes(elements[1], { "red", "green", "blue" }, true);
-    wrong = wrong ? wrong : notBytes(elements[1], { "intensity" }, false);
-  }
-  if (wrong)
-  {
-    problem = "the PLY colour '" + std::string(wrong->name) + "' of the " + std::string(wrongElement->name) +
-      " element is " + (wrong->type.integer ? std::to_string(8 * wrong->type.size) + "-bit" : "a real number") +
-      ", but VTK's PLY reader reads colours as 8-bit (0..255) values and would change them; store them as uchar";
     return false;
   }
   // An element of triangle strips is skipped by VTK's PLY reader: its triangles would be lost.

@@ -209,6 +209,102 @@ std::uint64_t Unsigned(const std::string& text, size_t at, int bytes, bool bigEn
   }
   return value;
 }
+
+/**
+ * False, with `problem`, for an image whose only piece covers part of its
+ * whole extent (VTK would fill the rest with zeros); `header` is the XML part.
+ */
+bool OnlyPieceCoversWholeExtent(std::string_view header, std::string& problem)
+{
+  const std::string whole = Attribute(header.substr(0, header.find("<Piece")), "WholeExtent");
+  const size_t piece = header.find("<Piece");
+  if (!whole.empty() && piece != std::string_view::npos && header.find("<Piece", piece + 1) == std::string_view::npos)
+  {
+    const std::string extent = Attribute(header.substr(piece, header.find('>', piece) - piece), "Extent");
+    std::vector<std::int64_t> a = Numbers(whole), b = Numbers(extent);
+    if (a.size() == 6 && b.size() == 6 && a != b)
+    {
+      problem = "its only piece covers the extent " + extent + " of the whole extent " + whole +
+        " (the rest would read as zeros)";
+      return false;
+    }
+  }
+  return true;
+}
+
+/**
+ * Where the appended data that begin at `start` end: where the closing tag
+ * begins, looked for in the last 256 bytes of the file of `size` bytes (a
+ * truncated file has none: its end).
+ */
+std::uint64_t AppendedDataEnd(std::ifstream& file, std::uint64_t size, std::uint64_t start)
+{
+  const std::uint64_t tail = std::min<std::uint64_t>(size, 256);
+  std::string last(static_cast<size_t>(tail), '\0');
+  file.clear();
+  file.seekg(static_cast<std::streamoff>(size - tail));
+  file.read(&last[0], static_cast<std::streamsize>(tail));
+  const size_t closing = last.rfind("</AppendedData>");
+  return closing != std::string::npos && size - tail + closing >= start ? size - tail + closing : size;
+}
+
+/// The appended raw data of a VTK XML file, [start, end), as the header words describe them.
+struct AppendedData
+{
+  std::ifstream& file;
+  std::uint64_t start;
+  std::uint64_t end;
+  int headerBytes; ///< 4 or 8 (header_type UInt64)
+  bool bigEndian;
+  bool compressed;
+
+  /// One header word at `at` (false when it lies beyond the data).
+  bool Word(std::uint64_t at, std::uint64_t& value) const
+  {
+    if (at > end || end - at < static_cast<std::uint64_t>(headerBytes))
+    {
+      return false;
+    }
+    std::string bytes(static_cast<size_t>(headerBytes), '\0');
+    file.clear();
+    file.seekg(static_cast<std::streamoff>(at));
+    file.read(&bytes[0], headerBytes);
+    value = Unsigned(bytes, 0, headerBytes, bigEndian);
+    return static_cast<bool>(file);
+  }
+
+  /**
+   * Whether the block of an array at `first` (its byte count, or compressed
+   * [blocks, block size, last block size, the blocks' compressed sizes...],
+   * then its bytes) lies within the data: what it needs after its first word
+   * is compared with what is left (subtractions only: a hostile size cannot
+   * wrap around).
+   */
+  bool BlockFits(std::uint64_t first) const
+  {
+    std::uint64_t value = 0;
+    bool fits = this->Word(first, value);
+    std::uint64_t left = fits ? end - first - static_cast<std::uint64_t>(headerBytes) : 0;
+    if (fits && !compressed)
+    {
+      return value <= left;
+    }
+    const std::uint64_t blocks = value;
+    fits = fits && blocks <= left / static_cast<std::uint64_t>(headerBytes) &&
+      2 + blocks <= left / static_cast<std::uint64_t>(headerBytes);
+    if (fits)
+    {
+      left -= (2 + blocks) * static_cast<std::uint64_t>(headerBytes);
+    }
+    for (std::uint64_t k = 0; fits && k < blocks; ++k)
+    {
+      std::uint64_t blockBytes = 0;
+      fits = this->Word(first + (3 + k) * static_cast<std::uint64_t>(headerBytes), blockBytes) && blockBytes <= left;
+      left -= fits ? blockBytes : 0;
+    }
+    return fits;
+  }
+};
 }
 
 bool CheckXmlCompleteness(const std::string& path, std::string& problem)
@@ -229,19 +325,9 @@ bool CheckXmlCompleteness(const std::string& path, std::string& problem)
   text.resize(static_cast<size_t>(file.gcount()));
   const size_t appendedTag = text.find("<AppendedData");
   const std::string_view header = std::string_view(text).substr(0, std::min(appendedTag, text.size()));
-  // An image whose only piece covers part of its whole extent: VTK fills the rest with zeros.
-  const std::string whole = Attribute(header.substr(0, header.find("<Piece")), "WholeExtent");
-  const size_t piece = header.find("<Piece");
-  if (!whole.empty() && piece != std::string_view::npos && header.find("<Piece", piece + 1) == std::string_view::npos)
+  if (!OnlyPieceCoversWholeExtent(header, problem))
   {
-    const std::string extent = Attribute(header.substr(piece, header.find('>', piece) - piece), "Extent");
-    std::vector<std::int64_t> a = Numbers(whole), b = Numbers(extent);
-    if (a.size() == 6 && b.size() == 6 && a != b)
-    {
-      problem = "its only piece covers the extent " + extent + " of the whole extent " + whole +
-        " (the rest would read as zeros)";
-      return false;
-    }
+    return false;
   }
   if (appendedTag == std::string::npos)
   {
@@ -260,41 +346,14 @@ bool CheckXmlCompleteness(const std::string& path, std::string& problem)
     return true; // the reader reports the missing data
   }
   const std::uint64_t start = marker + 1;
-  // The data end where the closing tag begins (a truncated file has none: its end).
-  std::uint64_t end = size;
-  {
-    const std::uint64_t tail = std::min<std::uint64_t>(size, 256);
-    std::string last(static_cast<size_t>(tail), '\0');
-    file.clear();
-    file.seekg(static_cast<std::streamoff>(size - tail));
-    file.read(&last[0], static_cast<std::streamsize>(tail));
-    const size_t closing = last.rfind("</AppendedData>");
-    if (closing != std::string::npos && size - tail + closing >= start)
-    {
-      end = size - tail + closing;
-    }
-  }
   // The attributes of the <VTKFile> element (a file may start with an <?xml ...?> declaration).
   const size_t vtkFile = header.find("<VTKFile");
   const std::string_view fileTag = vtkFile == std::string_view::npos
     ? std::string_view()
     : header.substr(vtkFile, header.find('>', vtkFile) - vtkFile);
-  const int headerBytes = Attribute(fileTag, "header_type") == "UInt64" ? 8 : 4;
-  const bool bigEndian = Attribute(fileTag, "byte_order") == "BigEndian";
-  const bool compressed = !Attribute(fileTag, "compressor").empty();
-  // One header word at `at` (false when it lies beyond the data).
-  const auto word = [&](std::uint64_t at, std::uint64_t& value) {
-    if (at > end || end - at < static_cast<std::uint64_t>(headerBytes))
-    {
-      return false;
-    }
-    std::string bytes(static_cast<size_t>(headerBytes), '\0');
-    file.clear();
-    file.seekg(static_cast<std::streamoff>(at));
-    file.read(&bytes[0], headerBytes);
-    value = Unsigned(bytes, 0, headerBytes, bigEndian);
-    return static_cast<bool>(file);
-  };
+  const AppendedData data{ file, start, AppendedDataEnd(file, size, start),
+    Attribute(fileTag, "header_type") == "UInt64" ? 8 : 4, Attribute(fileTag, "byte_order") == "BigEndian",
+    !Attribute(fileTag, "compressor").empty() };
   for (size_t at = header.find("<DataArray"); at != std::string_view::npos; at = header.find("<DataArray", at + 1))
   {
     const std::string_view tag = header.substr(at, header.find('>', at) - at);
@@ -308,34 +367,7 @@ bool CheckXmlCompleteness(const std::string& path, std::string& problem)
       continue; // the reader reports a malformed offset
     }
     const std::string name = Attribute(tag, "Name");
-    const std::uint64_t first = start + static_cast<std::uint64_t>(offset);
-    // What the block needs after its first word, compared with what is left
-    // (subtractions only: a hostile size cannot wrap around).
-    std::uint64_t value = 0;
-    bool fits = word(first, value);
-    std::uint64_t left = fits ? end - first - static_cast<std::uint64_t>(headerBytes) : 0;
-    if (fits && !compressed)
-    {
-      fits = value <= left;
-    }
-    else if (fits)
-    {
-      // Compressed: [blocks, block size, last block size, the blocks' compressed sizes...].
-      const std::uint64_t blocks = value;
-      fits = blocks <= left / static_cast<std::uint64_t>(headerBytes) &&
-        2 + blocks <= left / static_cast<std::uint64_t>(headerBytes);
-      if (fits)
-      {
-        left -= (2 + blocks) * static_cast<std::uint64_t>(headerBytes);
-      }
-      for (std::uint64_t k = 0; fits && k < blocks; ++k)
-      {
-        std::uint64_t blockBytes = 0;
-        fits = word(first + (3 + k) * static_cast<std::uint64_t>(headerBytes), blockBytes) && blockBytes <= left;
-        left -= fits ? blockBytes : 0;
-      }
-    }
-    if (!fits)
+    if (!data.BlockFits(start + static_cast<std::uint64_t>(offset)))
     {
       problem = "the appended data of array '" + name + "' ends beyond the end of the file (truncated)";
       return false;

@@ -1,4 +1,5 @@
 #include "CliFilters.h"
+#include "CliFiles.h"
 
 #include "ShockIOMessages.h"
 #include "ShockImageChecks.h"
@@ -145,6 +146,17 @@ const std::vector<Choice>& AssociationChoices()
   static const std::vector<Choice> choices = { { "point", vtkDataObject::FIELD_ASSOCIATION_POINTS },
     { "cell", vtkDataObject::FIELD_ASSOCIATION_CELLS } };
   return choices;
+}
+
+void AddArrayCommandOptionSpecs(
+  std::vector<OptionSpec>& specs, ArrayCommandSettings& settings, const std::string& arrayHelp)
+{
+  specs.push_back(ArrayOptionSpec(settings.arrayName, arrayHelp));
+  specs.push_back({ "--association", "WHERE", "point|cell data only, for --array and the default scalars",
+    [&settings](const std::string& v)
+    { settings.association = ParseChoice("--association", v, AssociationChoices()); } });
+  specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));
+  specs.push_back(TimingsOptionSpec(settings.timings));
 }
 
 namespace

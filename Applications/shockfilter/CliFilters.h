@@ -8,6 +8,7 @@
 #define CliFilters_h
 
 #include "CliOptions.h"
+#include "ShockIOFiles.h" // DefaultMaxSamples
 
 #include "vtkDataObject.h"
 #include "vtkImageData.h"
@@ -86,6 +87,22 @@ std::uint64_t MeshFilterBytes(vtkIdType points);
  * <bytesNeeded>" when an allocation fails.
  */
 double TimedUpdate(vtkAlgorithm* filter, std::uint64_t bytesNeeded);
+
+/// What a command that filters an array of its input reads besides the shock options.
+struct ArrayCommandSettings
+{
+  std::string arrayName; ///< --array (empty: the default scalars)
+  std::optional<int> association; ///< --association
+  bool timings = false;
+  std::uint64_t maxSamples = shockio::DefaultMaxSamples;
+};
+
+/**
+ * The options of ArrayCommandSettings, last on such a command's list: --array
+ * (described by `arrayHelp`), --association, --max-samples and --timings.
+ */
+void AddArrayCommandOptionSpecs(
+  std::vector<OptionSpec>& specs, ArrayCommandSettings& settings, const std::string& arrayHelp);
 
 /// The array a command filters.
 struct SelectedArray

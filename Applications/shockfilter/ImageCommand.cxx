@@ -75,14 +75,10 @@ vtkSmartPointer<vtkImageData> PixelsAsPoints(vtkImageData* image, const std::str
   return pixels;
 }
 
-struct ImageSettings
+struct ImageSettings : ArrayCommandSettings
 {
   ShockOptions shock;
   ImageMethodOptions method;
-  std::string arrayName;
-  std::optional<int> association;
-  bool timings = false;
-  std::uint64_t maxSamples = shockio::DefaultMaxSamples;
 };
 
 std::vector<OptionSpec> ImageOptionSpecs(ImageSettings& settings)
@@ -113,13 +109,8 @@ std::vector<OptionSpec> ImageOptionSpecs(ImageSettings& settings)
   specs.push_back(RangeOptionSpec("--max-iterations", "N", "pde: most explicit steps",
     method.maximumIterations, defaults->GetMaximumIterationsMinValue(),
     defaults->GetMaximumIterationsMaxValue(), defaults->GetMaximumIterations()));
-  specs.push_back(ArrayOptionSpec(
-    settings.arrayName, "point or cell array to filter (default: active point scalars, else cell scalars)"));
-  specs.push_back({ "--association", "WHERE", "point|cell data only, for --array and the default scalars",
-    [&settings](const std::string& v)
-    { settings.association = ParseChoice("--association", v, AssociationChoices()); } });
-  specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));
-  specs.push_back(TimingsOptionSpec(settings.timings));
+  AddArrayCommandOptionSpecs(
+    specs, settings, "point or cell array to filter (default: active point scalars, else cell scalars)");
   return specs;
 }
 

@@ -19,26 +19,16 @@ namespace shockcli
 namespace
 {
 
-struct SurfaceSettings
+struct SurfaceSettings : ArrayCommandSettings
 {
   ShockOptions shock;
-  std::string arrayName;
-  std::optional<int> association;
-  bool timings = false;
-  std::uint64_t maxSamples = shockio::DefaultMaxSamples;
 };
 
 std::vector<OptionSpec> SurfaceOptionSpecs(SurfaceSettings& settings)
 {
   vtkNew<vtkPolyDataShockAdvectionFilter> defaults;
   std::vector<OptionSpec> specs = ShockOptionSpecs(settings.shock, ShockOptionSet::All, defaults);
-  specs.push_back(ArrayOptionSpec(settings.arrayName, "point or cell array to filter (default: active scalars)"));
-  specs.push_back({ "--association", "WHERE",
-    "point|cell data only, for --array and the default scalars",
-    [&settings](const std::string& v)
-    { settings.association = ParseChoice("--association", v, AssociationChoices()); } });
-  specs.push_back(MaxSamplesOptionSpec(settings.maxSamples));
-  specs.push_back(TimingsOptionSpec(settings.timings));
+  AddArrayCommandOptionSpecs(specs, settings, "point or cell array to filter (default: active scalars)");
   return specs;
 }
 

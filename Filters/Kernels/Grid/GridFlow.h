@@ -100,15 +100,8 @@ template <int D>
 void FaceEnergy(const Lattice<D>& L, int C, const double* values, const unsigned char* validFace,
   double* energy, int threads)
 {
-  const RowBlocks<D> blocks(L.m);
   const auto offset = CornerOffsets<D>(L, C);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t k = 0; k < blocks.Count(); ++k)
-  {
-    std::array<std::int64_t, D> c;
-    const std::int64_t length = blocks.Get(k, c);
-    const std::int64_t f0 = L.FaceIndex(c);
-    const std::int64_t base0 = L.SampleIndex(c);
+  ForEachFaceBlock<D>(L, threads, [=, &L](std::int64_t f0, std::int64_t base0, std::int64_t length) {
     for (std::int64_t j = 0; j < length; ++j)
     {
       double e = 0.0;
@@ -126,7 +119,7 @@ void FaceEnergy(const Lattice<D>& L, int C, const double* values, const unsigned
       }
       energy[f0 + j] = e;
     }
-  }
+  });
 }
 
 /**
@@ -138,13 +131,7 @@ template <int D>
 void FacesToSamples(const Lattice<D>& L, const double* energy, const unsigned char* validFace,
   double* potential, int threads)
 {
-  const RowBlocks<D> blocks(L.n);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t k = 0; k < blocks.Count(); ++k)
-  {
-    std::array<std::int64_t, D> i;
-    const std::int64_t length = blocks.Get(k, i);
-    const std::int64_t s0 = L.SampleIndex(i);
+  ForEachSampleBlock<D>(L, threads, [=, &L](const auto& i, std::int64_t s0, std::int64_t length) {
     const AdjacentFaces<D> faces(L, i);
     if (!validFace)
     {
@@ -172,7 +159,7 @@ void FacesToSamples(const Lattice<D>& L, const double* energy, const unsigned ch
         const int count = rowCount * ((right ? 1 : 0) + (left ? 1 : 0));
         potential[s0 + j] = count > 0 ? sum / count : 0.0;
       }
-      continue;
+      return;
     }
     for (std::int64_t j = 0; j < length; ++j)
     {
@@ -189,7 +176,7 @@ void FacesToSamples(const Lattice<D>& L, const double* energy, const unsigned ch
       }
       potential[s0 + j] = count > 0 ? sum / count : 0.0;
     }
-  }
+  });
 }
 
 /**
@@ -206,15 +193,8 @@ void BackTraceVelocity(const Lattice<D>& L, const double* potential,
   {
     toIndex[d] = -0.5 / L.h[d];
   }
-  const RowBlocks<D> blocks(L.m);
   const auto offset = CornerOffsets<D>(L, 1);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t k = 0; k < blocks.Count(); ++k)
-  {
-    std::array<std::int64_t, D> c;
-    const std::int64_t length = blocks.Get(k, c);
-    const std::int64_t f0 = L.FaceIndex(c);
-    const std::int64_t base0 = L.SampleIndex(c);
+  ForEachFaceBlock<D>(L, threads, [=, &L](std::int64_t f0, std::int64_t base0, std::int64_t length) {
     for (std::int64_t j = 0; j < length; ++j)
     {
       float* v = velocity + (f0 + j) * D;
@@ -229,7 +209,7 @@ void BackTraceVelocity(const Lattice<D>& L, const double* potential,
         v[d] = static_cast<float>(g[d] * toIndex[d]);
       }
     }
-  }
+  });
 }
 
 /**

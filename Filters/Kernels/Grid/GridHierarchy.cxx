@@ -82,13 +82,7 @@ std::vector<double> Restrict(const Lattice<D>& fine, const Lattice<D>& coarse, i
   {
     ratio[d] = static_cast<double>(fine.m[d]) / static_cast<double>(coarse.m[d]);
   }
-  const RowBlocks<D> blocks(coarse.n);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t k = 0; k < blocks.Count(); ++k)
-  {
-    std::array<std::int64_t, D> i;
-    const std::int64_t length = blocks.Get(k, i);
-    const std::int64_t s0 = coarse.SampleIndex(i);
+  ForEachSampleBlock<D>(coarse, threads, [&](const auto& i, std::int64_t s0, std::int64_t length) {
     for (std::int64_t j = 0; j < length; ++j)
     {
       std::int64_t base = 0;
@@ -126,7 +120,7 @@ std::vector<double> Restrict(const Lattice<D>& fine, const Lattice<D>& coarse, i
         o[c] = total > 0.0 ? o[c] / total : std::numeric_limits<double>::quiet_NaN();
       }
     }
-  }
+  });
   return out;
 }
 

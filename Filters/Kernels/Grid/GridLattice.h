@@ -196,6 +196,43 @@ RowBlocks<D> WrittenBlocks(const Lattice<D>& L, const std::array<std::int64_t, 6
 }
 
 /**
+ * The row-blocked loop over an extent (the samples' n or the faces' m), in
+ * parallel (static schedule): body(first, length) for each block (RowBlocks)
+ * of `length` elements along the first axis, the first at coordinates `first`.
+ */
+template <int D, typename Body>
+void ForEachBlock(const std::array<std::int64_t, D>& extent, int threads, const Body& body)
+{
+  const RowBlocks<D> blocks(extent);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks.Count(); ++k)
+  {
+    std::array<std::int64_t, D> first;
+    const std::int64_t length = blocks.Get(k, first);
+    body(first, length);
+  }
+}
+
+/// ForEachBlock over the samples of L: body(i, s0, length), s0 the sample index of i.
+template <int D, typename Body>
+void ForEachSampleBlock(const Lattice<D>& L, int threads, const Body& body)
+{
+  ForEachBlock<D>(L.n, threads, [&](const std::array<std::int64_t, D>& i, std::int64_t length) {
+    body(i, L.SampleIndex(i), length);
+  });
+}
+
+/// ForEachBlock over the faces of L: body(f0, base0, length), f0 the face index
+/// of the first face and base0 the sample index of its lower corner.
+template <int D, typename Body>
+void ForEachFaceBlock(const Lattice<D>& L, int threads, const Body& body)
+{
+  ForEachBlock<D>(L.m, threads, [&](const std::array<std::int64_t, D>& c, std::int64_t length) {
+    body(L.FaceIndex(c), L.SampleIndex(c), length);
+  });
+}
+
+/**
  * The faces adjacent to the samples of one row. A sample's face through corner
  * bit pattern b has coordinates i - bits(b); the bits along the axes other than
  * the first are the same for the whole row, so their rows of faces are found once.
@@ -326,14 +363,7 @@ std::vector<unsigned char> ValidFaces(
   const Lattice<D>& L, const unsigned char* validSample, int threads)
 {
   std::vector<unsigned char> valid(static_cast<size_t>(L.numFaces));
-  const RowBlocks<D> blocks(L.m);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t k = 0; k < blocks.Count(); ++k)
-  {
-    std::array<std::int64_t, D> c;
-    const std::int64_t length = blocks.Get(k, c);
-    const std::int64_t f0 = L.FaceIndex(c);
-    const std::int64_t base0 = L.SampleIndex(c);
+  ForEachFaceBlock<D>(L, threads, [&](std::int64_t f0, std::int64_t base0, std::int64_t length) {
     for (std::int64_t j = 0; j < length; ++j)
     {
       bool all = true;
@@ -343,7 +373,7 @@ std::vector<unsigned char> ValidFaces(
       }
       valid[f0 + j] = all;
     }
-  }
+  });
   return valid;
 }
 

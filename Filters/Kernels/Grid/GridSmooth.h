@@ -141,13 +141,7 @@ void SmoothPass(const Lattice<D>& L, int C, const T* in, double scale, double* o
   {
     alpha[d] = std::exp(-L.h2[d]);
   }
-  const RowBlocks<D> blocks(L.n);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t k = 0; k < blocks.Count(); ++k)
-  {
-    std::array<std::int64_t, D> i;
-    const std::int64_t length = blocks.Get(k, i);
-    const std::int64_t s0 = L.SampleIndex(i);
+  ForEachSampleBlock<D>(L, threads, [=, &L](const auto& i, std::int64_t s0, std::int64_t length) {
     // The neighbours along the other axes are the same for the whole block.
     std::array<std::int64_t, 2 * D> offset{};
     std::array<double, 2 * D> weight{};
@@ -168,7 +162,7 @@ void SmoothPass(const Lattice<D>& L, int C, const T* in, double scale, double* o
     {
       SmoothBlockAllValid(C, in + s0 * C, scale, out + s0 * C, length, i[0] == 0,
         i[0] + length == L.n[0], alpha[0], neighbours, offset, weight);
-      continue;
+      return;
     }
     for (std::int64_t j = 0; j < length; ++j)
     {
@@ -208,7 +202,7 @@ void SmoothPass(const Lattice<D>& L, int C, const T* in, double scale, double* o
         o[c] *= factor;
       }
     }
-  }
+  });
 }
 
 /**

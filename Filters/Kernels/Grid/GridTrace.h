@@ -3,6 +3,8 @@
  * @brief Appendix A Trace on a regular grid, in index coordinates: a point moved
  * back along the per-face constant flow, exactly from face to face
  * (Tracing::FaceCrossing) or in steps of at most delta (Tracing::Stepped).
+ * The rule for any D and the step every face-crossing tracer shares are here;
+ * the tracers written for images and volumes are in GridTraceScalar.h.
  * Loops use OpenMP: include only from translation units built with it.
  */
 #ifndef GridTrace_h
@@ -10,6 +12,7 @@
 
 #include "GridAvx2.h"
 #include "GridLattice.h"
+#include "GridTraceScalar.h"
 #include "ShockTypes.h"
 
 #include <algorithm>
@@ -22,7 +25,6 @@ namespace shock
 {
 namespace grid
 {
-
 
 /**
  * Appendix A Trace on the grid, in index coordinates. The flow is constant per
@@ -68,20 +70,20 @@ public:
       return this->TraceStepped(q, c, f, t, truncated);
     }
 #ifdef SHOCK_GRID_AVX2
-    // The volume tracer has no AVX2 build: it was 7 % slower (its selects
-    // become blends on the position's chain), measured on a 256^3 volume.
+    // The volume tracer has no AVX2 build: it was slower (its selects become
+    // blends on the position's chain; docs/performance.md).
     if constexpr (Wide && D == 2)
     {
-      return this->TraceFaceCrossingPlanarAvx2(q, c, f, t, truncated);
+      return ScalarTracers<D>::TraceFaceCrossingPlanarAvx2(*this, q, c, f, t, truncated);
     }
 #endif
     if constexpr (D == 2)
     {
-      return this->TraceFaceCrossingPlanar(q, c, f, t, truncated);
+      return ScalarTracers<D>::TraceFaceCrossingPlanar(*this, q, c, f, t, truncated);
     }
     else if constexpr (D == 3)
     {
-      return this->TraceFaceCrossingSpatial(q, c, f, t, truncated);
+      return ScalarTracers<D>::TraceFaceCrossingSpatial(*this, q, c, f, t, truncated);
     }
     else
     {
@@ -116,6 +118,8 @@ public:
   };
 
 private:
+  friend struct ScalarTracers<D>; // the image and volume tracers: Cross and its helpers
+
   /// Dot product of index-space velocities in the physical metric.
   template <typename A, typename B>
   double Dot(const A& a, const B& b) const
@@ -166,7 +170,7 @@ public:
    * once, the exact rule is not unique; the rest of that trace uses the paper's
    * stepping, which zig-zags along the edge (or stops at a sink).
    * This is the rule for any D; Trace takes the image and volume tracers
-   * written for D = 2 and 3 (the same paths, to rounding: the tests compare).
+   * written for D = 2 and 3 (GridTraceScalar.h: the same paths, to rounding).
    */
   std::int64_t TraceFaceCrossing(std::array<double, D>& q, std::array<std::int64_t, D> c,
     std::int64_t f, double t, bool& truncated) const
@@ -222,165 +226,6 @@ public:
 
 private:
   /**
-   * TraceFaceCrossing on an image (D = 2), the same rules with the state in
-   * scalars. The boundary ahead is found without dividing: with d the distance
-   * to the boundary ahead along an axis and |v| the speed along it, the trace
-   * leaves along y first when d_y |v_x| < d_x |v_y|, and it stays in its face
-   * when d >= t |v| along that axis; the one division, d / |v|, is the time of
-   * a crossing. An axis slid along has velocity 0 there and is never left.
-   */
-  SHOCK_NOINLINE std::int64_t TraceFaceCrossingPlanar(std::array<double, D>& q,
-    std::array<std::int64_t, D> c, std::int64_t f, double t, bool& truncated) const
-  {
-    return this->PlanarTrace(q, c, f, t, truncated);
-  }
-#ifdef SHOCK_GRID_AVX2
-  /// TraceFaceCrossingPlanar built for AVX2.
-  SHOCK_NOINLINE SHOCK_TARGET_AVX2 std::int64_t TraceFaceCrossingPlanarAvx2(
-    std::array<double, D>& q, std::array<std::int64_t, D> c, std::int64_t f, double t,
-    bool& truncated) const
-  {
-    return this->PlanarTrace(q, c, f, t, truncated);
-  }
-#endif
-  /// The body of TraceFaceCrossingPlanar, built into each of its two versions.
-  SHOCK_ALWAYS_INLINE std::int64_t PlanarTrace(std::array<double, D>& q,
-    std::array<std::int64_t, D> c, std::int64_t f, double t, bool& truncated) const
-  {
-    static_assert(D == 2, "the planar tracer is for images");
-    const double hx = L.h2[0];
-    const double hy = L.h2[1];
-    double vx = this->V[2 * f];
-    double vy = this->V[2 * f + 1];
-    if (!(hx * vx * vx + hy * vy * vy > 0.0))
-    {
-      return 0;
-    }
-    double x = q[0];
-    double y = q[1];
-    int pinned = -1; // axis of the boundary the trace slides on; c is the lower face there
-    std::int64_t steps = 0;
-    while (t > 0.0)
-    {
-      const double sx = std::abs(vx);
-      const double sy = std::abs(vy);
-      // The reciprocal speeds depend on the velocity alone: computed here, the
-      // divisions run while the position's distances are found.
-      const double rx = 1.0 / sx;
-      const double ry = 1.0 / sy;
-      const double cx = static_cast<double>(c[0]);
-      const double cy = static_cast<double>(c[1]);
-      const double dx = std::max((cx + static_cast<double>(vx > 0.0) - x) * std::copysign(1.0, vx), 0.0);
-      const double dy = std::max((cy + static_cast<double>(vy > 0.0) - y) * std::copysign(1.0, vy), 0.0);
-      const int axis = (vx == 0.0 || dy * sx < dx * sy) ? 1 : 0;
-      const double distance = axis ? dy : dx;
-      const double speed = axis ? sy : sx;
-      if (distance >= t * speed)
-      {
-        x += vx * t;
-        y += vy * t;
-        break; // the time is used up in this face
-      }
-      const double exitTime = std::min(distance * (axis ? ry : rx), t);
-      x += vx * exitTime;
-      y += vy * exitTime;
-      t -= exitTime;
-      ++steps;
-      const double across = axis ? vy : vx;
-      const int dir = across > 0.0 ? 1 : -1;
-      const double boundary = static_cast<double>(dir > 0 ? c[axis] + 1 : c[axis]);
-      x = axis ? x : boundary;
-      y = axis ? boundary : y;
-      const std::array<double, D> v{ vx, vy };
-      std::array<double, D> w;
-      const Entry entry = this->Cross(c, f, axis, dir, pinned, steps, truncated, v, w);
-      if (entry == Entry::Stop)
-      {
-        break;
-      }
-      if (entry == Entry::Corner)
-      {
-        q = { x, y };
-        return steps + this->TraceSteppedFrom(q, c, t, truncated);
-      }
-      vx = w[0];
-      vy = w[1];
-    }
-    q = { x, y };
-    this->ClampToGrid(q);
-    return steps;
-  }
-
-  /**
-   * TraceFaceCrossing in a volume (D = 3), the same rules with the position and
-   * velocity in scalars: the time to the boundary ahead along each axis is the
-   * distance to it times the reciprocal speed, computed from the velocity alone
-   * (its division overlaps the position's chain of operations); an axis without
-   * motion, or the one slid along, has an infinite time and is never left.
-   */
-  std::int64_t TraceFaceCrossingSpatial(std::array<double, D>& q, std::array<std::int64_t, D> c,
-    std::int64_t f, double t, bool& truncated) const
-  {
-    static_assert(D == 3, "the spatial tracer is for volumes");
-    constexpr double never = std::numeric_limits<double>::infinity();
-    std::array<double, D> start;
-    this->Load(f, start);
-    if (!(this->Dot(start, start) > 0.0))
-    {
-      return 0;
-    }
-    double vx = start[0], vy = start[1], vz = start[2];
-    double x = q[0], y = q[1], z = q[2];
-    int pinned = -1; // axis of the boundary the trace slides on; c is the lower face there
-    std::int64_t steps = 0;
-    while (t > 0.0)
-    {
-      double exitTime = 0.0;
-      const int axis = SpatialExit(x, y, z, vx, vy, vz, c, exitTime);
-      if (!(exitTime < never))
-      {
-        break; // no motion left (a sliding velocity of zero)
-      }
-      if (exitTime >= t)
-      {
-        x += vx * t;
-        y += vy * t;
-        z += vz * t;
-        break; // the time is used up in this face
-      }
-      x += vx * exitTime;
-      y += vy * exitTime;
-      z += vz * exitTime;
-      t -= exitTime;
-      ++steps;
-      const double across = axis == 0 ? vx : (axis == 1 ? vy : vz);
-      const int dir = across > 0.0 ? 1 : -1;
-      const double boundary = static_cast<double>(dir > 0 ? c[axis] + 1 : c[axis]);
-      x = axis == 0 ? boundary : x;
-      y = axis == 1 ? boundary : y;
-      z = axis == 2 ? boundary : z;
-      const std::array<double, D> v{ vx, vy, vz };
-      std::array<double, D> w;
-      const Entry entry = this->Cross(c, f, axis, dir, pinned, steps, truncated, v, w);
-      if (entry == Entry::Stop)
-      {
-        break;
-      }
-      if (entry == Entry::Corner)
-      {
-        q = { x, y, z };
-        return steps + this->TraceSteppedFrom(q, c, t, truncated);
-      }
-      vx = w[0];
-      vy = w[1];
-      vz = w[2];
-    }
-    q = { x, y, z };
-    this->ClampToGrid(q);
-    return steps;
-  }
-
-  /**
    * The first boundary of face c that a trace at q moving with v reaches, and
    * the time to it (infinite when it does not move), without branches (the exit
    * axis is not predictable): with r = 1 / v, (c + 1 - q) r is the time to the
@@ -410,32 +255,6 @@ private:
       exitTime = std::min(exitTime, te[d]);
     }
     return exitAxis;
-  }
-
-  /**
-   * ExitAhead in a volume: the time to the boundary ahead along each axis is
-   * the distance to it times the reciprocal speed (its division overlaps the
-   * position's chain of operations); an axis without motion has an infinite
-   * time. On a tie, the lower axis (as ExitAhead).
-   */
-  static SHOCK_ALWAYS_INLINE int SpatialExit(double x, double y, double z, double vx, double vy, double vz,
-    const std::array<std::int64_t, D>& c, double& exitTime)
-  {
-    constexpr double never = std::numeric_limits<double>::infinity();
-    const double rx = 1.0 / std::abs(vx);
-    const double ry = 1.0 / std::abs(vy);
-    const double rz = 1.0 / std::abs(vz);
-    const double dx = std::max((static_cast<double>(c[0]) + static_cast<double>(vx > 0.0) - x) * std::copysign(1.0, vx), 0.0);
-    const double dy = std::max((static_cast<double>(c[1]) + static_cast<double>(vy > 0.0) - y) * std::copysign(1.0, vy), 0.0);
-    const double dz = std::max((static_cast<double>(c[2]) + static_cast<double>(vz > 0.0) - z) * std::copysign(1.0, vz), 0.0);
-    const double tx = vx == 0.0 ? never : dx * rx;
-    const double ty = vy == 0.0 ? never : dy * ry;
-    const double tz = vz == 0.0 ? never : dz * rz;
-    int axis = ty < tx ? 1 : 0;
-    exitTime = std::min(tx, ty);
-    axis = tz < exitTime ? 2 : axis;
-    exitTime = std::min(exitTime, tz);
-    return axis;
   }
 
   /**
