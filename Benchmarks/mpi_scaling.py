@@ -133,11 +133,14 @@ def run(plugin, work, path):
     before = memory("VmRSS")
     if controller:
         controller.Barrier()
+    import resource
+    faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
     start = time.perf_counter()
     filtered.UpdatePipeline()
     if controller:
         controller.Barrier()
     seconds = time.perf_counter() - start
+    faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt - faults  # pages touched for the first time
     peak = memory("VmHWM") - before
     data = filtered.GetClientSideObject().GetOutputDataObject(0)
     ghosts = data.GetPointData().GetArray("vtkGhostType") if work != "image" else None
@@ -165,7 +168,7 @@ def run(plugin, work, path):
         if getter:
             phases[phase.lower()] = getter()
     print("RANKRESULT " + json.dumps(dict(rank=rank, ranks=ranks, seconds=seconds, peak_mib=peak,
-                                          points=points, owned=owned, **phases)), flush=True)
+                                          points=points, owned=owned, page_faults=faults, **phases)), flush=True)
 
 
 # --- drivers -----------------------------------------------------------------
