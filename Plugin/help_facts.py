@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Derive the stated facts of ShockFilters.xml from its attributes.
+"""Derive the stated facts of the filters' XML from its attributes.
 
-ShockFilters.xml is the one place where a property's default and range are
+The filters' XML (ImageShockAdvection.xml, SurfaceShockAdvection.xml,
+SurfaceShockSharpen.xml) is the one place where a property's default and range are
 written (default_values, IntRangeDomain/DoubleRangeDomain, EnumerationDomain,
 BooleanDomain); the C++ clamps equal them (TestShockFiltersPlugin checks).
 ParaView 5.11's help generator shows default_values raw (an enumeration as
@@ -20,7 +21,8 @@ import sys
 import xml.etree.ElementTree as ET
 
 HERE = pathlib.Path(__file__).resolve().parent
-XML = HERE / "ShockFilters.xml"
+# The filters' proxies, in the order of the tables of docs/paraview.md.
+XMLS = [HERE / name for name in ("ImageShockAdvection.xml", "SurfaceShockAdvection.xml", "SurfaceShockSharpen.xml")]
 DOC = HERE.parent / "docs" / "paraview.md"
 FACT_PREFIX = "Default: "
 PROPERTY_TAGS = ("IntVectorProperty", "DoubleVectorProperty", "StringVectorProperty",
@@ -110,16 +112,16 @@ def tables(root):
     return "\n".join(out).rstrip() + "\n"
 
 
-BEGIN = "<!-- help_facts.py: begin (generated from Plugin/ShockFilters.xml; edit the XML) -->\n"
+BEGIN = "<!-- help_facts.py: begin (generated from the filters' XML in Plugin/; edit the XML) -->\n"
 END = "<!-- help_facts.py: end -->\n"
 
 
-def rewrite_doc(doc_text, xml_text):
+def rewrite_doc(doc_text, xml_texts):
     start, stop = doc_text.find(BEGIN), doc_text.find(END)
     if start < 0 or stop < start:
         raise SystemExit("%s: markers %r ... %r not found" % (DOC, BEGIN.strip(), END.strip()))
-    root = ET.fromstring(xml_text)
-    return doc_text[:start + len(BEGIN)] + "\n" + tables(root) + "\n" + doc_text[stop:]
+    generated = "\n".join(tables(ET.fromstring(text)) for text in xml_texts)
+    return doc_text[:start + len(BEGIN)] + "\n" + generated + "\n" + doc_text[stop:]
 
 
 def main():
@@ -128,11 +130,11 @@ def main():
                         help="fail instead of writing when a file is stale")
     args = parser.parse_args()
     stale = []
-    xml_old = XML.read_text()
-    xml_new = rewrite_xml(xml_old)
+    xml_old = [path.read_text() for path in XMLS]
+    xml_new = [rewrite_xml(text) for text in xml_old]
     doc_old = DOC.read_text()
     doc_new = rewrite_doc(doc_old, xml_new)
-    for path, old, new in ((XML, xml_old, xml_new), (DOC, doc_old, doc_new)):
+    for path, old, new in list(zip(XMLS, xml_old, xml_new)) + [(DOC, doc_old, doc_new)]:
         if old != new:
             stale.append(str(path))
             if not args.check:

@@ -1,7 +1,7 @@
 """pvpython test of the ShockFilters ParaView plugin: all three proxies.
 
 Usage: pvpython --force-offscreen-rendering TestShockFiltersPlugin.py PLUGIN_PATH
-           [SOURCE_XML [HELP_DIR]]
+           [SOURCE_DIR [HELP_DIR]]
 
 Loads the real plugin into the real pvpython and checks, for
 "Image Shock Advection", "Surface Shock Advection" and "Surface Shock Sharpen":
@@ -16,7 +16,7 @@ Loads the real plugin into the real pvpython and checks, for
   identical to filtering each block alone; in mixed composites the matching
   blocks are filtered (each with its own array) and the others pass through;
 - the read-only measurement properties;
-- with SOURCE_XML (Plugin/ShockFilters.xml): one flat definition per filter,
+- with SOURCE_DIR (the folder Plugin/, whose XML files hold one flat definition per filter):
   shared properties identical in each, range domains equal to the class
   clamps;
 - with HELP_DIR (the plugin's paraview_help build folder): each filter's help
@@ -26,7 +26,7 @@ Prints one line per failure and ends with "N passed, M failed".
 
 The checks are in three files, run in this order in one pvpython session and
 namespace (the later parts use the plugin loaded here and the pipelines of the
-earlier ones): this file (the definitions, SOURCE_XML, HELP_DIR),
+earlier ones): this file (the definitions, SOURCE_DIR, HELP_DIR),
 TestShockFiltersPluginPipelines.py (every property on Wavelet, Sphere and
 rounded-Box pipelines) and TestShockFiltersPluginInputs.py (bad values,
 clamping, composite inputs); their helpers are in PluginTestSupport.py.
@@ -43,7 +43,7 @@ import PluginTestSupport
 from PluginTestSupport import *  # noqa: F401,F403
 
 PLUGIN = sys.argv[1]
-SOURCE_XML = sys.argv[2] if len(sys.argv) > 2 else None
+SOURCE_DIR = sys.argv[2] if len(sys.argv) > 2 else None
 HELP_DIR = sys.argv[3] if len(sys.argv) > 3 else None
 LABELS = {
     "ImageShockAdvection": ("Image Shock Advection", "vtkImageShockAdvectionFilter"),
@@ -186,11 +186,14 @@ for name in LABELS:
 
 # The XML as written: shared properties agree across the filters, and every
 # range domain is the class's clamp (set below and above, read back).
-if SOURCE_XML:
+if SOURCE_DIR:
+    import glob
     import xml.etree.ElementTree as ET
     definitions = {proxy.get("name"): {prop.get("name"): prop for prop in proxy
                                        if prop.tag.endswith("Property") and prop.tag != "InputProperty"}
-                   for proxy in ET.parse(SOURCE_XML).getroot().iter("SourceProxy")}
+                   for path in sorted(glob.glob(os.path.join(SOURCE_DIR, "*.xml")))
+                   for group in ET.parse(path).getroot().iter("ProxyGroup") if group.get("name") == "filters"
+                   for proxy in group.iter("SourceProxy")}
     check(set(definitions) == set(LABELS), "source XML: one flat definition per filter, %s" % sorted(definitions))
     # Deliberately different texts (what is sharpened, what is measured).
     OWN_TEXT = {"FlowTime", "Sampling", "GenerateFlowArrays", "LastSetupSeconds", "LastFlowSeconds",

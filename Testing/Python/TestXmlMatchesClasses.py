@@ -1,6 +1,6 @@
 """The plugin XML against the VTK classes, through the Python package.
 
-Usage: python3 TestXmlMatchesClasses.py Plugin/ShockFilters.xml
+Usage: python3 TestXmlMatchesClasses.py Plugin/ImageShockAdvection.xml Plugin/SurfaceShockAdvection.xml ...
 (PYTHONPATH holding the package shockfilters).
 
 For every settable property of every filter in the XML: its default_values
@@ -31,8 +31,10 @@ def number(text):
     return float(text)
 
 
-root = ET.parse(sys.argv[1]).getroot()
-for proxy in root.iter("SourceProxy"):
+proxies = [proxy for path in sys.argv[1:] for proxy in ET.parse(path).getroot().iter("SourceProxy")]
+check(len(proxies) == len(sys.argv) - 1 and len(proxies) > 0,
+      "one filter per XML file: %d filters in %d files" % (len(proxies), len(sys.argv) - 1))
+for proxy in proxies:
     cls = getattr(shockfilters, proxy.get("class"))
     instance = cls()
     for prop in proxy:
