@@ -2,11 +2,13 @@
 // a box of the grid whose results are handed to the output, the rest of the grid
 // feeding the flow and the traces. The box's results must be those of the
 // whole run, and nothing outside the box may reach the output.
+#include "GridGradientDomain.h"
 #include "GridShockAdvection.h"
 #include "TestSignals.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -159,6 +161,38 @@ TEST(GridWrittenSamples, NonFiniteSamplesAndRunsWithoutFlowWriteTheBoxOnly)
   ExpectTheWholeRunsBox(shape, 1, input, p, { 0, -1, 2, 9, 1, 4 }, false);
   p.time = 16.0;
   ExpectTheWholeRunsBox(shape, 1, std::vector<double>(input.size(), 2.5), p, { 1, 3, 0, -1, 5, 5 }, false);
+}
+
+TEST(GridWrittenSamples, TheGradientDomainSolvesTheWholeGridAndHandsEverySample)
+{
+  // One Poisson problem over the whole grid: a box changes nothing of what is handed.
+  const GridShape shape = Grid(23, 17);
+  const auto input = Noisy(Bumps(shape, 2), 0.03, 11);
+  GradientDomainParameters domain;
+  const auto run = [&](const std::array<std::int64_t, 6>& box) {
+    AdvectionParameters p;
+    p.time = 30.0;
+    p.writtenSamples = box;
+    std::vector<double> out(input.size(), std::numeric_limits<double>::quiet_NaN());
+    std::vector<int> times(static_cast<size_t>(shape.NumberOfSamples()), 0);
+    std::mutex lock;
+    const SampleWriter writer = [&](std::int64_t first, std::int64_t count, const double* values) {
+      const std::lock_guard<std::mutex> hold(lock);
+      std::copy(values, values + count * 2, out.begin() + first * 2);
+      for (std::int64_t s = first; s < first + count; ++s)
+      {
+        ++times[static_cast<size_t>(s)];
+      }
+    };
+    const Status status = AdvectGridGradients(shape, 2, input.data(), writer, p, domain);
+    EXPECT_TRUE(status.Ok()) << status.error;
+    EXPECT_TRUE(std::all_of(times.begin(), times.end(), [](int n) { return n == 1; }));
+    return out;
+  };
+  const auto whole = run({ 0, -1, 0, -1, 0, -1 });
+  const auto boxed = run({ 4, 15, 3, 9, 0, 0 });
+  ASSERT_EQ(boxed, whole);
+  EXPECT_NE(whole, input);
 }
 
 TEST(GridWrittenSamples, ABoxOutsideTheGridIsRefused)

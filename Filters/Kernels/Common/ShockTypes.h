@@ -87,7 +87,8 @@ struct AdvectionParameters
   /// axis x, y, z the first and the last sample index, the whole axis when the
   /// first is past the last (the default: every sample). A piece of a distributed
   /// image asks for its own samples: the halo around them feeds the flow and the
-  /// traces, and is not traced itself. The other kernels (mesh, PDE) hand every sample.
+  /// traces, and is not traced itself. The other kernels (mesh, PDE, the gradient
+  /// domain, which solves over the whole grid) hand every sample.
   std::array<std::int64_t, 6> writtenSamples{ { 0, -1, 0, -1, 0, -1 } };
 };
 

@@ -519,6 +519,9 @@ Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
   }
   AdvectionReport localReport;
   AdvectionReport& r = report ? *report : localReport;
+  // One Poisson problem over the whole grid: every sample is advected and handed to `output`.
+  AdvectionParameters whole = parameters;
+  whole.writtenSamples = AdvectionParameters().writtenSamples;
   const std::int64_t N = shape.NumberOfSamples();
   const int threads = ThreadsForWork(parameters.numberOfThreads, N);
   const ChannelScan scan = ScanChannels(N, C, input, threads);
@@ -536,11 +539,11 @@ Status AdvectGridGradients(const GridShape& shape, int C, const T* input,
   if (!(parameters.time > 0.0) || axes.count == 0 || !(range > 0.0))
   {
     // Nothing moves: the input itself (and the flow fields, when asked for).
-    return AdvectGridSignal(shape, C, input, output, parameters, report, fields, progress);
+    return AdvectGridSignal(shape, C, input, output, whole, report, fields, progress);
   }
   Status status;
   LargeArray<float> advected =
-    AdvectDifferences(shape, C, input, axes, scan, range, parameters, r, fields, progress, threads, status);
+    AdvectDifferences(shape, C, input, axes, scan, range, whole, r, fields, progress, threads, status);
   if (!status.Ok())
   {
     return status;
