@@ -18,10 +18,13 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 
 namespace ShockParallel
 {
@@ -150,13 +153,53 @@ bool AssemblePoints(vtkPolyData* piece, const Numbering& n, const Rings& rings, 
   return complete;
 }
 
+/// Offsets and connectivity of `kind`'s cells (own first, then ghost) in arrays of `Array` (32- or 64-bit ids).
+template <typename Array>
+vtkSmartPointer<vtkCellArray> FillKind(unsigned char kind, const Cells& own, const Cells& ghost, vtkIdType cells,
+  vtkIdType ids, std::vector<std::pair<int, vtkIdType>>& order)
+{
+  using Id = typename Array::ValueType;
+  vtkNew<Array> offsets, connectivity;
+  offsets->SetNumberOfTuples(cells + 1);
+  connectivity->SetNumberOfTuples(ids);
+  Id* offset = offsets->GetPointer(0);
+  Id* to = connectivity->GetPointer(0);
+  *offset = 0;
+  for (int which = 0; which < 2; ++which)
+  {
+    const Cells& from = which == 0 ? own : ghost;
+    for (vtkIdType c = 0; c < from.Size(); ++c)
+    {
+      if (from.kind[static_cast<size_t>(c)] != kind)
+      {
+        continue;
+      }
+      const vtkIdType* begin = &from.points[static_cast<size_t>(from.offsets[static_cast<size_t>(c)])];
+      const vtkIdType* end = from.points.data() + from.offsets[static_cast<size_t>(c) + 1];
+      for (const vtkIdType* p = begin; p < end; ++p)
+      {
+        *to++ = static_cast<Id>(*p);
+      }
+      offset[1] = static_cast<Id>(offset[0] + (end - begin));
+      ++offset;
+      order.emplace_back(which, c);
+    }
+  }
+  auto array = vtkSmartPointer<vtkCellArray>::New();
+  array->SetData(offsets, connectivity);
+  return array;
+}
+
 /**
  * The cells of kind `kind` (0 verts .. 3 strips) of `own` then `ghost`, as
  * one cell array filled as offsets and connectivity (not a call per cell);
- * `order` gets (0 own / 1 ghost, index) of each, in that order.
+ * `order` gets (0 own / 1 ghost, index) of each, in that order. Stored with
+ * 32-bit ids when the piece's points and the kind's ids allow (`points`: the
+ * assembled piece's point count): half the memory of 64-bit ids, which the
+ * piece holds until its output is made.
  */
-vtkSmartPointer<vtkCellArray> KindCells(
-  unsigned char kind, const Cells& own, const Cells& ghost, std::vector<std::pair<int, vtkIdType>>& order)
+vtkSmartPointer<vtkCellArray> KindCells(unsigned char kind, const Cells& own, const Cells& ghost,
+  vtkIdType points, std::vector<std::pair<int, vtkIdType>>& order)
 {
   vtkIdType cells = 0, ids = 0;
   for (const Cells* from : { &own, &ghost })
@@ -170,32 +213,9 @@ vtkSmartPointer<vtkCellArray> KindCells(
       }
     }
   }
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
-  offsets->SetNumberOfTuples(cells + 1);
-  connectivity->SetNumberOfTuples(ids);
-  vtkIdType* offset = offsets->GetPointer(0);
-  vtkIdType* to = connectivity->GetPointer(0);
-  *offset = 0;
-  for (int which = 0; which < 2; ++which)
-  {
-    const Cells& from = which == 0 ? own : ghost;
-    for (vtkIdType c = 0; c < from.Size(); ++c)
-    {
-      if (from.kind[static_cast<size_t>(c)] != kind)
-      {
-        continue;
-      }
-      const vtkIdType* begin = &from.points[static_cast<size_t>(from.offsets[static_cast<size_t>(c)])];
-      const vtkIdType* end = from.points.data() + from.offsets[static_cast<size_t>(c) + 1];
-      to = std::copy(begin, end, to);
-      offset[1] = offset[0] + (end - begin);
-      ++offset;
-      order.emplace_back(which, c);
-    }
-  }
-  auto array = vtkSmartPointer<vtkCellArray>::New();
-  array->SetData(offsets, connectivity);
-  return array;
+  const vtkIdType limit = std::numeric_limits<vtkTypeInt32>::max();
+  return points < limit && ids < limit ? FillKind<vtkTypeInt32Array>(kind, own, ghost, cells, ids, order)
+                                       : FillKind<vtkTypeInt64Array>(kind, own, ghost, cells, ids, order);
 }
 
 /**
@@ -210,7 +230,7 @@ bool AssembleCells(vtkPolyData* piece, const Numbering& n, const Rings& rings, v
   vtkSmartPointer<vtkCellArray> kindCells[4];
   for (unsigned char kind = 0; kind < 4; ++kind)
   {
-    kindCells[kind] = KindCells(kind, n.own, rings.ghost, order);
+    kindCells[kind] = KindCells(kind, n.own, rings.ghost, result->GetNumberOfPoints(), order);
   }
   result->SetVerts(kindCells[0]);
   result->SetLines(kindCells[1]);
