@@ -5,6 +5,7 @@
 // the hat functions solved from their interpolation conditions. Then the fit
 // itself: its exact solution satisfies (eps M + S) c = eps M c0 + D w.
 #include "ScreenedPoissonFit.h"
+#include "TestMeshSteps.h" // V3 arithmetic and SmallMesh, shared with the mesh-step tests
 #include "TriangleMesh.h"
 
 #include <gtest/gtest.h>
@@ -17,37 +18,8 @@
 
 namespace
 {
-using namespace shock;
-using V3 = std::array<double, 3>;
-
-V3 Sub(const V3& a, const V3& b) { return { a[0] - b[0], a[1] - b[1], a[2] - b[2] }; }
-V3 Add(const V3& a, const V3& b) { return { a[0] + b[0], a[1] + b[1], a[2] + b[2] }; }
-V3 Mul(double s, const V3& a) { return { s * a[0], s * a[1], s * a[2] }; }
-double Dot3(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 Cross3(const V3& a, const V3& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
-double Norm3(const V3& a) { return std::sqrt(Dot3(a, a)); }
-
-struct Case
-{
-  std::vector<double> points;
-  std::vector<std::int64_t> triangles;
-  TriangleMesh mesh;
-  int Points() const { return static_cast<int>(points.size() / 3); }
-  int Triangles() const { return static_cast<int>(triangles.size() / 3); }
-  V3 P(std::int64_t i) const { return { points[3 * i], points[3 * i + 1], points[3 * i + 2] }; }
-  std::array<std::int64_t, 3> T(int f) const
-  {
-    return { triangles[3 * f], triangles[3 * f + 1], triangles[3 * f + 2] };
-  }
-  double Area(int f) const
-  {
-    const auto t = T(f);
-    return 0.5 * Norm3(Cross3(Sub(P(t[1]), P(t[0])), Sub(P(t[2]), P(t[0]))));
-  }
-};
+using namespace meshsteps;
+using Case = SmallMesh;
 
 /// A curved, jittered 5 x 4 sheet with random diagonals.
 Case Sheet()
@@ -71,8 +43,7 @@ Case Sheet()
       else
         c.triangles.insert(c.triangles.end(), { a, b, d, b, e, d });
     }
-  TriangleMeshView view{ c.Points(), c.points.data(), c.Triangles(), c.triangles.data() };
-  EXPECT_TRUE(c.mesh.Build(view, 1).Ok());
+  c.Build();
   return c;
 }
 

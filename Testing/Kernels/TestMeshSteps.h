@@ -1,5 +1,6 @@
-// Shared by the mesh-step tests (TestMeshSteps.cxx, TestMeshTraceSteps.cxx): small
-// irregular meshes and the independent references, written from the paper.
+// Shared by the mesh-step tests (TestMeshSteps.cxx, TestMeshTraceSteps.cxx) and
+// the fit operators' (TestFitOperators.cxx): small irregular meshes and the
+// independent references, written from the paper.
 #ifndef TestMeshSteps_h
 #define TestMeshSteps_h
 
