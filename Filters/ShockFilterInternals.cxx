@@ -166,6 +166,17 @@ struct CopyFromDoubles
     });
   }
 };
+
+/// `out` holding `values` (CopyFromDoubles on `threads` threads; serial for arrays with unusual storage).
+vtkSmartPointer<vtkDataArray> Convert(vtkSmartPointer<vtkDataArray> out, const double* values, int threads)
+{
+  CopyFromDoubles worker;
+  if (!vtkArrayDispatch::Dispatch::Execute(out.Get(), worker, values, threads))
+  {
+    worker(out.Get(), values, 1); // see ToDoubles
+  }
+  return out;
+}
 }
 
 namespace ShockFilterInternals
@@ -211,13 +222,16 @@ vtkSmartPointer<vtkDataArray> FromDoubles(vtkDataArray* prototype, const std::ve
 vtkSmartPointer<vtkDataArray> FromDoubles(
   vtkDataArray* prototype, const double* values, int threads)
 {
-  vtkSmartPointer<vtkDataArray> out = NewArrayLike(prototype);
-  CopyFromDoubles worker;
-  if (!vtkArrayDispatch::Dispatch::Execute(out.Get(), worker, values, threads))
-  {
-    worker(out.Get(), values, 1); // see ToDoubles
-  }
-  return out;
+  return Convert(NewArrayLike(prototype), values, threads);
+}
+
+vtkSmartPointer<vtkDataArray> FromDoubles(
+  int dataType, int components, vtkIdType tuples, const double* values, int threads)
+{
+  auto out = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(dataType));
+  out->SetNumberOfComponents(components);
+  out->SetNumberOfTuples(tuples);
+  return Convert(out, values, threads);
 }
 
 KernelSignal SignalForKernel(vtkDataArray* array, int threads)

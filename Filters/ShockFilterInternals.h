@@ -47,6 +47,10 @@ vtkSmartPointer<vtkDataArray> FromDoubles(vtkDataArray* prototype, const std::ve
 vtkSmartPointer<vtkDataArray> FromDoubles(
   vtkDataArray* prototype, const double* values, int threads);
 
+/// FromDoubles into a new unnamed array of VTK type `dataType` with `tuples` tuples of `components`.
+vtkSmartPointer<vtkDataArray> FromDoubles(
+  int dataType, int components, vtkIdType tuples, const double* values, int threads);
+
 /**
  * The values a grid kernel reads, as float, double or unsigned 8-bit (exactly
  * one pointer is set): the array's own storage when it is a contiguous array of

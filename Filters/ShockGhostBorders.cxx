@@ -148,6 +148,22 @@ std::vector<vtkIdType> BorderPoints(const Cells& cells, vtkIdType np)
   return border;
 }
 
+std::vector<vtkIdType> LoosePoints(const Cells& cells, vtkIdType np)
+{
+  std::vector<char> loose(static_cast<size_t>(np), 0);
+  ForEachSide(
+    cells, [](vtkIdType, vtkIdType) {}, [&](vtkIdType p) { loose[static_cast<size_t>(p)] = 1; });
+  std::vector<vtkIdType> points;
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    if (loose[static_cast<size_t>(p)])
+    {
+      points.push_back(p);
+    }
+  }
+  return points;
+}
+
 Cells ReadCells(vtkPolyData* piece)
 {
   Cells cells;

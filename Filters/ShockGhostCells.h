@@ -148,6 +148,13 @@ struct Numbering
  */
 std::vector<vtkIdType> BorderPoints(const Cells& cells, vtkIdType np);
 
+/**
+ * The points on a vertex or line cell (or a polygon of fewer than 3 points),
+ * ascending: another piece may hold such a point inside its polygons, where it
+ * is no border point of that piece (ShockGhostBorders.cxx).
+ */
+std::vector<vtkIdType> LoosePoints(const Cells& cells, vtkIdType np);
+
 /// Cells of `piece`, read in place from its four cell arrays.
 Cells ReadCells(vtkPolyData* piece);
 

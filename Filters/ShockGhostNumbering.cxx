@@ -20,9 +20,12 @@
 #include "vtkTypeInt64Array.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <set>
+#include <unordered_set>
 
 namespace ShockParallel
 {
@@ -209,26 +212,139 @@ Key KeyOf(vtkPolyData* piece, vtkDataArray* givenIds, vtkIdType p)
   return key;
 }
 
+/// The keys of the piece's points `points`, as doubles' bits (3 per point; the controller has no uint64 gather of this form).
+std::vector<double> KeyBits(vtkPolyData* piece, const Numbering& n, const std::vector<vtkIdType>& points)
+{
+  std::vector<std::uint64_t> words;
+  words.reserve(3 * points.size());
+  for (vtkIdType p : points)
+  {
+    const Key key = KeyOf(piece, n.givenIds, p);
+    words.insert(words.end(), { key.a, key.b, key.c });
+  }
+  std::vector<double> bits(words.size());
+  std::memcpy(bits.data(), words.data(), 8 * words.size());
+  return bits;
+}
+
+/**
+ * Step 1b, when some piece has points on vertex or line cells (LoosePoints):
+ * the piece's points inside its polygons that another piece holds that way
+ * become border points too, so that both pieces see the point shared (without
+ * it, each would own it). Candidates are the points within a generous
+ * tolerance of the other pieces' loose points (or with their given global
+ * id); MatchKeys decides which are the same point.
+ */
+void AddPointsHeldLooseElsewhere(
+  vtkMultiProcessController* controller, vtkPolyData* piece, Numbering& n, const std::vector<vtkIdType>& loose)
+{
+  std::vector<vtkIdType> counts;
+  const std::vector<double> all = GatherItems(controller, KeyBits(piece, n, loose), 3, counts);
+  size_t mineBegin = 0;
+  for (int r = 0; r < n.me; ++r)
+  {
+    mineBegin += 3 * static_cast<size_t>(counts[static_cast<size_t>(r)]);
+  }
+  const size_t mineEnd = mineBegin + 3 * loose.size();
+  std::vector<Key> others; // the other pieces' loose keys
+  for (size_t w = 0; w + 2 < all.size(); w += 3)
+  {
+    if (w < mineBegin || w >= mineEnd)
+    {
+      Key key;
+      std::memcpy(&key.a, &all[w], 8);
+      std::memcpy(&key.b, &all[w + 1], 8);
+      std::memcpy(&key.c, &all[w + 2], 8);
+      others.push_back(key);
+    }
+  }
+  if (others.empty() || n.np == 0)
+  {
+    return;
+  }
+  std::vector<char> isBorder(static_cast<size_t>(n.np), 0);
+  for (vtkIdType p : n.border)
+  {
+    isBorder[static_cast<size_t>(p)] = 1;
+  }
+  std::vector<vtkIdType> added;
+  if (n.idsGiven)
+  {
+    std::unordered_set<std::uint64_t> ids;
+    for (const Key& key : others)
+    {
+      ids.insert(key.a);
+    }
+    for (vtkIdType p = 0; p < n.np; ++p)
+    {
+      if (!isBorder[static_cast<size_t>(p)] &&
+        ids.count(static_cast<std::uint64_t>(static_cast<vtkIdType>(n.givenIds->GetTuple1(p)))))
+      {
+        added.push_back(p);
+      }
+    }
+  }
+  else
+  {
+    // A grid of cells of the tolerance's size: a candidate lies in one of the 27 around a loose point.
+    double largest = 0.0;
+    std::vector<double> x(3 * others.size());
+    std::memcpy(x.data(), others.data(), 8 * x.size());
+    for (double v : x)
+    {
+      largest = std::max(largest, std::abs(v));
+    }
+    const double tolerance = largest > 0.0 ? 64.0 * 0x1p-23 * largest : std::numeric_limits<double>::min();
+    const auto cellOf = [tolerance](const double* q) {
+      return std::array<std::int64_t, 3>{ static_cast<std::int64_t>(std::floor(q[0] / tolerance)),
+        static_cast<std::int64_t>(std::floor(q[1] / tolerance)), static_cast<std::int64_t>(std::floor(q[2] / tolerance)) };
+    };
+    std::set<std::array<std::int64_t, 3>> near;
+    for (size_t k = 0; k < others.size(); ++k)
+    {
+      const std::array<std::int64_t, 3> c = cellOf(&x[3 * k]);
+      for (int d = 0; d < 27; ++d)
+      {
+        near.insert({ c[0] + d % 3 - 1, c[1] + (d / 3) % 3 - 1, c[2] + d / 9 - 1 });
+      }
+    }
+    for (vtkIdType p = 0; p < n.np; ++p)
+    {
+      double q[3];
+      piece->GetPoint(p, q);
+      if (!isBorder[static_cast<size_t>(p)] && near.count(cellOf(q)))
+      {
+        added.push_back(p);
+      }
+    }
+  }
+  n.border.insert(n.border.end(), added.begin(), added.end());
+  std::sort(n.border.begin(), n.border.end());
+}
+
 /// Step 1: the piece's border points, and every piece's border keys and point counts.
 void GatherBorders(vtkMultiProcessController* controller, vtkPolyData* piece, Numbering& n, Gathered& g)
 {
   n.border = BorderPoints(n.own, n.np);
-  std::vector<std::uint64_t> mine;
-  mine.reserve(3 * n.border.size());
-  for (vtkIdType p : n.border)
+  const std::vector<vtkIdType> loose = LoosePoints(n.own, n.np);
+  // Every piece's points, and its loose points (one gather).
+  const vtkIdType mine[2] = { n.np, static_cast<vtkIdType>(loose.size()) };
+  std::vector<vtkIdType> counts(2 * static_cast<size_t>(n.processes));
+  controller->AllGather(mine, counts.data(), 2);
+  g.pointCounts.resize(static_cast<size_t>(n.processes));
+  vtkIdType anyLoose = 0;
+  for (int r = 0; r < n.processes; ++r)
   {
-    const Key key = KeyOf(piece, n.givenIds, p);
-    mine.insert(mine.end(), { key.a, key.b, key.c });
+    g.pointCounts[static_cast<size_t>(r)] = counts[2 * static_cast<size_t>(r)];
+    anyLoose += counts[2 * static_cast<size_t>(r) + 1];
   }
-  // The uint64 keys travel as doubles' bits (the controller has no uint64 gather of this form).
-  std::vector<double> mineBits(mine.size());
-  std::memcpy(mineBits.data(), mine.data(), 8 * mine.size());
-  const std::vector<double> allBits = GatherItems(controller, mineBits, 3, g.borderCounts);
+  if (anyLoose > 0) // the same decision on every process
+  {
+    AddPointsHeldLooseElsewhere(controller, piece, n, loose);
+  }
+  const std::vector<double> allBits = GatherItems(controller, KeyBits(piece, n, n.border), 3, g.borderCounts);
   g.words.resize(allBits.size());
   std::memcpy(g.words.data(), allBits.data(), 8 * allBits.size());
-  g.pointCounts.resize(static_cast<size_t>(n.processes));
-  vtkIdType count = n.np;
-  controller->AllGather(&count, g.pointCounts.data(), 1);
 }
 
 /**

@@ -13,6 +13,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -114,16 +115,18 @@ struct CarriedArrays
 vtkSmartPointer<vtkPolyData> Carrying(vtkPolyData* owned, const CarriedArrays& carried);
 
 /**
- * The output of a surface filter's piece: `owned` (the piece's own cells,
- * with every array) where `filtered` (the filter's result on `work`, the piece
- * WithGhostCells made: own points first, each kind's own cells before its
- * ghost cells) changed it: the filtered points, the arrays the filter made or
+ * The output of a surface filter's piece: `piece.owned` (the piece's own
+ * cells, with every array) where `filtered` (the filter's result on
+ * `piece.work`, the piece WithGhostCells made: own points first, each kind's
+ * own cells before its ghost cells; its cells counted by the piece when
+ * ReleaseGeometry dropped them) changed it: the filtered points, the arrays the filter made or
  * replaced (their own rows), the owners' point marks, and the attribute roles
  * the filter changed. Arrays the filter left alone are the owned piece's, so
  * the global ids the rings made (those the input did not have) and the ghost
  * cells' marks are not in it.
  */
-vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* work, vtkPolyData* owned);
+struct SurfacePiece;
+vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, const SurfacePiece& piece);
 
 /**
  * `piece` (without ghost cells) with `layers` rings of its neighbours' cells
@@ -153,7 +156,22 @@ struct SurfacePiece
   vtkSmartPointer<vtkPolyData> work;
   /// The piece's own cells (OwnedCells of the input) that `work` starts with.
   vtkSmartPointer<vtkPolyData> owned;
+  /// ReleaseGeometry dropped `work`'s points and cells; these are their counts.
+  bool released = false;
+  vtkIdType workPoints = 0;
+  int workPointType = 0;
+  std::array<vtkIdType, 4> workCells{}; ///< verts, lines, polygons, strips
 };
+
+/**
+ * Drop the points and cells of `piece.work`, the copy of the piece with its
+ * rings that WithGhostCells assembled, keeping their counts (and the point
+ * type): for a filter that has read them into its own mesh and writes its
+ * output from counts (OwnedPiece), so that the copy does not stay through
+ * the filter's largest phase. Its point and cell arrays stay. Nothing is done
+ * (false) for a serial execution, or when `work` is not such a copy.
+ */
+bool ReleaseGeometry(SurfacePiece& piece);
 
 /**
  * Collective start of a surface filter's execution. All processes agree

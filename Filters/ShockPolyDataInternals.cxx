@@ -76,7 +76,7 @@ vtkSmartPointer<vtkDoubleArray> TrianglesToCells(const char* name, vtkIdType num
   return cells;
 }
 
-void AttachFlowArrays(vtkPolyData* output, const shock::TriangleMesh& mesh,
+void AttachFlowArrays(vtkPolyData* output, vtkIdType numberOfCells, const shock::TriangleMesh& mesh,
   const Triangles& triangles, const shock::MeshFlowFields& fields)
 {
   vtkNew<vtkDoubleArray> potential;
@@ -85,7 +85,7 @@ void AttachFlowArrays(vtkPolyData* output, const shock::TriangleMesh& mesh,
   std::copy(fields.potential.begin(), fields.potential.end(), potential->GetPointer(0));
   output->GetPointData()->AddArray(potential);
   output->GetCellData()->AddArray(TrianglesToCells(
-    vtkShockAdvectionFilter::FlowArrayName(), output->GetNumberOfCells(), mesh, triangles, fields.flow));
+    vtkShockAdvectionFilter::FlowArrayName(), numberOfCells, mesh, triangles, fields.flow));
 }
 
 vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error)

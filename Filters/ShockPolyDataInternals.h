@@ -184,8 +184,8 @@ bool EnsurePolyDataOutput(vtkInformationVector** inputVector, vtkInformationVect
 /// vtkPolyData or vtkUnstructuredGrid: the types the surface filters filter.
 bool IsSurfaceType(vtkDataObject* data);
 
-/// Add "ShockPotential" (points) and "ShockFlow" (cells) to `output`.
-void AttachFlowArrays(vtkPolyData* output, const shock::TriangleMesh& mesh,
+/// Add "ShockPotential" (points) and "ShockFlow" (`numberOfCells` cells) to `output`.
+void AttachFlowArrays(vtkPolyData* output, vtkIdType numberOfCells, const shock::TriangleMesh& mesh,
   const Triangles& triangles, const shock::MeshFlowFields& fields);
 }
 

@@ -5,6 +5,8 @@
 #include "ShockSharpenDistribution.h"
 
 #include "MeshSharpening.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
 #include "vtkIdList.h"
 #include "vtkPointData.h"
@@ -77,6 +79,37 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
       lengths[0] += shock::TrianglePerimeter(
         prepared.triangles.points.data(), mesh.Corners(f));
       lengths[1] += 3.0;
+    }
+  }
+  // The piece's own vertex and line cells write their points too: the owners' positions of those
+  // that another piece owns (a point of a line here may lie inside the other piece's triangles).
+  vtkCellArray* loose[2] = { piece->GetVerts(), piece->GetLines() };
+  if ((loose[0] && loose[0]->GetNumberOfCells() > 0) || (loose[1] && loose[1]->GetNumberOfCells() > 0))
+  {
+    std::vector<std::int64_t> meshPoint(static_cast<size_t>(np));
+    for (std::int64_t p = 0; p < np; ++p)
+    {
+      meshPoint[static_cast<size_t>(inputPoint(p))] = p;
+    }
+    vtkIdType cell = 0; // vtkPolyData numbers verts, then lines
+    for (vtkCellArray* cells : loose)
+    {
+      auto iterator = vtk::TakeSmartPointer(cells->NewIterator());
+      for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
+      {
+        if (cellGhosts && (cellGhosts->GetValue(cell) & vtkDataSetAttributes::DUPLICATECELL))
+        {
+          continue;
+        }
+        vtkIdType size;
+        const vtkIdType* ids;
+        iterator->GetCurrentCell(size, ids);
+        for (vtkIdType k = 0; k < size; ++k)
+        {
+          const size_t m = static_cast<size_t>(meshPoint[static_cast<size_t>(ids[k])]);
+          needed[m] |= partition.ownedPoints[m] ? 0 : 1;
+        }
+      }
     }
   }
   ShockParallel::Sum(controller, lengths, 2);

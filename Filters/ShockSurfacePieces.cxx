@@ -254,14 +254,16 @@ void TakeFilteredArrays(vtkDataSetAttributes* result, vtkDataSetAttributes* filt
 }
 }
 
-vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* work, vtkPolyData* owned)
+vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, const SurfacePiece& piece)
 {
   // WithGhostCells put the piece's own points first, in their order, and each
   // kind's own cells before its ghost cells: the owned piece is those rows.
+  vtkPolyData* work = piece.work;
+  vtkPolyData* owned = piece.owned;
   auto result = vtkSmartPointer<vtkPolyData>::New();
   result->ShallowCopy(owned); // its cells, and the arrays the filter leaves alone
   const vtkIdType np = owned->GetNumberOfPoints();
-  if (filtered->GetPoints() && filtered->GetPoints() != work->GetPoints())
+  if (filtered->GetPoints() && (piece.released || filtered->GetPoints() != work->GetPoints()))
   {
     vtkNew<vtkPoints> points;
     points->SetData(vtkDataArray::SafeDownCast(Rows(filtered->GetPoints()->GetData(), { { 0, np } })));
@@ -279,11 +281,36 @@ vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, vtkPolyData* work
     {
       cellRows.push_back({ first, own });
     }
-    first += allCells[kind] ? allCells[kind]->GetNumberOfCells() : 0;
+    first += piece.released ? piece.workCells[static_cast<size_t>(kind)]
+                            : (allCells[kind] ? allCells[kind]->GetNumberOfCells() : 0);
   }
   TakeFilteredArrays(result->GetCellData(), filtered->GetCellData(), work->GetCellData(), cellRows, false);
   result->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName()); // no ghost cell left
   return result;
+}
+
+bool ReleaseGeometry(SurfacePiece& piece)
+{
+  vtkPolyData* work = piece.work;
+  if (!piece.controller || !work || work == piece.owned || piece.released || !work->GetPoints())
+  {
+    return false; // serial, or the piece itself (WithGhostCells made no copy)
+  }
+  piece.workPoints = work->GetNumberOfPoints();
+  piece.workPointType = work->GetPoints()->GetDataType();
+  vtkCellArray* cells[4] = { work->GetVerts(), work->GetLines(), work->GetPolys(), work->GetStrips() };
+  for (int kind = 0; kind < 4; ++kind)
+  {
+    piece.workCells[static_cast<size_t>(kind)] = cells[kind] ? cells[kind]->GetNumberOfCells() : 0;
+  }
+  // The copy is this filter's own object (never the input): its arrays stay.
+  work->SetPoints(nullptr);
+  work->SetVerts(nullptr);
+  work->SetLines(nullptr);
+  work->SetPolys(nullptr);
+  work->SetStrips(nullptr);
+  piece.released = true;
+  return true;
 }
 
 vtkSmartPointer<vtkPolyData> Carrying(vtkPolyData* owned, const CarriedArrays& carried)

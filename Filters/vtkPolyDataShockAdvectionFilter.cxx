@@ -147,7 +147,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     return 0;
   }
   vtkLogScopeF(TRACE, "shock: output of the owned cells");
-  output->ShallowCopy(piece.controller ? ShockParallel::OwnedPiece(filtered, piece.work, piece.owned).GetPointer()
+  output->ShallowCopy(piece.controller ? ShockParallel::OwnedPiece(filtered, piece).GetPointer()
                                        : filtered.GetPointer());
   return 1;
 }
@@ -437,7 +437,7 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   if (this->GenerateFlowArrays)
   {
     fields.potential = prepared->FromMeshPoints(std::move(fields.potential), 1, this->NumberOfThreads);
-    ShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, fields);
+    ShockPolyDataInternals::AttachFlowArrays(output, output->GetNumberOfCells(), mesh, triangles, fields);
   }
   return true;
 }

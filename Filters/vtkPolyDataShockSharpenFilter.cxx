@@ -73,8 +73,8 @@ std::vector<double> CellNormals(vtkPolyData* output, const ShockPolyDataInternal
 }
 
 /// Give `output` new points of the input's type; coincident copies take their representative's position.
-void SetNewPoints(vtkPolyData* output, vtkPolyData* input, const std::vector<std::int64_t>& representative,
-  std::vector<double>& positions, int threads)
+void SetNewPoints(vtkPolyData* output, vtkIdType count, int pointType,
+  const std::vector<std::int64_t>& representative, std::vector<double>& positions, int threads)
 {
   // A representative is the first of its copies (never a copy itself): the copies read
   // positions nobody writes, so the points are independent.
@@ -90,20 +90,19 @@ void SetNewPoints(vtkPolyData* output, vtkPolyData* input, const std::vector<std
     }
   });
   // The input's point type, the values converted as vtkPoints::SetPoint does (a cast).
-  vtkDataArray* prototype = input->GetPoints()->GetData();
   vtkNew<vtkPoints> points;
-  if (prototype->GetDataType() == VTK_FLOAT || prototype->GetDataType() == VTK_DOUBLE)
+  if (pointType == VTK_FLOAT || pointType == VTK_DOUBLE)
   {
-    vtkSmartPointer<vtkDataArray> data = ShockFilterInternals::FromDoubles(prototype,
-      positions.data(), shock::ThreadsForWork(threads, 3 * input->GetNumberOfPoints()));
+    vtkSmartPointer<vtkDataArray> data = ShockFilterInternals::FromDoubles(
+      pointType, 3, count, positions.data(), shock::ThreadsForWork(threads, 3 * count));
     data->SetName("Points"); // as vtkPoints names its own arrays
     points->SetData(data);
   }
   else
   {
-    points->SetDataType(prototype->GetDataType());
-    points->SetNumberOfPoints(input->GetNumberOfPoints());
-    for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+    points->SetDataType(pointType);
+    points->SetNumberOfPoints(count);
+    for (vtkIdType p = 0; p < count; ++p)
     {
       points->SetPoint(p, &positions[static_cast<size_t>(3 * p)]);
     }
@@ -374,6 +373,13 @@ int vtkPolyDataShockSharpenFilter::SharpenPiece(
     vtkLogScopeF(TRACE, "shock: ownership and exchange set-up");
     ShockParallel::Distribute(piece.controller, piece.work, prepared, distribution);
   }
+  // The piece's copy with its rings has been read into the mesh: its points
+  // and cells go before the largest phase (not when RecomputeActiveNormals
+  // will read its cells).
+  if (piece.controller && !piece.work->GetPointData()->GetNormals() && !piece.work->GetCellData()->GetNormals())
+  {
+    ShockParallel::ReleaseGeometry(piece);
+  }
   // Normals, potential, flow and advection on the piece; the fit across pieces.
   std::vector<double> positions(prepared.triangles.points.size());
   std::vector<double> normals( // only asked for when they become an array
@@ -401,8 +407,8 @@ int vtkPolyDataShockSharpenFilter::SharpenPiece(
   // The output: the piece's own cells with the new positions and the requested arrays.
   vtkLogScopeF(TRACE, "shock: output");
   vtkNew<vtkPolyData> result;
-  this->BuildOutput(piece.work, prepared, positions, normals, fields, report, result);
-  output->ShallowCopy(piece.controller ? ShockParallel::OwnedPiece(result, piece.work, piece.owned).GetPointer()
+  this->BuildOutput(piece, prepared, positions, normals, fields, report, result);
+  output->ShallowCopy(piece.controller ? ShockParallel::OwnedPiece(result, piece).GetPointer()
                                        : result.GetPointer());
   return 1;
 }
@@ -473,13 +479,20 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   return true;
 }
 
-void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
+void vtkPolyDataShockSharpenFilter::BuildOutput(const ShockParallel::SurfacePiece& piece,
   const ShockPolyDataInternals::PreparedMesh& prepared, std::vector<double>& positions,
   const std::vector<double>& normals, const shock::MeshFlowFields& fields,
   const shock::SharpeningReport& report, vtkPolyData* output)
 {
+  vtkPolyData* input = piece.work;
   const shock::TriangleMesh& mesh = prepared.mesh;
   const ShockPolyDataInternals::Triangles& triangles = prepared.triangles;
+  // The counts of what `input` holds (a released piece: what it held).
+  const vtkIdType numberOfPoints = piece.released ? piece.workPoints : input->GetNumberOfPoints();
+  const vtkIdType numberOfCells = piece.released
+    ? std::accumulate(piece.workCells.begin(), piece.workCells.end(), vtkIdType{ 0 })
+    : input->GetNumberOfCells();
+  const int pointType = piece.released ? piece.workPointType : input->GetPoints()->GetDataType();
   output->ShallowCopy(input);
   // `positions` are the mesh's points; a renumbered mesh's go back to the input's numbering.
   std::vector<double> renumbered;
@@ -488,13 +501,13 @@ void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
     renumbered = prepared.FromMeshPoints(positions, 3, this->NumberOfThreads);
   }
   std::vector<double>& inputPositions = prepared.pointOrder.empty() ? positions : renumbered;
-  SetNewPoints(output, input, prepared.representative, inputPositions, this->NumberOfThreads);
-  RecomputeActiveNormals(output, triangles, mesh, positions);
+  SetNewPoints(output, numberOfPoints, pointType, prepared.representative, inputPositions, this->NumberOfThreads);
+  RecomputeActiveNormals(output, triangles, mesh, positions); // (a piece with normals is not released)
   ReportRun(this, report, input, output);
   if (this->GenerateSharpenedNormals)
   {
     auto cells = ShockPolyDataInternals::TrianglesToCells(
-      NormalsArrayName(), input->GetNumberOfCells(), mesh, triangles, normals);
+      NormalsArrayName(), numberOfCells, mesh, triangles, normals);
     for (vtkIdType c = 0; c < cells->GetNumberOfTuples(); ++c)
     {
       double* n = cells->GetPointer(3 * c);
@@ -515,7 +528,7 @@ void vtkPolyDataShockSharpenFilter::BuildOutput(vtkPolyData* input,
     {
       inputFields.potential[p] = inputFields.potential[static_cast<size_t>(prepared.representative[p])];
     }
-    ShockPolyDataInternals::AttachFlowArrays(output, mesh, triangles, inputFields);
+    ShockPolyDataInternals::AttachFlowArrays(output, numberOfCells, mesh, triangles, inputFields);
   }
 }
 

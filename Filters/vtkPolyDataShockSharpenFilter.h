@@ -336,8 +336,8 @@ protected:
   /// piece's exchanges map the mesh's points back to the piece's through pointOrder).
   const ShockPolyDataInternals::PreparedMesh* Prepare(vtkPolyData* input, double unit, std::string& error);
 
-  /// `input` with the new positions, the field data of the run and the requested arrays.
-  void BuildOutput(vtkPolyData* input, const ShockPolyDataInternals::PreparedMesh& prepared,
+  /// `piece.work` with the new positions, the field data of the run and the requested arrays.
+  void BuildOutput(const ShockParallel::SurfacePiece& piece, const ShockPolyDataInternals::PreparedMesh& prepared,
     std::vector<double>& positions, const std::vector<double>& normals,
     const shock::MeshFlowFields& fields, const shock::SharpeningReport& report, vtkPolyData* output);
 

@@ -364,9 +364,11 @@ def partitioned_file(mesh, pieces, fractions=None, tag=""):
     names = []
     cuts = (np.cumsum(fractions)[:-1] * len(order)).astype(int) if fractions else pieces
     for k, chunk in enumerate(np.array_split(order, cuts)):
+        kinds = {1: vtkCellArray(), 3: vtkCellArray()}  # vertices, lines; the rest polygons
         polys = vtkCellArray()
-        for c in sorted(chunk):
-            polys.InsertNextCell(mesh.GetCell(int(c)).GetPointIds())
+        for c in sorted(chunk):  # the whole mesh numbers its vertices, lines, polygons in turn: so does the piece
+            kinds.get(mesh.GetCell(int(c)).GetCellDimension() * 2 + 1 if mesh.GetCell(int(c)).GetCellDimension() < 2
+                      else None, polys).InsertNextCell(mesh.GetCell(int(c)).GetPointIds())
         piece = vtkPolyData()
         piece.SetPoints(mesh.GetPoints())
         piece.GetPointData().ShallowCopy(mesh.GetPointData())
@@ -375,6 +377,8 @@ def partitioned_file(mesh, pieces, fractions=None, tag=""):
             rows = numpy_to_vtk(vtk_to_numpy(whole)[np.array(sorted(chunk), dtype=np.int64)].copy(), deep=1)
             rows.SetName(whole.GetName())
             piece.GetCellData().AddArray(rows)
+        piece.SetVerts(kinds[1])
+        piece.SetLines(kinds[3])
         piece.SetPolys(polys)
         clean = vtkCleanPolyData()  # drop the points the piece does not use, merge nothing
         clean.PointMergingOff()
@@ -388,7 +392,8 @@ def partitioned_file(mesh, pieces, fractions=None, tag=""):
     path = os.path.join(OUTPUT, "split%d%s.pvtp" % (pieces, tag))
     with open(path, "w") as handle:
         handle.write('<?xml version="1.0"?>\n<VTKFile type="PPolyData" version="0.1" byte_order="LittleEndian">\n'
-                     '<PPolyData GhostLevel="0">\n<PPointData Scalars="Heat" Normals="Normals">\n'
+                     '<PPolyData GhostLevel="0">\n<PPointData Scalars="Heat"%s>\n'
+                     % (' Normals="Normals"' if mesh.GetPointData().GetNormals() else '')
                      + declared(mesh.GetPointData()) + '</PPointData>\n<PCellData>\n' + declared(mesh.GetCellData())
                      + '</PCellData>\n<PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>\n'
                      + "".join('<Piece Source="%s"/>\n' % n for n in names) + '</PPolyData>\n</VTKFile>\n')
@@ -512,6 +517,86 @@ def surface_split_case(how, whole_path, split_path, references):
         Delete(proxy)
 
 
+def compare_cells(label, mesh, serial, name, tolerance):
+    """Cell by cell through CellIds: each cell once, the cell array `name` equal to serial within tolerance."""
+    ids = vtk_to_numpy(mesh.GetCellData().GetArray("CellIds"))
+    serial_ids = vtk_to_numpy(serial.GetCellData().GetArray("CellIds"))
+    check(sorted(ids) == sorted(serial_ids), "%s: each cell once" % label)
+    array, reference = mesh.GetCellData().GetArray(name), serial.GetCellData().GetArray(name)
+    if not check(array is not None and reference is not None, "%s: %s in both outputs" % (label, name)):
+        return
+    expected = vtk_to_numpy(reference).astype(float).reshape(len(serial_ids), -1)[np.argsort(serial_ids)][ids]
+    got = vtk_to_numpy(array).astype(float).reshape(len(ids), -1)
+    difference = np.abs(got - expected).max(axis=1)
+    print("MEASURE %-34s max |%s - serial| = %.3g (bound %.3g), cells differing > 1e-12: %d of %d"
+          % (label, name, difference.max(), tolerance, int((difference > 1e-12).sum()), len(ids)), flush=True)
+    check(difference.max() <= tolerance, "%s: %s max difference %.3g > %.3g" % (label, name, difference.max(),
+                                                                               tolerance))
+
+
+GENERATED = dict(CurvatureContrast=0.0, GenerateSharpenedNormals=1, GenerateFlowArrays=1)
+
+
+def bare_mesh(mesh):
+    """The test mesh without its point Normals (nothing for the filter to recompute from
+    the cells, as a scan read from a file), with vertex and line cells before its
+    triangles (landmarks and a polyline on the surface) and a CellIds array; written to bare.vtp."""
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    bare = vtkPolyData()
+    bare.DeepCopy(mesh)
+    bare.GetPointData().RemoveArray("Normals")
+    n = bare.GetNumberOfPoints()
+    verts, lines = vtkCellArray(), vtkCellArray()
+    for p in (3, n // 3, n // 2, n - 5):
+        verts.InsertNextCell(1, [p])
+    for a in (n // 4, 2 * n // 3):
+        lines.InsertNextCell(3, [a, a + 1, a + 2])
+    bare.SetVerts(verts)
+    bare.SetLines(lines)
+    extra = verts.GetNumberOfCells() + lines.GetNumberOfCells()
+    tag = numpy_to_vtk(np.concatenate([np.full(extra, 9, np.int64),
+                                       vtk_to_numpy(mesh.GetCellData().GetArray("CellTag"))]), deep=1)
+    tag.SetName("CellTag")
+    bare.GetCellData().AddArray(tag)
+    ids = numpy_to_vtk(np.arange(bare.GetNumberOfCells(), dtype=np.int64), deep=1)
+    ids.SetName("CellIds")
+    bare.GetCellData().AddArray(ids)
+    path = os.path.join(OUTPUT, "bare.vtp")
+    writer = vtkXMLPolyDataWriter()
+    writer.SetInputData(bare)
+    writer.SetFileName(path)
+    writer.Write()
+    return path, bare
+
+
+def generated_arrays_case(how, bare_path, split_path, reference):
+    """Surface Shock Sharpen on pieces without point normals, with its generated
+    arrays: the sharpened normals and flow per cell, the potential per point, and
+    the positions equal serial (the pieces write them from their own cells)."""
+    label = "sharpen generated arrays %s np=%d" % (how, PROCESSES)
+    proxies = split_input(how, bare_path, split_path)
+    del messages.errors[:]
+    sharpen = SurfaceShockSharpen(Input=proxies[-1], FlowTime=256, **GENERATED)
+    path = os.path.join(OUTPUT, "sharpen_generated.pvtp")
+    SaveData(path, proxy=sharpen)
+    check(not messages.errors, "%s: no error (%s)" % (label, messages.errors))
+    Delete(sharpen)
+    for proxy in proxies[::-1]:
+        Delete(proxy)
+    result = read_pieces(path)
+    compare(label, result, reference, positions, FIXED_CG_BOUND, "position")
+    potential = lambda mesh: vtk_to_numpy(mesh.GetPointData().GetArray("ShockPotential")).astype(float)
+    compare(label + " potential", result, reference, potential, 1e-12 * max(np.ptp(potential(reference)), 1e-300),
+            "ShockPotential")
+    compare_cells(label, result, reference, "ShockNormals", 1e-12)
+    flow = vtk_to_numpy(reference.GetCellData().GetArray("ShockFlow"))
+    check(np.abs(flow).max() > 0, "%s: the serial flow is not zero (the case tests something)" % label)
+    compare_cells(label, result, reference, "ShockFlow", 1e-12 * np.abs(flow).max())
+    same_arrays(label, result, reference)
+
+
 def renumbered(mesh):
     """The same surface with its points in a random order (PointIds follow them)."""
     from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
@@ -594,6 +679,12 @@ def surface_cases():
                      partitioned_file(mesh, 3, [0.45, 0.02, 0.53], tag="thin")))
     for how, split_path in ways:
         surface_split_case(how, whole_path, split_path, references)
+    bare_path, bare = bare_mesh(mesh)
+    bare_reader = vtkXMLPolyDataReader()
+    bare_reader.SetFileName(bare_path)
+    generated = serial_filter("SurfaceShockSharpen", bare_reader, FlowTime=256, **GENERATED)
+    for how in ("redistribute", "pvtp"):
+        generated_arrays_case(how, bare_path, partitioned_file(bare, PROCESSES, tag="bare"), generated)
     replicated_case(whole_path, references["sharpen"])
     volume_refused_case()
 
