@@ -20,11 +20,10 @@
 #include "vtkTypeInt64Array.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <set>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace ShockParallel
@@ -43,6 +42,32 @@ Key CoordinateKey(const double x[3])
   std::memcpy(&key.c, &y[2], 8);
   return key;
 }
+
+/**
+ * A cell of a grid of cubes of side `size`: coordinates matched within a
+ * tolerance of `size` lie in one of the 27 cells around a point (Around(0..26),
+ * the first axis slowest).
+ */
+struct GridCell
+{
+  std::int64_t i, j, k;
+  static GridCell Of(const double* x, double size)
+  {
+    return { static_cast<std::int64_t>(std::floor(x[0] / size)), static_cast<std::int64_t>(std::floor(x[1] / size)),
+      static_cast<std::int64_t>(std::floor(x[2] / size)) };
+  }
+  GridCell Around(int d) const { return { i + d / 9 - 1, j + (d / 3) % 3 - 1, k + d % 3 - 1 }; }
+  bool operator==(const GridCell& o) const { return i == o.i && j == o.j && k == o.k; }
+};
+
+struct GridCellHash
+{
+  size_t operator()(const GridCell& c) const
+  {
+    return static_cast<size_t>((static_cast<std::uint64_t>(c.i) * 73856093u) ^
+      (static_cast<std::uint64_t>(c.j) * 19349663u) ^ (static_cast<std::uint64_t>(c.k) * 83492791u));
+  }
+};
 
 /// Everyone's `mine` (`width` values per item), concatenated in process order; items per process.
 template <typename T>
@@ -97,48 +122,28 @@ std::vector<Key> MergedCoordinateKeys(const std::vector<std::uint64_t>& all, dou
   }
   const double tolerance = largest > 0.0 ? relativeTolerance * largest : std::numeric_limits<double>::min();
   // Items by grid cell of the tolerance's size: a match lies in one of the 27 cells around.
-  struct Cell
-  {
-    std::int64_t i, j, k;
-    bool operator==(const Cell& o) const { return i == o.i && j == o.j && k == o.k; }
-  };
-  struct CellHash
-  {
-    size_t operator()(const Cell& c) const
-    {
-      return static_cast<size_t>((static_cast<std::uint64_t>(c.i) * 73856093u) ^
-        (static_cast<std::uint64_t>(c.j) * 19349663u) ^ (static_cast<std::uint64_t>(c.k) * 83492791u));
-    }
-  };
-  std::unordered_map<Cell, std::vector<size_t>, CellHash> grid;
+  std::unordered_map<GridCell, std::vector<size_t>, GridCellHash> grid;
   std::vector<Key> keys(n);
   for (size_t item = 0; item < n; ++item)
   {
     const double* p = &x[3 * item];
-    const Cell cell{ static_cast<std::int64_t>(std::floor(p[0] / tolerance)),
-      static_cast<std::int64_t>(std::floor(p[1] / tolerance)), static_cast<std::int64_t>(std::floor(p[2] / tolerance)) };
+    const GridCell cell = GridCell::Of(p, tolerance);
     size_t match = item;
-    for (std::int64_t di = -1; di <= 1 && match == item; ++di)
+    for (int d = 0; d < 27 && match == item; ++d)
     {
-      for (std::int64_t dj = -1; dj <= 1 && match == item; ++dj)
+      const auto found = grid.find(cell.Around(d));
+      if (found == grid.end())
       {
-        for (std::int64_t dk = -1; dk <= 1 && match == item; ++dk)
+        continue;
+      }
+      for (size_t other : found->second)
+      {
+        const double* q = &x[3 * other];
+        if (std::abs(p[0] - q[0]) <= tolerance && std::abs(p[1] - q[1]) <= tolerance &&
+          std::abs(p[2] - q[2]) <= tolerance)
         {
-          const auto found = grid.find(Cell{ cell.i + di, cell.j + dj, cell.k + dk });
-          if (found == grid.end())
-          {
-            continue;
-          }
-          for (size_t other : found->second)
-          {
-            const double* q = &x[3 * other];
-            if (std::abs(p[0] - q[0]) <= tolerance && std::abs(p[1] - q[1]) <= tolerance &&
-              std::abs(p[2] - q[2]) <= tolerance)
-            {
-              match = other;
-              break;
-            }
-          }
+          match = other;
+          break;
         }
       }
     }
@@ -262,10 +267,23 @@ void AddPointsHeldLooseElsewhere(
   {
     return;
   }
+  // The piece's points inside its polygons: the candidates.
   std::vector<char> isBorder(static_cast<size_t>(n.np), 0);
   for (vtkIdType p : n.border)
   {
     isBorder[static_cast<size_t>(p)] = 1;
+  }
+  std::vector<vtkIdType> inner;
+  for (vtkIdType p = 0; p < n.np; ++p)
+  {
+    if (!isBorder[static_cast<size_t>(p)])
+    {
+      inner.push_back(p);
+    }
+  }
+  if (inner.empty())
+  {
+    return; // e.g. a point cloud: every point is a border point already
   }
   std::vector<vtkIdType> added;
   if (n.idsGiven)
@@ -275,10 +293,9 @@ void AddPointsHeldLooseElsewhere(
     {
       ids.insert(key.a);
     }
-    for (vtkIdType p = 0; p < n.np; ++p)
+    for (vtkIdType p : inner)
     {
-      if (!isBorder[static_cast<size_t>(p)] &&
-        ids.count(static_cast<std::uint64_t>(static_cast<vtkIdType>(n.givenIds->GetTuple1(p)))))
+      if (ids.count(static_cast<std::uint64_t>(static_cast<vtkIdType>(n.givenIds->GetTuple1(p)))))
       {
         added.push_back(p);
       }
@@ -286,35 +303,62 @@ void AddPointsHeldLooseElsewhere(
   }
   else
   {
-    // A grid of cells of the tolerance's size: a candidate lies in one of the 27 around a loose point.
-    double largest = 0.0;
+    // Cells of a grid of the tolerance's size: a candidate lies in one of the
+    // 27 cells around a loose point. The smaller side fills the 27 cells.
     std::vector<double> x(3 * others.size());
     std::memcpy(x.data(), others.data(), 8 * x.size());
+    double largest = 0.0;
     for (double v : x)
     {
       largest = std::max(largest, std::abs(v));
     }
     const double tolerance = largest > 0.0 ? 64.0 * 0x1p-23 * largest : std::numeric_limits<double>::min();
-    const auto cellOf = [tolerance](const double* q) {
-      return std::array<std::int64_t, 3>{ static_cast<std::int64_t>(std::floor(q[0] / tolerance)),
-        static_cast<std::int64_t>(std::floor(q[1] / tolerance)), static_cast<std::int64_t>(std::floor(q[2] / tolerance)) };
-    };
-    std::set<std::array<std::int64_t, 3>> near;
-    for (size_t k = 0; k < others.size(); ++k)
+    const auto cellOf = [tolerance](const double* q) { return GridCell::Of(q, tolerance); };
+    std::vector<char> near(inner.size(), 0);
+    if (27 * others.size() <= inner.size())
     {
-      const std::array<std::int64_t, 3> c = cellOf(&x[3 * k]);
-      for (int d = 0; d < 27; ++d)
+      std::unordered_set<GridCell, GridCellHash> cells; // around the loose points
+      for (size_t k = 0; k < others.size(); ++k)
       {
-        near.insert({ c[0] + d % 3 - 1, c[1] + (d / 3) % 3 - 1, c[2] + d / 9 - 1 });
+        for (int d = 0; d < 27; ++d)
+        {
+          cells.insert(cellOf(&x[3 * k]).Around(d));
+        }
+      }
+      for (size_t i = 0; i < inner.size(); ++i)
+      {
+        double q[3];
+        piece->GetPoint(inner[i], q);
+        near[i] = cells.count(cellOf(q)) ? 1 : 0;
       }
     }
-    for (vtkIdType p = 0; p < n.np; ++p)
+    else
     {
-      double q[3];
-      piece->GetPoint(p, q);
-      if (!isBorder[static_cast<size_t>(p)] && near.count(cellOf(q)))
+      std::unordered_multimap<GridCell, size_t, GridCellHash> points; // the candidates by cell
+      points.reserve(inner.size());
+      for (size_t i = 0; i < inner.size(); ++i)
       {
-        added.push_back(p);
+        double q[3];
+        piece->GetPoint(inner[i], q);
+        points.emplace(cellOf(q), i);
+      }
+      for (size_t k = 0; k < others.size(); ++k)
+      {
+        for (int d = 0; d < 27; ++d)
+        {
+          const auto range = points.equal_range(cellOf(&x[3 * k]).Around(d));
+          for (auto it = range.first; it != range.second; ++it)
+          {
+            near[it->second] = 1;
+          }
+        }
+      }
+    }
+    for (size_t i = 0; i < inner.size(); ++i)
+    {
+      if (near[i])
+      {
+        added.push_back(inner[i]);
       }
     }
   }

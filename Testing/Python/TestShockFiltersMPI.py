@@ -537,10 +537,11 @@ def compare_cells(label, mesh, serial, name, tolerance):
 GENERATED = dict(CurvatureContrast=0.0, GenerateSharpenedNormals=1, GenerateFlowArrays=1)
 
 
-def bare_mesh(mesh):
+def bare_mesh(mesh, landmarks=None, name="bare"):
     """The test mesh without its point Normals (nothing for the filter to recompute from
     the cells, as a scan read from a file), with vertex and line cells before its
-    triangles (landmarks and a polyline on the surface) and a CellIds array; written to bare.vtp."""
+    triangles (landmarks, by default 4, and a polyline on the surface) and a CellIds
+    array; written to NAME.vtp."""
     from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
     from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
     from vtkmodules.util.numpy_support import numpy_to_vtk
@@ -549,8 +550,8 @@ def bare_mesh(mesh):
     bare.GetPointData().RemoveArray("Normals")
     n = bare.GetNumberOfPoints()
     verts, lines = vtkCellArray(), vtkCellArray()
-    for p in (3, n // 3, n // 2, n - 5):
-        verts.InsertNextCell(1, [p])
+    for p in landmarks if landmarks is not None else (3, n // 3, n // 2, n - 5):
+        verts.InsertNextCell(1, [int(p)])
     for a in (n // 4, 2 * n // 3):
         lines.InsertNextCell(3, [a, a + 1, a + 2])
     bare.SetVerts(verts)
@@ -563,7 +564,7 @@ def bare_mesh(mesh):
     ids = numpy_to_vtk(np.arange(bare.GetNumberOfCells(), dtype=np.int64), deep=1)
     ids.SetName("CellIds")
     bare.GetCellData().AddArray(ids)
-    path = os.path.join(OUTPUT, "bare.vtp")
+    path = os.path.join(OUTPUT, name + ".vtp")
     writer = vtkXMLPolyDataWriter()
     writer.SetInputData(bare)
     writer.SetFileName(path)
@@ -685,6 +686,13 @@ def surface_cases():
     generated = serial_filter("SurfaceShockSharpen", bare_reader, FlowTime=256, **GENERATED)
     for how in ("redistribute", "pvtp"):
         generated_arrays_case(how, bare_path, partitioned_file(bare, PROCESSES, tag="bare"), generated)
+    # Landmarks on every 7th point: more vertex points than a piece has inner points / 27
+    # (the other way of finding a piece's points near them).
+    dense_path, dense = bare_mesh(mesh, landmarks=range(0, mesh.GetNumberOfPoints(), 7), name="landmarks")
+    dense_reader = vtkXMLPolyDataReader()
+    dense_reader.SetFileName(dense_path)
+    generated_arrays_case("pvtp, dense landmarks", dense_path, partitioned_file(dense, PROCESSES, tag="landmarks"),
+                          serial_filter("SurfaceShockSharpen", dense_reader, FlowTime=256, **GENERATED))
     replicated_case(whole_path, references["sharpen"])
     volume_refused_case()
 
