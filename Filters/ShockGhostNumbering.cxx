@@ -245,6 +245,20 @@ void AddPointsHeldLooseElsewhere(
 {
   std::vector<vtkIdType> counts;
   const std::vector<double> all = GatherItems(controller, KeyBits(piece, n, loose), 3, counts);
+  // The largest coordinate magnitude of every piece: MatchKeys' tolerance is
+  // relative to the gathered border points', never larger than this.
+  double bounds[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+  if (n.np > 0)
+  {
+    piece->GetPoints()->GetBounds(bounds);
+  }
+  double localLargest = 0.0;
+  for (double b : bounds)
+  {
+    localLargest = std::max(localLargest, std::abs(b));
+  }
+  double largest = 0.0;
+  controller->AllReduce(&localLargest, &largest, 1, vtkCommunicator::MAX_OP);
   size_t mineBegin = 0;
   for (int r = 0; r < n.me; ++r)
   {
@@ -303,16 +317,12 @@ void AddPointsHeldLooseElsewhere(
   }
   else
   {
-    // Cells of a grid of the tolerance's size: a candidate lies in one of the
-    // 27 cells around a loose point. The smaller side fills the 27 cells.
+    // Cells of a grid of a tolerance above MatchKeys' (16 float ulps of the
+    // largest magnitude, against 4 at most): a candidate lies in one of the 27
+    // cells around a loose point. The smaller side fills the 27 cells.
     std::vector<double> x(3 * others.size());
     std::memcpy(x.data(), others.data(), 8 * x.size());
-    double largest = 0.0;
-    for (double v : x)
-    {
-      largest = std::max(largest, std::abs(v));
-    }
-    const double tolerance = largest > 0.0 ? 64.0 * 0x1p-23 * largest : std::numeric_limits<double>::min();
+    const double tolerance = largest > 0.0 ? 16.0 * 0x1p-23 * largest : std::numeric_limits<double>::min();
     const auto cellOf = [tolerance](const double* q) { return GridCell::Of(q, tolerance); };
     std::vector<char> near(inner.size(), 0);
     if (27 * others.size() <= inner.size())

@@ -94,6 +94,10 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
     vtkIdType cell = 0; // vtkPolyData numbers verts, then lines
     for (vtkCellArray* cells : loose)
     {
+      if (!cells)
+      {
+        continue;
+      }
       auto iterator = vtk::TakeSmartPointer(cells->NewIterator());
       for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
       {
