@@ -220,10 +220,12 @@ vtkSmartPointer<vtkCellArray> KindCells(unsigned char kind, const Cells& own, co
 
 /**
  * The cells of the piece with its rings, kind by kind, own then ghost, with
- * the cell data in that order and DUPLICATECELL on the ghost cells. False
- * when a packet lacks a cell array of the piece.
+ * the cell data in that order and DUPLICATECELL on the ghost cells (and, when
+ * asked, each cell's ring: 0 for the own cells). False when a packet lacks a
+ * cell array of the piece.
  */
-bool AssembleCells(vtkPolyData* piece, const Numbering& n, const Rings& rings, vtkPolyData* result)
+bool AssembleCells(vtkPolyData* piece, const Numbering& n, const Rings& rings, vtkPolyData* result,
+  std::vector<unsigned char>* cellRings)
 {
   std::vector<std::pair<int, vtkIdType>> order; // (0 own / 1 ghost, index)
   order.reserve(static_cast<size_t>(n.own.Size() + rings.ghost.Size()));
@@ -271,12 +273,22 @@ bool AssembleCells(vtkPolyData* piece, const Numbering& n, const Rings& rings, v
   }
   cellData->RemoveArray(vtkDataSetAttributes::GhostArrayName());
   cellData->AddArray(cellGhosts);
+  if (cellRings)
+  {
+    cellRings->resize(static_cast<size_t>(cellTotal));
+    for (vtkIdType c = 0; c < cellTotal; ++c)
+    {
+      const auto& entry = order[static_cast<size_t>(c)];
+      (*cellRings)[static_cast<size_t>(c)] =
+        entry.first == 0 ? 0 : rings.ghostCellRing[static_cast<size_t>(entry.second)];
+    }
+  }
   return complete;
 }
 }
 
-vtkSmartPointer<vtkPolyData> WithGhostCells(
-  vtkMultiProcessController* controller, vtkPolyData* piece, int layers, std::string& error)
+vtkSmartPointer<vtkPolyData> WithGhostCells(vtkMultiProcessController* controller, vtkPolyData* piece, int layers,
+  std::string& error, std::vector<unsigned char>* cellRings)
 {
   vtkNew<vtkPolyData> emptyPiece;
   if (!piece->GetPoints())
@@ -299,7 +311,7 @@ vtkSmartPointer<vtkPolyData> WithGhostCells(
   vtkLogScopeF(TRACE, "shock: assemble the piece with its rings");
   auto result = vtkSmartPointer<vtkPolyData>::New();
   const bool pointsComplete = AssemblePoints(piece, numbering, rings, result);
-  const bool cellsComplete = AssembleCells(piece, numbering, rings, result);
+  const bool cellsComplete = AssembleCells(piece, numbering, rings, result, cellRings);
   result->GetFieldData()->ShallowCopy(piece->GetFieldData());
   const bool missing = !pointsComplete || !cellsComplete;
   if (missing)

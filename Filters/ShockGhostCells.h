@@ -184,6 +184,8 @@ struct Rings
   std::vector<vtkIdType> ghostPointIds;  ///< their global ids
   std::vector<Row> ghostCellRows;        ///< ghost cell g is ghostCellRows[g]
   Cells ghost;                           ///< ghost cells, local point ids
+  /// The ring of each ghost cell: 1 + the fewest cells between one of its points and the piece's own cells.
+  std::vector<unsigned char> ghostCellRing;
 };
 
 /**

@@ -57,6 +57,8 @@ public:
   RingGrower(vtkMultiProcessController* controller, vtkPolyData* piece, int layers, Numbering& numbering,
     Rings& rings);
   void Run();
+  /// After Run: the ring of every ghost cell (Rings::ghostCellRing), from its points' budgets.
+  void RingsOfGhostCells();
 
 private:
   using Lists = std::vector<std::vector<vtkIdType>>;
@@ -462,11 +464,30 @@ void RingGrower::TakePacket(vtkCharArray* buffer, int source)
 }
 }
 
+void RingGrower::RingsOfGhostCells()
+{
+  // A point's final budget is Layers minus its distance (in cells) from the
+  // own cells; a ghost cell is in the ring one beyond its nearest point.
+  const Cells& ghost = this->R.ghost;
+  this->R.ghostCellRing.assign(static_cast<size_t>(ghost.Size()), 0);
+  for (vtkIdType c = 0; c < ghost.Size(); ++c)
+  {
+    int budget = 0;
+    for (vtkIdType i = ghost.offsets[static_cast<size_t>(c)]; i < ghost.offsets[static_cast<size_t>(c) + 1]; ++i)
+    {
+      budget = std::max(budget, this->Budget[static_cast<size_t>(ghost.points[static_cast<size_t>(i)])]);
+    }
+    this->R.ghostCellRing[static_cast<size_t>(c)] =
+      static_cast<unsigned char>(std::min(255, std::max(1, this->Layers + 1 - budget)));
+  }
+}
+
 void GrowRings(
   vtkMultiProcessController* controller, vtkPolyData* piece, int layers, Numbering& numbering, Rings& rings)
 {
   RingGrower grower(controller, piece, layers, numbering, rings);
   grower.Run();
+  grower.RingsOfGhostCells();
 }
 }
 }

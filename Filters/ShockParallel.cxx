@@ -365,7 +365,8 @@ bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* inp
   vtkNew<vtkPolyData> none;
   piece.owned = input ? OwnedCells(input) : vtkSmartPointer<vtkPolyData>(none);
   vtkLogStartScope(TRACE, "shock: ghost rings");
-  piece.work = WithGhostCells(controller, Carrying(piece.owned, carried), layers, error);
+  piece.work = WithGhostCells(controller, Carrying(piece.owned, carried), layers, error, &piece.cellRing);
+  piece.rings = layers;
   vtkLogEndScope("shock: ghost rings");
   return piece.work != nullptr; // its failures are agreed by every process already
 }

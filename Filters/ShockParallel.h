@@ -137,10 +137,12 @@ vtkSmartPointer<vtkPolyData> OwnedPiece(vtkPolyData* filtered, const SurfacePiec
  * cells first (same order), then the ghost ones; ghost cells are marked
  * DUPLICATECELL, and every point but those its process owns DUPLICATEPOINT
  * (a shared point is owned by the lowest process whose own cells use it, so
- * each point of the whole mesh is unmarked on exactly one process). Collective.
+ * each point of the whole mesh is unmarked on exactly one process).
+ * `cellRings`, when given, receives each cell's ring (0: the piece's own,
+ * k: the k-th ring around them). Collective.
  */
-vtkSmartPointer<vtkPolyData> WithGhostCells(
-  vtkMultiProcessController* controller, vtkPolyData* piece, int layers, std::string& error);
+vtkSmartPointer<vtkPolyData> WithGhostCells(vtkMultiProcessController* controller, vtkPolyData* piece, int layers,
+  std::string& error, std::vector<unsigned char>* cellRings = nullptr);
 
 /**
  * What one process filters of a surface: the serial input, or its piece with
@@ -161,6 +163,9 @@ struct SurfacePiece
   vtkIdType workPoints = 0;
   int workPointType = 0;
   std::array<vtkIdType, 4> workCells{}; ///< verts, lines, polygons, strips
+  /// The rings `work` has around the own cells, and each of its cells' ring (0: own).
+  int rings = 0;
+  std::vector<unsigned char> cellRing;
 };
 
 /**

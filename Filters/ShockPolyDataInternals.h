@@ -46,6 +46,21 @@ struct Triangles
   shock::TriangleMeshView View() const;
 };
 
+/**
+ * How deep into its ghost rings a piece's filtering read (Surface Shock
+ * Advection): given each cell's ring, the deepest ring the traces of the own
+ * points (or cells) entered, and the rings the flow's stencils add
+ * (shock::MeshStencilRings; -1 when not known). A piece with R rings gave
+ * the whole mesh's result when deepest <= R - stencil.
+ */
+struct PieceReach
+{
+  const std::vector<unsigned char>* cellRing = nullptr; ///< per cell of the piece with its rings
+  int deepest = -1;
+  int stencil = -1;
+  bool aborted = false;
+};
+
 /// Whether a cell's point ids lie in [0, numberOfPoints); else the message in `error`.
 bool IdsInRange(const char* kind, vtkIdType cellId, vtkIdType size, const vtkIdType* ids,
   vtkIdType numberOfPoints, std::string& error);

@@ -130,26 +130,31 @@ bool UsedPointBounds(vtkPolyData* piece, double bounds[6])
   const vtkIdType n = piece->GetNumberOfPoints();
   std::vector<char> used(static_cast<size_t>(n), 0);
   vtkIdType count = 0;
+  // Every point id of the polygons and strips, read straight from their connectivity arrays.
+  const auto mark = [&](const auto* ids, vtkIdType size) {
+    for (vtkIdType k = 0; k < size; ++k)
+    {
+      const vtkIdType id = static_cast<vtkIdType>(ids[k]);
+      if (id >= 0 && id < n && !used[static_cast<size_t>(id)])
+      {
+        used[static_cast<size_t>(id)] = 1;
+        ++count;
+      }
+    }
+  };
   for (vtkCellArray* cells : { piece->GetPolys(), piece->GetStrips() })
   {
-    if (!cells)
+    if (!cells || cells->GetNumberOfConnectivityIds() == 0)
     {
       continue;
     }
-    auto iterator = vtk::TakeSmartPointer(cells->NewIterator());
-    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell())
+    if (cells->IsStorage64Bit())
     {
-      vtkIdType size;
-      const vtkIdType* ids;
-      iterator->GetCurrentCell(size, ids);
-      for (vtkIdType k = 0; k < size; ++k)
-      {
-        if (ids[k] >= 0 && ids[k] < n && !used[static_cast<size_t>(ids[k])])
-        {
-          used[static_cast<size_t>(ids[k])] = 1;
-          ++count;
-        }
-      }
+      mark(cells->GetConnectivityArray64()->GetPointer(0), cells->GetNumberOfConnectivityIds());
+    }
+    else
+    {
+      mark(cells->GetConnectivityArray32()->GetPointer(0), cells->GetNumberOfConnectivityIds());
     }
   }
   if (count == 0 || count == n)

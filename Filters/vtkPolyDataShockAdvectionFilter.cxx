@@ -6,6 +6,7 @@
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -60,6 +61,33 @@ int vtkPolyDataShockAdvectionFilter::FillInputPortInformation(int, vtkInformatio
   return 1;
 }
 
+namespace
+{
+/**
+ * The rings every piece gets next, the same on every process (collective):
+ * more than `rings` when a flow line of a piece's own points read a triangle
+ * deeper than its rings make exact (PieceReach), up to `most`; `rings` when
+ * none did, or a process aborted. `tooFew`: some did with `most` rings already.
+ */
+int MoreRings(vtkMultiProcessController* controller, const ShockPolyDataInternals::PieceReach& reach, int rings,
+  int most, bool& tooFew)
+{
+  int wanted = rings;
+  int beyond = 0;
+  if (!reach.aborted && reach.stencil >= 0 && reach.deepest > rings - reach.stencil)
+  {
+    // Two rings more than this trace read: with exact flow it may run a little further.
+    wanted = std::min(most, std::max(rings + 1, reach.deepest + reach.stencil + 2));
+    beyond = rings >= most ? 1 : 0;
+  }
+  const int local[3] = { reach.aborted ? 1 : 0, wanted, beyond };
+  int global[3] = { 0, 0, 0 };
+  controller->AllReduce(local, global, 3, vtkCommunicator::MAX_OP);
+  tooFew = global[0] == 0 && global[2] != 0;
+  return global[0] != 0 ? rings : std::max(rings, global[1]);
+}
+}
+
 int vtkPolyDataShockAdvectionFilter::RequestDataObject(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -110,46 +138,106 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     }
     return array || surface->GetNumberOfPoints() == 0 ? "" : "no array to filter (see the message above)";
   };
-  vtkSmartPointer<vtkPolyData> input;
-  ShockParallel::SurfacePiece piece;
-  std::string error;
-  vtkLogStartScope(TRACE, "shock: input, agreement and ghost rings");
-  const bool begun = ShockPolyDataInternals::BeginSurface(inputVector, controller, this->GhostLevels,
-    findArray, this->ParametersText(), &selection, carried, input, piece, error);
-  vtkLogEndScope("shock: input, agreement and ghost rings");
-  if (!begun)
+  // In parallel the pieces start with the rings the flow's stencils need and
+  // two more, and get more only when the flow lines of their own points read
+  // deeper (MoreRings), up to GhostLevels.
+  int rings = this->StartingRings();
+  for (;;)
   {
-    vtkErrorMacro(<< error);
-    return 0;
-  }
-  if (piece.skip)
-  {
-    output->Initialize();
-    return 1; // replicated data: process 0 filters it once
-  }
-  const double unit = this->GlobalScales(piece.controller, piece.work, inputVector);
-  if (input->GetNumberOfPoints() == 0)
-  {
-    output->ShallowCopy(input);
-    if (!piece.controller) // an empty piece of a parallel run is normal
+    selection.clear();
+    carried = ShockParallel::CarriedArrays{ false, {}, {} };
+    vtkSmartPointer<vtkPolyData> input;
+    ShockParallel::SurfacePiece piece;
+    std::string error;
+    vtkLogStartScope(TRACE, "shock: input, agreement and ghost rings");
+    const bool begun = ShockPolyDataInternals::BeginSurface(inputVector, controller, rings, findArray,
+      this->ParametersText(), &selection, carried, input, piece, error);
+    vtkLogEndScope("shock: input, agreement and ghost rings");
+    if (!begun)
     {
-      vtkWarningMacro("The input mesh is empty: nothing to filter.");
+      vtkErrorMacro(<< error);
+      return 0;
     }
+    if (piece.skip)
+    {
+      output->Initialize();
+      return 1; // replicated data: process 0 filters it once
+    }
+    const double unit = this->GlobalScales(piece.controller, piece.work, inputVector);
+    this->LastGhostLevels = piece.controller ? piece.rings : 0;
+    if (!piece.controller && input->GetNumberOfPoints() == 0)
+    {
+      output->ShallowCopy(input);
+      vtkWarningMacro("The input mesh is empty: nothing to filter.");
+      return 1;
+    }
+    // Filter the piece with its ghost cells; the output holds each owned cell once.
+    vtkNew<vtkPolyData> filtered;
+    ShockPolyDataInternals::PieceReach reach;
+    reach.cellRing = piece.controller ? &piece.cellRing : nullptr;
+    bool done = true;
+    if (input->GetNumberOfPoints() > 0) // an empty piece of a parallel run is normal
+    {
+      vtkLogStartScope(TRACE, "shock: filter the piece");
+      done = this->FilterSurface(piece.work, array, association, filtered, unit, &reach);
+      vtkLogEndScope("shock: filter the piece");
+      vtkLogF(TRACE, "shock: the own flow lines read ring %d of %d (the flow's stencils: %d rings)", reach.deepest,
+        rings, reach.stencil);
+    }
+    if (piece.controller)
+    {
+      // Every process learns of a failure, and of a piece whose rings were too few.
+      if (ShockParallel::AnyFailed(piece.controller, !done, error))
+      {
+        if (done)
+        {
+          vtkErrorMacro(<< error);
+        }
+        return 0;
+      }
+      bool tooFew = false;
+      const int more = MoreRings(piece.controller, reach, rings, this->GhostLevels, tooFew);
+      if (more > rings)
+      {
+        vtkLogF(TRACE, "shock: a flow line read too deep into %d ghost rings: again with %d", rings, more);
+        rings = more;
+        continue;
+      }
+      if (tooFew && piece.controller->GetLocalProcessId() == 0)
+      {
+        vtkWarningMacro("Flow lines of points near the pieces' borders run further than the "
+          << this->GhostLevels << " ghost rings (Ghost Levels) make exact: those points may differ from a "
+          << "serial run. Raise Ghost Levels (up to 64) for the serial result.");
+      }
+    }
+    if (!done)
+    {
+      return 0;
+    }
+    vtkLogScopeF(TRACE, "shock: output of the owned cells");
+    if (input->GetNumberOfPoints() == 0)
+    {
+      output->ShallowCopy(input);
+      return 1;
+    }
+    output->ShallowCopy(piece.controller ? ShockParallel::OwnedPiece(filtered, piece).GetPointer()
+                                         : filtered.GetPointer());
     return 1;
   }
-  // Filter the piece with its ghost cells; the output holds each owned cell once.
-  vtkNew<vtkPolyData> filtered;
-  vtkLogStartScope(TRACE, "shock: filter the piece");
-  const bool done = this->FilterSurface(piece.work, array, association, filtered, unit);
-  vtkLogEndScope("shock: filter the piece");
-  if (!done)
-  {
-    return 0;
-  }
-  vtkLogScopeF(TRACE, "shock: output of the owned cells");
-  output->ShallowCopy(piece.controller ? ShockParallel::OwnedPiece(filtered, piece).GetPointer()
-                                       : filtered.GetPointer());
-  return 1;
+}
+
+int vtkPolyDataShockAdvectionFilter::StartingRings()
+{
+  shock::MeshSignal points; // a point signal: a cell signal's one more ring is found by MoreRings
+  points.location = shock::MeshLocation::Points;
+  const int stencil = shock::MeshStencilRings(points, ShockFilterInternals::MakeParameters(this));
+  return stencil < 0 ? this->GhostLevels : std::min(this->GhostLevels, stencil + 2);
+}
+
+void vtkPolyDataShockAdvectionFilter::ResetMeasurements()
+{
+  this->Superclass::ResetMeasurements();
+  this->LastGhostLevels = 0;
 }
 
 namespace
@@ -190,9 +278,17 @@ bool TriangleEdgeSums(vtkPolyData* piece, double sums[2])
   else
   {
     copied.resize(static_cast<size_t>(3 * piece->GetNumberOfPoints()));
-    for (vtkIdType p = 0; p < piece->GetNumberOfPoints(); ++p)
+    if (coordinates->GetDataType() == VTK_FLOAT && coordinates->HasStandardMemoryLayout())
     {
-      coordinates->GetTuple(p, copied.data() + 3 * p);
+      const float* from = static_cast<const float*>(coordinates->GetVoidPointer(0));
+      std::copy(from, from + copied.size(), copied.begin()); // exact, as GetTuple's conversion
+    }
+    else
+    {
+      for (vtkIdType p = 0; p < piece->GetNumberOfPoints(); ++p)
+      {
+        coordinates->GetTuple(p, copied.data() + 3 * p);
+      }
     }
     points = copied.data();
   }
@@ -366,8 +462,8 @@ std::vector<double> FromMeshSignal(const ShockPolyDataInternals::PreparedMesh& p
 }
 }
 
-bool vtkPolyDataShockAdvectionFilter::FilterSurface(
-  vtkPolyData* input, vtkDataArray* selected, int association, vtkPolyData* output, double unit)
+bool vtkPolyDataShockAdvectionFilter::FilterSurface(vtkPolyData* input, vtkDataArray* selected, int association,
+  vtkPolyData* output, double unit, ShockPolyDataInternals::PieceReach* reach)
 {
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
   std::string error;
@@ -408,16 +504,37 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(
   meshSignal.values = signal.data();
   meshSignal.valueScale = this->ParallelValueScale; // 0 (own range) unless a parallel piece
   meshSignal.lengthScale = this->ParallelLengthScale; // likewise for the mean edge length
+  // A piece with ghost rings: each triangle's ring, so that the run reports how deep its own flow lines read.
+  std::vector<unsigned char> triangleRing;
+  if (reach && reach->cellRing)
+  {
+    triangleRing.resize(static_cast<size_t>(mesh.NumberOfTriangles()));
+    for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+    {
+      const vtkIdType cell = triangles.sourceCell[static_cast<size_t>(f)];
+      triangleRing[static_cast<size_t>(f)] = cell < static_cast<vtkIdType>(reach->cellRing->size())
+        ? (*reach->cellRing)[static_cast<size_t>(cell)]
+        : std::numeric_limits<unsigned char>::max();
+    }
+    meshSignal.triangleRing = triangleRing.data();
+  }
+  const shock::AdvectionParameters parameters = ShockFilterInternals::MakeParameters(this);
   std::vector<double> filtered(signal.size());
   shock::AdvectionReport report;
   shock::MeshFlowFields fields;
-  const shock::Status status = shock::AdvectMeshSignal(mesh, meshSignal, filtered.data(),
-    ShockFilterInternals::MakeParameters(this), &report, this->GenerateFlowArrays ? &fields : nullptr,
+  const shock::Status status = shock::AdvectMeshSignal(mesh, meshSignal, filtered.data(), parameters, &report,
+    this->GenerateFlowArrays ? &fields : nullptr,
     [this](double fraction) { return this->ReportProgress(fraction, "tracing the flow lines on the surface"); });
   if (!status.Ok())
   {
     vtkErrorMacro("Shock filter failed: " << status.error);
     return false;
+  }
+  if (reach)
+  {
+    reach->deepest = report.deepestRing;
+    reach->stencil = shock::MeshStencilRings(meshSignal, parameters);
+    reach->aborted = report.aborted;
   }
   this->RecordRun(report.flowSeconds, report.advectionSeconds, report.traceSteps, report.truncatedTraces);
   if (report.aborted)

@@ -49,11 +49,14 @@
  * refused with a message saying to add Extract Surface.
  *
  * In parallel (one piece per process, as in pvbatch or pvserver with MPI) the
- * piece gets GhostLevels rings of its neighbours' cells (built with the mesh's own connectivity,
- * over the Controller; see vtkShockAdvectionFilter::SetGhostLevels) and is
- * filtered with them, normalised by the data range and the mean edge length
- * over all pieces: the result equals the serial one when the flow lines stay
- * within the layers (measured in docs/parallel.md). The output holds each
+ * piece gets rings of its neighbours' cells (built with the mesh's own
+ * connectivity, over the Controller; see vtkShockAdvectionFilter::SetGhostLevels)
+ * and is filtered with them, normalised by the data range and the mean edge
+ * length over all pieces. It starts with the rings the flow's stencils need
+ * and two more; when a flow line of its own points read a triangle whose
+ * flow those rings cannot make exact, every piece is filtered again with
+ * more rings, up to GhostLevels (GetLastGhostLevels), so that the result
+ * equals the serial one; a warning says when GhostLevels rings were too few. The output holds each
  * owned cell once; shared points are marked in vtkGhostType. A data set that
  * every process holds whole (replicated) is filtered once, on process 0.
  *
@@ -83,6 +86,7 @@ class vtkPolyData;
 namespace ShockPolyDataInternals
 {
 class MeshCache;
+struct PieceReach;
 }
 
 class VTKFILTERSSHOCK_EXPORT vtkPolyDataShockAdvectionFilter : public vtkShockAdvectionFilter
@@ -105,6 +109,14 @@ public:
    * (e.g. FlowTime) and updating again does not add one.
    */
   int GetNumberOfMeshPreparations() const;
+
+  /**
+   * The ghost rings each piece had in the last execution (0 when serial).
+   * In parallel a piece starts with few rings and gets more only when a flow
+   * line of its own points read a triangle whose flow the rings could not
+   * make exact, up to GhostLevels (see SetGhostLevels).
+   */
+  vtkGetMacro(LastGhostLevels, int);
 
 protected:
   vtkPolyDataShockAdvectionFilter();
@@ -133,7 +145,13 @@ protected:
   /// Filter `selected` (as chosen on the input) on `input` (lengths in `unit`, see
   /// ShockPolyDataInternals::MeshUnit) into `output`; false after vtkErrorMacro.
   bool FilterSurface(vtkPolyData* input, vtkDataArray* selected, int association, vtkPolyData* output,
-    double unit = 1.0);
+    double unit = 1.0, ShockPolyDataInternals::PieceReach* reach = nullptr);
+
+  /// Zero LastGhostLevels with the other Last* measurements.
+  void ResetMeasurements() override;
+
+  /// The rings a piece starts with: the flow's stencils and two more, at most GhostLevels.
+  int StartingRings();
 
   /// Surfaces: vtkPolyData and vtkUnstructuredGrid (a block of another type in a composite input passes through).
   bool FiltersType(vtkDataObject* input) override;
@@ -146,6 +164,7 @@ private:
 
   /// The prepared mesh of the last input, kept between executions.
   std::unique_ptr<ShockPolyDataInternals::MeshCache> PreparedMeshes;
+  int LastGhostLevels = 0;
 };
 
 #endif

@@ -198,13 +198,19 @@ public:
    * sample (clamped to the whole extent). The output is cropped back to what
    * was requested, so pieces tile the image exactly. Cell arrays are grown by
    * the same number of layers.
-   * Surfaces: the piece's own cells get GhostLevels layers of their
-   * neighbours' cells (rings fetched over the Controller, one exchange per ring), are
-   * filtered with them, and the output holds each owned cell once, shared
-   * points marked in vtkGhostType (DUPLICATEPOINT on all copies but the
-   * owner's). Ghost cells arriving from upstream are replaced: their depth
-   * cannot be checked. vtkPolyDataShockSharpenFilter traces its normals in
-   * the same layers. Serial runs (one piece) are not affected.
+   * Surfaces: the piece's own cells get rings of their neighbours' cells
+   * (fetched over the Controller, one exchange per ring), are filtered with
+   * them, and the output holds each owned cell once, shared points marked in
+   * vtkGhostType (DUPLICATEPOINT on all copies but the owner's). Ghost cells
+   * arriving from upstream are replaced: their depth cannot be checked.
+   * vtkPolyDataShockAdvectionFilter uses GhostLevels as the most rings: its
+   * pieces start with the rings the flow's stencils need and two more, and
+   * get more (all pieces together) only when a flow line of their own points
+   * read a triangle whose flow those rings cannot make exact
+   * (shock::MeshStencilRings), so that its result is the serial one; when
+   * GhostLevels rings are still too few it warns. vtkPolyDataShockSharpenFilter
+   * traces its normals in GhostLevels rings. Serial runs (one piece) are not
+   * affected.
    */
   vtkSetClampMacro(GhostLevels, int, 0, 64);
   vtkGetMacro(GhostLevels, int);

@@ -64,11 +64,17 @@ class Messages:
 
     def __init__(self):
         self.errors = []
+        self.warnings = []
         vtkOutputWindow.GetInstance().AddObserver("ErrorEvent", self._error)
+        vtkOutputWindow.GetInstance().AddObserver("WarningEvent", self._warning)
 
     @calldata_type(VTK_STRING)
     def _error(self, caller, event, text):
         self.errors.append(text)
+
+    @calldata_type(VTK_STRING)
+    def _warning(self, caller, event, text):
+        self.warnings.append(text)
 
 
 messages = Messages()
@@ -517,6 +523,78 @@ def surface_split_case(how, whole_path, split_path, references):
         Delete(proxy)
 
 
+def adaptive_rings_case():
+    """Surface Shock Advection's pieces start with few rings and get more only
+    when the flow lines of their own points read too deep: a wide blur and a
+    long time (long flow lines) make them grow; the result is serial's; a
+    Ghost Levels cap below what they need gives a warning."""
+    from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
+    from vtkmodules.vtkFiltersCore import vtkPointDataToCellData
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    _, mesh = whole_mesh()
+    points = vtk_to_numpy(mesh.GetPoints().GetData()).astype(float)
+    wide = numpy_to_vtk(np.tanh(points[:, 2] + 0.3 * points[:, 0]), deep=1)
+    wide.SetName("Heat")
+    mesh.GetPointData().SetScalars(wide)
+    to_cells = vtkPointDataToCellData()
+    to_cells.SetInputData(mesh)
+    to_cells.PassPointDataOn()
+    to_cells.Update()
+    mesh = to_cells.GetOutput()
+    cell_ids = numpy_to_vtk(np.arange(mesh.GetNumberOfCells(), dtype=np.int64), deep=1)
+    cell_ids.SetName("CellIds")
+    mesh.GetCellData().AddArray(cell_ids)
+    path = os.path.join(OUTPUT, "wide.vtp")
+    writer = vtkXMLPolyDataWriter()
+    writer.SetInputData(mesh)
+    writer.SetFileName(path)
+    writer.Write()
+    producer = vtkTrivialProducer()
+    producer.SetOutput(mesh)
+    out = os.path.join(OUTPUT, "adaptive.pvtp")
+    for name, array, properties, start in (
+            ("wide blur, t = 65536", ["POINTS", "Heat"], dict(FlowTime=65536), 5),
+            ("cell data", ["CELLS", "Heat"], dict(FlowTime=65536), 5),
+            ("no smoothing", ["POINTS", "Heat"], dict(FlowTime=65536, SmoothingPasses=0), 3)):
+        label = "adaptive rings, %s np=%d" % (name, PROCESSES)
+        serial = serial_filter("SurfaceShockAdvection", producer, InputArray=array, **properties)
+        reader = XMLPolyDataReader(FileName=[path])
+        split = RedistributeDataSet(Input=reader)
+        del messages.errors[:]
+        del messages.warnings[:]
+        filtered = SurfaceShockAdvection(Input=split, InputArray=array, **properties)
+        SaveData(out, proxy=filtered)
+        filtered.UpdatePropertyInformation()
+        rings = filtered.GetPropertyValue("LastGhostLevels")
+        check(not messages.errors and not messages.warnings,
+              "%s: no error or warning (%s %s)" % (label, messages.errors, messages.warnings))
+        pieces = read_pieces(out)
+        if array[0] == "POINTS":
+            compare(label, pieces, serial, heat, 1e-12 * np.ptp(heat(serial)), "Heat")
+            check(np.abs(heat(serial) - vtk_to_numpy(mesh.GetPointData().GetArray("Heat"))).max() > 1e-3,
+                  "%s: the filter changes the signal" % label)
+        else:
+            compare_cells(label, pieces, serial, "Heat", 1e-12 * np.ptp(vtk_to_numpy(serial.GetCellData().GetArray("Heat"))))
+        if name == "no smoothing":
+            check(start <= rings < 16, "%s: %d rings, from the stencil's and two more (%d), fewer than Ghost Levels"
+                  % (label, rings, start))
+        else:
+            check(start < rings <= 16, "%s: the rings grew from %d to %d, at most Ghost Levels" % (label, start, rings))
+        Delete(filtered)
+        # The same with at most `start` rings: not enough; a warning says so.
+        if name != "no smoothing":
+            capped = SurfaceShockAdvection(Input=split, InputArray=array, GhostLevels=start, **properties)
+            SaveData(out, proxy=capped)
+            capped.UpdatePropertyInformation()
+            check(capped.GetPropertyValue("LastGhostLevels") == start, "%s: capped at %d rings" % (label, start))
+            check(len(messages.warnings) >= 1 and "Ghost Levels" in messages.warnings[-1] and not messages.errors,
+                  "%s, Ghost Levels %d: a warning that the rings are too few (%s)" % (label, start, messages.warnings))
+            Delete(capped)
+        Delete(split)
+        Delete(reader)
+
+
 def compare_cells(label, mesh, serial, name, tolerance):
     """Cell by cell through CellIds: each cell once, the cell array `name` equal to serial within tolerance."""
     ids = vtk_to_numpy(mesh.GetCellData().GetArray("CellIds"))
@@ -695,6 +773,7 @@ def surface_cases():
                           serial_filter("SurfaceShockSharpen", dense_reader, FlowTime=256, **GENERATED))
     replicated_case(whole_path, references["sharpen"])
     volume_refused_case()
+    adaptive_rings_case()
 
 
 cases = [

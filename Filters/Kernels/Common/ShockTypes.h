@@ -102,6 +102,9 @@ struct AdvectionReport
   std::uint64_t truncatedTraces = 0; ///< traces stopped by the step cap (a discrete cycle guard)
   bool aborted = false;          ///< the progress callback asked to stop
   int hierarchyLevels = 1;       ///< resolution levels the grid kernel used (GridHierarchy.h)
+  /// Mesh kernel on a piece (MeshSignal::triangleRing): the deepest ghost ring a
+  /// trace of the piece's own samples read; -1 when none was traced.
+  int deepestRing = -1;
 };
 
 /**

@@ -146,23 +146,25 @@ bool AdvectionPass::ForEach(std::int64_t n, Body&& body)
   ParallelItems items(n, 256, this->progress, this->progressStart, this->progressSpan);
   std::uint64_t steps = 0;
   std::uint64_t truncated = 0;
-#pragma omp parallel num_threads(this->threads) reduction(+ : steps, truncated)
+  int deepest = this->report.deepestRing;
+#pragma omp parallel num_threads(this->threads) reduction(+ : steps, truncated) reduction(max : deepest)
   for (std::int64_t begin, end; items.Next(begin, end); items.Done(begin, end))
   {
     for (std::int64_t i = begin; i < end; ++i)
     {
-      body(i, steps, truncated);
+      body(i, steps, truncated, deepest);
     }
   }
   this->report.traceSteps += steps;
   this->report.truncatedTraces += truncated;
+  this->report.deepestRing = deepest;
   return items.Finish();
 }
 
-std::uint64_t AdvectionPass::Trace(SurfacePoint& q, std::uint64_t& truncated) const
+std::uint64_t AdvectionPass::Trace(SurfacePoint& q, std::uint64_t& truncated, RingReach* reach) const
 {
   bool cut = false;
-  const std::int64_t steps = this->tracer.Trace(q, this->time, cut);
+  const std::int64_t steps = this->tracer.Trace(q, this->time, cut, reach);
   truncated += cut ? 1 : 0;
   return static_cast<std::uint64_t>(steps);
 }
@@ -174,7 +176,7 @@ bool AdvectFaces(
   const TriangleMesh& mesh = pass.mesh;
   const std::int64_t nt = mesh.NumberOfTriangles();
   return pass.ForEach(nt,
-    [&](std::int64_t f, std::uint64_t& steps, std::uint64_t& cut) {
+    [&](std::int64_t f, std::uint64_t& steps, std::uint64_t& cut, int& deepest) {
       if (f + PrefetchDistance < nt)
       {
         pass.tracer.PrefetchAcross(f + PrefetchDistance); // its own data streams in order
@@ -188,7 +190,10 @@ bool AdvectFaces(
       }
       SurfacePoint local = FaceStart(f);
       SurfacePoint& q = positions ? (*positions)[static_cast<size_t>(f)] : local;
-      steps += pass.Trace(q, cut);
+      RingReach reach{ pass.triangleRing };
+      const bool watched = pass.triangleRing && pass.triangleRing[f] == 0; // an own triangle of a piece
+      steps += pass.Trace(q, cut, watched ? &reach : nullptr);
+      deepest = std::max(deepest, reach.deepest);
       for (int c = 0; c < C; ++c)
       {
         acc[c] = 0.0;
@@ -207,7 +212,7 @@ bool AdvectVertices(
   const TriangleMesh& mesh = pass.mesh;
   const CompressedLists& around = mesh.PointTriangles();
   const std::int64_t np = mesh.NumberOfPoints();
-  return pass.ForEach(np, [&](std::int64_t p, std::uint64_t& steps, std::uint64_t& cut) {
+  return pass.ForEach(np, [&](std::int64_t p, std::uint64_t& steps, std::uint64_t& cut, int& deepest) {
     if (p + PrefetchDistance < np)
     {
       for (std::int64_t k = around.Begin(p + PrefetchDistance); k < around.End(p + PrefetchDistance); ++k)
@@ -222,6 +227,13 @@ bool AdvectVertices(
       acc[c] = 0.0; // a loop: std::fill of C values (C known at run time) would call memset
     }
     int samples = 0;
+    // A point of a piece's own triangle (MeshSignal::triangleRing): its traces' rings are recorded.
+    RingReach reach{ pass.triangleRing };
+    bool watched = false;
+    for (std::int64_t k = around.Begin(p); pass.triangleRing && k < around.End(p) && !watched; ++k)
+    {
+      watched = pass.triangleRing[around.items[static_cast<size_t>(k)]] == 0;
+    }
     if (source.validPoint[static_cast<size_t>(p)])
     {
       for (std::int64_t k = around.Begin(p); k < around.End(p); ++k)
@@ -233,7 +245,7 @@ bool AdvectVertices(
         }
         SurfacePoint local = VertexStart(mesh, p, f);
         SurfacePoint& q = positions ? (*positions)[static_cast<size_t>(k)] : local;
-        steps += pass.Trace(q, cut);
+        steps += pass.Trace(q, cut, watched ? &reach : nullptr);
         if (!SampleSurface(mesh, q, pass.sampling, source, acc))
         {
           for (int c = 0; c < C; ++c)
@@ -244,6 +256,7 @@ bool AdvectVertices(
         ++samples;
       }
     }
+    deepest = std::max(deepest, reach.deepest);
     if (samples == 0)
     {
       std::copy(own, own + C, acc); // invalid, isolated or only on degenerate triangles

@@ -65,13 +65,19 @@ struct AdvectionPass
   double progressStart;
   double progressSpan;
   AdvectionReport& report;
+  /**
+   * A piece of a distributed mesh: each triangle's ghost ring (MeshSignal::
+   * triangleRing), or null. The traces of the own samples (points of a ring-0
+   * triangle; ring-0 triangles) record how deep they went: report.deepestRing.
+   */
+  const unsigned char* triangleRing = nullptr;
 
-  /// Run body(i, steps, truncated) for i in [0, n) in parallel; false when aborted.
+  /// Run body(i, steps, truncated, deepest) for i in [0, n) in parallel; false when aborted.
   template <typename Body>
   bool ForEach(std::int64_t n, Body&& body);
 
-  /// Trace q for `time`; returns the steps, counts a truncated trace.
-  std::uint64_t Trace(SurfacePoint& q, std::uint64_t& truncated) const;
+  /// Trace q for `time`; returns the steps, counts a truncated trace. With `reach`, records its rings.
+  std::uint64_t Trace(SurfacePoint& q, std::uint64_t& truncated, RingReach* reach = nullptr) const;
 };
 
 /**

@@ -304,7 +304,7 @@ void RunUpdates(const MeshRun& run, MeshSteps& steps, bool advect, double* outpu
     const auto advectStart = Clock::now();
     const SurfaceTracer tracer(mesh, velocity.data(), p, run.length);
     AdvectionPass pass{ mesh, tracer, p.time / updates, p.sampling, traceThreads, progress,
-      progressStart, 0.9 / updates, report };
+      progressStart, 0.9 / updates, report, run.signal.triangleRing };
     const bool completed = AdvectStep(run, steps, pass, output);
     report.advectionSeconds += SecondsSince(advectStart);
     if (!completed)
@@ -355,6 +355,26 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
 }
 
 } // namespace
+
+int MeshStencilRings(const MeshSignal& signal, const AdvectionParameters& parameters)
+{
+  if (parameters.flowMode != FlowMode::Fixed && parameters.flowUpdates > 1)
+  {
+    return -1;
+  }
+  // Each step of ComputeFlow that reads a point's one-ring (MeshFlow.h) makes
+  // a value exact one ring less deep: on a piece with R rings, a point whose
+  // nearest triangle is of ring j has its whole one-ring when j < R, so after
+  // such a step the points with j <= X - 1 are exact where those with j <= X
+  // were before, and a triangle of ring k (its corners: j <= k) is exact when
+  // its corners are. The steps: a cell signal's average to the points, the
+  // signal's smoothing passes, the potential's average to the points, the
+  // contrast's rings, the potential's smoothing passes.
+  const int passes = std::max(0, parameters.smoothingPasses);
+  const int contrast = signal.potentialContrast > 0.0 ? std::max(1, signal.contrastRings) : 0;
+  const int cells = signal.location == MeshLocation::Triangles ? 1 : 0;
+  return cells + passes + 1 + contrast + passes;
+}
 
 Status AdvectMeshSignal(const TriangleMesh& mesh, const MeshSignal& signal, double* output,
   const AdvectionParameters& parameters, AdvectionReport* report, MeshFlowFields* fields,

@@ -89,7 +89,28 @@ struct MeshSignal
    */
   double potentialContrast = 0.0;
   int contrastRings = 6; ///< rings of the contrast's minimum (>= 1)
+  /**
+   * A piece of a distributed mesh with ghost rings: each triangle's ring (0:
+   * the piece's own, k: the k-th ring of its neighbours' triangles around
+   * them), or null. The run then reports in AdvectionReport::deepestRing the
+   * deepest ring the traces of the own samples read (see MeshStencilRings).
+   */
+  const unsigned char* triangleRing = nullptr;
 };
+
+/**
+ * How many rings around a triangle the flow on it depends on: one per step
+ * before the traces that reads a point's one-ring (a cell signal's average to
+ * the points, each umbrella smoothing pass of the signal and of the potential,
+ * the potential's average over the adjacent triangles, each contrast ring).
+ * On a piece with R ghost rings the flow of every triangle of ring at most
+ * R - MeshStencilRings is the whole mesh's, and so is the result of every own
+ * sample whose traces stayed within those triangles
+ * (AdvectionReport::deepestRing <= R - MeshStencilRings). -1 when the flow is
+ * recomputed from advected values (FlowMode Composed or Naive with more than
+ * one update): that spreads further at every update.
+ */
+int MeshStencilRings(const MeshSignal& signal, const AdvectionParameters& parameters);
 
 /**
  * Run the shock filter on a mesh signal.

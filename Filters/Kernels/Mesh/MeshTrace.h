@@ -33,6 +33,25 @@ struct SurfacePoint
 };
 
 /**
+ * How deep into a distributed piece's ghost rings one trace went: `ring` gives
+ * each triangle's ring (0: the piece's own triangles, k: the k-th ring around
+ * them); `deepest` is the largest ring of the triangles the trace started in or
+ * entered (each one whose velocity or geometry it read). A trace that never
+ * entered a triangle beyond ring E read only flow that a piece with E +
+ * MeshStencilRings rings computes exactly as the whole mesh does.
+ */
+struct RingReach
+{
+  const unsigned char* ring = nullptr;
+  int deepest = -1;
+
+  void Visit(std::int64_t f)
+  {
+    this->deepest = std::max(this->deepest, static_cast<int>(this->ring[f]));
+  }
+};
+
+/**
  * Move one surface point along a per-triangle velocity for time t with the Appendix A Trace
  * (Tracing::Stepped) or its exact delta -> 0 limit (Tracing::FaceCrossing).
  * `velocity` is 3 values per triangle in mesh axes (the kernel passes -u of
@@ -94,15 +113,20 @@ public:
       : static_cast<std::int64_t>(std::ceil(4.0 * diameter / p.stepFraction)) + 64;
   }
 
-  std::int64_t Trace(SurfacePoint& q, double t, bool& truncated) const
+  /// Trace q for time t; with `reach`, the rings of the triangles it reads are recorded there.
+  std::int64_t Trace(SurfacePoint& q, double t, bool& truncated, RingReach* reach = nullptr) const
   {
     truncated = false;
     if (q.triangle < 0 || this->Mesh.Degenerate(q.triangle) || !(t > 0.0))
     {
       return 0;
     }
-    return this->Mode == Tracing::FaceCrossing ? this->TraceFaceCrossing(q, t, truncated)
-                                               : this->TraceStepped(q, t, truncated);
+    if (reach)
+    {
+      reach->Visit(q.triangle);
+    }
+    return this->Mode == Tracing::FaceCrossing ? this->TraceFaceCrossing(q, t, truncated, reach)
+                                               : this->TraceStepped(q, t, truncated, reach);
   }
 
   /**
@@ -182,10 +206,14 @@ private:
   /**
    * Move q, on the edge opposite `corner` of its triangle, into the neighbouring
    * triangle g across that edge (same point, g's barycentric coordinates).
-   * Returns g's corner opposite the edge.
+   * Returns g's corner opposite the edge. Every move into another triangle comes here.
    */
-  int Enter(SurfacePoint& q, int corner, std::int64_t g) const
+  int Enter(SurfacePoint& q, int corner, std::int64_t g, RingReach* reach) const
   {
+    if (reach)
+    {
+      reach->Visit(g);
+    }
     const std::int64_t* tf = this->Mesh.Corners(q.triangle);
     const std::int64_t* tg = this->Mesh.Corners(g);
     const std::int64_t a = tf[(corner + 1) % 3];
@@ -216,7 +244,7 @@ private:
    * Move q across the edge opposite `corner` into the neighbouring triangle, with
    * the edge's hinge. Returns false (q unchanged) at boundary and non-manifold edges.
    */
-  bool Cross(SurfacePoint& q, int corner, Hinge& hinge) const
+  bool Cross(SurfacePoint& q, int corner, Hinge& hinge, RingReach* reach) const
   {
     const std::int64_t f = q.triangle;
     const std::int64_t g = this->Mesh.Neighbour(f, (corner + 1) % 3);
@@ -228,7 +256,7 @@ private:
     const std::int64_t a = tf[(corner + 1) % 3];
     const std::int64_t b = tf[(corner + 2) % 3];
     const std::int64_t opposite = tf[corner];
-    const int third = this->Enter(q, corner, g);
+    const int third = this->Enter(q, corner, g, reach);
     const Vec3 xa = Load(this->Mesh.Point(a));
     const Vec3 edge = Unit(Combine(1.0, Load(this->Mesh.Point(b)), -1.0, xa));
     auto perpendicular = [&](std::int64_t p) {
@@ -246,7 +274,7 @@ private:
    * unfolding across edges; `direction` comes back expressed in the final triangle.
    * Returns false when the walk stops at a boundary, non-manifold edge or stall.
    */
-  bool Walk(SurfacePoint& q, Vec3& direction, double dt) const
+  bool Walk(SurfacePoint& q, Vec3& direction, double dt, RingReach* reach) const
   {
     int stalled = 0;
     while (true)
@@ -263,7 +291,7 @@ private:
       dt -= exit;
       stalled = exit > 0.0 ? 0 : stalled + 1;
       Hinge hinge;
-      if (stalled > MaxStalledCrossings || !this->Cross(q, corner, hinge))
+      if (stalled > MaxStalledCrossings || !this->Cross(q, corner, hinge, reach))
       {
         return false;
       }
@@ -272,7 +300,7 @@ private:
   }
 
   /// The paper's Appendix A Trace with steps of at most delta.
-  std::int64_t TraceStepped(SurfacePoint& q, double t, bool& truncated) const
+  std::int64_t TraceStepped(SurfacePoint& q, double t, bool& truncated, RingReach* reach) const
   {
     Vec3 v = this->VelocityOf(q.triangle);
     Vec3 previous = v;
@@ -287,7 +315,7 @@ private:
       const double dt = std::min(t, this->Delta / std::sqrt(Dot(v, v)));
       previous = v;
       ++steps;
-      if (!this->Walk(q, previous, dt))
+      if (!this->Walk(q, previous, dt, reach))
       {
         break;
       }
@@ -304,7 +332,7 @@ private:
    * sliding (Filippov) velocity along the edge. At the end of such an edge (a
    * vertex) the rest of the trace is stepped.
    */
-  std::int64_t TraceFaceCrossing(SurfacePoint& q, double t, bool& truncated) const
+  std::int64_t TraceFaceCrossing(SurfacePoint& q, double t, bool& truncated, RingReach* reach) const
   {
     Vec3 v = this->VelocityOf(q.triangle);
     std::int64_t steps = 0;
@@ -342,7 +370,7 @@ private:
       const Vec3 xa = Load(this->Mesh.Point(tf[(corner + 1) % 3]));
       const Vec3 edge = Combine(1.0, Load(this->Mesh.Point(tf[(corner + 2) % 3])), -1.0, xa);
       SurfacePoint across = q;
-      const int third = this->Enter(across, corner, g);
+      const int third = this->Enter(across, corner, g, reach);
       const Vec3 next = this->VelocityOf(g);
       // The speeds out of f and into g across the edge, times |E| / 2: both > 0
       // when the trace leaves f and the next flow leaves the edge.
@@ -370,7 +398,7 @@ private:
       steps += this->Slide(q, corner, rate, t);
       if (t > 0.0)
       {
-        return steps + this->TraceStepped(q, t, truncated);
+        return steps + this->TraceStepped(q, t, truncated, reach);
       }
     }
     return steps;
