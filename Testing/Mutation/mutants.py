@@ -508,4 +508,24 @@ MUTANTS = [
          original="format->id == MeshFormat::OBJ ? Strictness::WarningsFail : Strictness::MessagesFail;",
          replacement="Strictness::MessagesFail;",
          bug="an OBJ face vtkOBJReader drops is lost with a warning and success"),
+    # --- ghost rings sized from the flow lines (Surface Shock Advection, session 22)
+    dict(id="stencil-misses-potential-average", file=K + "Mesh/MeshShockAdvection.cxx",
+         original="  return cells + passes + 1 + contrast + passes;",
+         replacement="  return cells + passes + contrast + passes;",
+         bug="the potential's average over a point's triangles is not counted: one ring too few is called exact"),
+    dict(id="reach-not-recorded-on-crossing", file=K + "Mesh/MeshTrace.h",
+         original="""    if (reach)
+    {
+      reach->Visit(g);
+    }""",
+         replacement="",
+         bug="a trace's depth is that of its first triangle: flow lines that cross into deeper rings pass as exact"),
+    dict(id="rings-never-grown", file="Filters/vtkPolyDataShockAdvectionFilter.cxx",
+         original="    wanted = std::min(most, std::max(rings + 1, reach.deepest + reach.stencil + 2));",
+         replacement="    wanted = rings;",
+         bug="the pieces keep their starting rings however deep their flow lines read"),
+    dict(id="ghost-cell-ring-one-too-shallow", file="Filters/ShockGhostRings.cxx",
+         original="std::min(255, std::max(1, this->Layers + 1 - budget))",
+         replacement="std::min(255, std::max(1, this->Layers - budget))",
+         bug="a ghost cell is given the ring of its nearest point, one less than its own"),
 ]
