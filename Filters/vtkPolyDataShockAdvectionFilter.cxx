@@ -605,4 +605,5 @@ void vtkPolyDataShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfMeshPreparations: " << this->GetNumberOfMeshPreparations() << "\n";
+  os << indent << "LastGhostLevels: " << this->LastGhostLevels << "\n";
 }
