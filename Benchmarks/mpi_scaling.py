@@ -18,6 +18,9 @@ exchange and every reduction are inside the time.
       Weak scaling on 1, 2, 4, 8 ranks (oversubscribed beyond 2): per-rank
       work, ghost fraction, bytes exchanged per CG iteration, time per owned
       sample.
+  /usr/bin/python3 Benchmarks/mpi_scaling.py versus PLUGIN_BEFORE PLUGIN_AFTER DIR [RUNS]
+      Two builds on the same works, interleaved round by round (2 ranks and
+      1 rank, 1 thread each): before / after, with the 2 / 1 ratios.
   /usr/bin/python3 Benchmarks/mpi_scaling.py ceiling PLUGIN DIR [RUNS]
       What two processes can do on this machine without any MPI step: each
       work's two pieces (the meshes as RedistributeDataSet cuts them for 2
@@ -250,6 +253,30 @@ def strong(plugin, directory, runs):
               flush=True)
 
 
+def versus(before, after, directory, runs):
+    """Two builds of the plugin on the same works, interleaved: each round runs
+    `after` and `before` on 2 ranks and on 1 rank (1 thread each), so that a
+    noisy period hits both; medians, the 2 / 1 ratios and the per-round
+    after / before ratio on 2 ranks."""
+    print("| work | build | 2 ranks | 1 rank | 2 / 1 | the same, median of per-run ratios |")
+    print("|---|---|---|---|---|---|")
+    for work, name in WORKS:
+        path = os.path.join(directory, name)
+        times = {(b, r): [] for b in ("before", "after") for r in (1, 2)}
+        for _ in range(runs):
+            for label, plugin in (("after", after), ("before", before)):
+                for ranks in (2, 1):
+                    times[(label, ranks)].append(medians(plugin, work, path, ranks, 1, True, 1)[0])
+        for label in ("before", "after"):
+            two, one = times[(label, 2)], times[(label, 1)]
+            print("| %s %s | %s | %.3f s (%.3f-%.3f) | %.3f s (%.3f-%.3f) | %.2f | %.2f |" % (
+                work, name, label, statistics.median(two), min(two), max(two), statistics.median(one), min(one),
+                max(one), statistics.median(two) / statistics.median(one),
+                statistics.median(b / a for a, b in zip(one, two))), flush=True)
+        rounds = statistics.median(b / a for a, b in zip(times[("before", 2)], times[("after", 2)]))
+        print("| %s %s | after / before, 2 ranks, median per round | %.2f | | | |" % (work, name, rounds), flush=True)
+
+
 def weak(plugin, directory, runs):
     """Per-rank figures on 1 to 8 ranks (more ranks than the 2 cores: oversubscribed,
     so the wall time is not the figure; the time per owned sample is scaled by the
@@ -434,6 +461,8 @@ if __name__ == "__main__":
         alone(sys.argv[2], sys.argv[3], sys.argv[4])
     elif command == "split":
         split(sys.argv[2], sys.argv[3])
+    elif command == "versus":
+        versus(sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]) if len(sys.argv) > 5 else 7)
     elif command == "weak":
         weak(sys.argv[2], sys.argv[3], int(sys.argv[4]) if len(sys.argv) > 4 else 3)
     else:
