@@ -13,6 +13,8 @@
 #include "vtkLogger.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "ShockFilterInternals.h"
 #include "ShockParallel.h"
@@ -21,6 +23,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -69,6 +72,21 @@ namespace
  * deeper than its rings make exact (PieceReach), up to `most`; `rings` when
  * none did, or a process aborted. `tooFew`: some did with `most` rings already.
  */
+/**
+ * What identifies an input between executions for the agreed rings: the
+ * object, its sizes and where its points are (its modification time does not:
+ * VTK's cell caches and the arrays an output shares touch it).
+ */
+std::array<std::uintptr_t, 4> InputStamp(vtkDataObject* input)
+{
+  auto* data = vtkDataSet::SafeDownCast(input);
+  auto* surface = vtkPointSet::SafeDownCast(input);
+  return { reinterpret_cast<std::uintptr_t>(input),
+    data ? static_cast<std::uintptr_t>(data->GetNumberOfPoints()) : 0,
+    data ? static_cast<std::uintptr_t>(data->GetNumberOfCells()) : 0,
+    surface && surface->GetPoints() ? reinterpret_cast<std::uintptr_t>(surface->GetPoints()->GetData()) : 0 };
+}
+
 int MoreRings(vtkMultiProcessController* controller, const ShockPolyDataInternals::PieceReach& reach, int rings,
   int most, bool& tooFew)
 {
@@ -141,7 +159,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   // In parallel the pieces start with the rings the flow's stencils need and
   // two more, and get more only when the flow lines of their own points read
   // deeper (MoreRings), up to GhostLevels.
-  int rings = this->StartingRings();
+  int rings = this->StartingRings(vtkDataObject::GetData(inputVector[0]), controller);
   for (;;)
   {
     selection.clear();
@@ -165,6 +183,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     }
     const double unit = this->GlobalScales(piece.controller, piece.work, inputVector);
     this->LastGhostLevels = piece.controller ? piece.rings : 0;
+    ++this->LastRingAttempts;
     if (!piece.controller && input->GetNumberOfPoints() == 0)
     {
       output->ShallowCopy(input);
@@ -203,7 +222,11 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
         rings = more;
         continue;
       }
-      if (tooFew && piece.controller->GetLocalProcessId() == 0)
+      // Kept for the next execution of the same input (a parameter changed):
+      // it starts with the rings agreed here instead of growing them again.
+      this->AgreedRings = rings;
+      this->AgreedInputStamp = InputStamp(vtkDataObject::GetData(inputVector[0]));
+      if (tooFew && this->GhostLevels > 0 && piece.controller->GetLocalProcessId() == 0)
       {
         vtkWarningMacro("Flow lines of points near the pieces' borders run further than the "
           << this->GhostLevels << " ghost rings (Ghost Levels) make exact: those points may differ from a "
@@ -226,18 +249,32 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   }
 }
 
-int vtkPolyDataShockAdvectionFilter::StartingRings()
+int vtkPolyDataShockAdvectionFilter::StartingRings(vtkDataObject* input, vtkMultiProcessController* controller)
 {
   shock::MeshSignal points; // a point signal: a cell signal's one more ring is found by MoreRings
   points.location = shock::MeshLocation::Points;
   const int stencil = shock::MeshStencilRings(points, ShockFilterInternals::MakeParameters(this));
-  return stencil < 0 ? this->GhostLevels : std::min(this->GhostLevels, stencil + 2);
+  if (stencil < 0 || !controller)
+  {
+    return this->GhostLevels;
+  }
+  // The rings the last execution of this same input agreed on (0 for another
+  // input). A stale match costs rings, never the result: they only start higher.
+  if (!input || InputStamp(input) != this->AgreedInputStamp)
+  {
+    this->AgreedRings = 0;
+  }
+  const int mine = std::min(this->GhostLevels, std::max(stencil + 2, this->AgreedRings));
+  int rings = mine;
+  controller->AllReduce(&mine, &rings, 1, vtkCommunicator::MAX_OP); // the same on every process
+  return rings;
 }
 
 void vtkPolyDataShockAdvectionFilter::ResetMeasurements()
 {
   this->Superclass::ResetMeasurements();
   this->LastGhostLevels = 0;
+  this->LastRingAttempts = 0;
 }
 
 namespace
@@ -324,13 +361,15 @@ double vtkPolyDataShockAdvectionFilter::GlobalScales(
   vtkLogScopeF(TRACE, "shock: global scales");
   this->ParallelValueScale = this->GlobalValueScale(controller, inputVector);
   const double unit = ShockPolyDataInternals::MeshUnit(controller, piece, this->NumberOfThreads);
-  this->ParallelLengthScale = this->GlobalMeanEdgeLength(controller, piece) / (unit > 0.0 ? unit : 1.0);
+  this->ParallelLengthScale =
+    this->GlobalMeanEdgeLength(controller, piece, this->ParallelTriangles) / (unit > 0.0 ? unit : 1.0);
   return unit;
 }
 
 double vtkPolyDataShockAdvectionFilter::GlobalMeanEdgeLength(
-  vtkMultiProcessController* controller, vtkPolyData* piece)
+  vtkMultiProcessController* controller, vtkPolyData* piece, double& wholeTriangles)
 {
+  wholeTriangles = 0.0;
   if (!controller)
   {
     return 0.0;
@@ -339,6 +378,7 @@ double vtkPolyDataShockAdvectionFilter::GlobalMeanEdgeLength(
   if (piece && TriangleEdgeSums(piece, sums))
   {
     ShockParallel::Sum(controller, sums, 2);
+    wholeTriangles = sums[1] / 3.0;
     return sums[1] > 0.0 && sums[0] > 0.0 ? sums[0] / sums[1] : 0.0;
   }
   ShockPolyDataInternals::Triangles triangles;
@@ -356,6 +396,7 @@ double vtkPolyDataShockAdvectionFilter::GlobalMeanEdgeLength(
     }
   }
   ShockParallel::Sum(controller, sums, 2);
+  wholeTriangles = sums[1] / 3.0;
   return sums[1] > 0.0 && sums[0] > 0.0 ? sums[0] / sums[1] : 0.0;
 }
 
@@ -504,6 +545,7 @@ bool vtkPolyDataShockAdvectionFilter::FilterSurface(vtkPolyData* input, vtkDataA
   meshSignal.values = signal.data();
   meshSignal.valueScale = this->ParallelValueScale; // 0 (own range) unless a parallel piece
   meshSignal.lengthScale = this->ParallelLengthScale; // likewise for the mean edge length
+  meshSignal.wholeTriangles = static_cast<std::int64_t>(this->ParallelTriangles); // and the trace cap
   // A piece with ghost rings: each triangle's ring, so that the run reports how deep its own flow lines read.
   std::vector<unsigned char> triangleRing;
   if (reach && reach->cellRing)
@@ -606,4 +648,5 @@ void vtkPolyDataShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfMeshPreparations: " << this->GetNumberOfMeshPreparations() << "\n";
   os << indent << "LastGhostLevels: " << this->LastGhostLevels << "\n";
+  os << indent << "LastRingAttempts: " << this->LastRingAttempts << "\n";
 }

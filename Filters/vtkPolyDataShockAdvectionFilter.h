@@ -56,7 +56,9 @@
  * and two more; when a flow line of its own points read a triangle whose
  * flow those rings cannot make exact, every piece is filtered again with
  * more rings, up to GhostLevels (GetLastGhostLevels), so that the result
- * equals the serial one; a warning says when GhostLevels rings were too few. The output holds each
+ * equals the serial one up to the order of floating-point sums (the limits
+ * are in docs/parallel.md, "Rings sized from the flow lines"); a warning says
+ * when GhostLevels rings were too few. The output holds each
  * owned cell once; shared points are marked in vtkGhostType. A data set that
  * every process holds whole (replicated) is filtered once, on process 0.
  *
@@ -79,7 +81,9 @@
 #include "vtkFiltersShockModule.h" // for export macro
 #include "vtkShockAdvectionFilter.h"
 
-#include <memory> // for std::unique_ptr
+#include <array>   // for std::array
+#include <cstdint> // for std::uintptr_t
+#include <memory>  // for std::unique_ptr
 
 class vtkDataArray;
 class vtkPolyData;
@@ -118,6 +122,14 @@ public:
    */
   vtkGetMacro(LastGhostLevels, int);
 
+  /**
+   * How many times the last execution filtered its piece: 1 when the
+   * starting rings were enough (always in serial), one more each time every
+   * piece got more rings. A second execution of the same input (a parameter
+   * changed) starts with the rings the first one agreed on.
+   */
+  vtkGetMacro(LastRingAttempts, int);
+
 protected:
   vtkPolyDataShockAdvectionFilter();
   ~vtkPolyDataShockAdvectionFilter() override;
@@ -139,8 +151,9 @@ protected:
    */
   double GlobalScales(vtkMultiProcessController* controller, vtkPolyData* piece, vtkInformationVector** inputVector);
 
-  /// Mean edge length over the cells all pieces own (collective; 0 without a controller).
-  double GlobalMeanEdgeLength(vtkMultiProcessController* controller, vtkPolyData* piece);
+  /// Mean edge length over the cells all pieces own (collective; 0 without a controller);
+  /// `wholeTriangles`: how many triangles all pieces own.
+  double GlobalMeanEdgeLength(vtkMultiProcessController* controller, vtkPolyData* piece, double& wholeTriangles);
 
   /// Filter `selected` (as chosen on the input) on `input` (lengths in `unit`, see
   /// ShockPolyDataInternals::MeshUnit) into `output`; false after vtkErrorMacro.
@@ -150,8 +163,12 @@ protected:
   /// Zero LastGhostLevels with the other Last* measurements.
   void ResetMeasurements() override;
 
-  /// The rings a piece starts with: the flow's stencils and two more, at most GhostLevels.
-  int StartingRings();
+  /**
+   * The rings a piece starts with: the flow's stencils and two more, or the
+   * rings the last execution of the same input agreed on, at most GhostLevels;
+   * the largest over the processes (collective when `controller` is given).
+   */
+  int StartingRings(vtkDataObject* input, vtkMultiProcessController* controller);
 
   /// Surfaces: vtkPolyData and vtkUnstructuredGrid (a block of another type in a composite input passes through).
   bool FiltersType(vtkDataObject* input) override;
@@ -165,6 +182,10 @@ private:
   /// The prepared mesh of the last input, kept between executions.
   std::unique_ptr<ShockPolyDataInternals::MeshCache> PreparedMeshes;
   int LastGhostLevels = 0;
+  int LastRingAttempts = 0;
+  int AgreedRings = 0;                  ///< the rings the last parallel execution agreed on
+  std::array<std::uintptr_t, 4> AgreedInputStamp{}; ///< of this input (object, sizes, points; compared only)
+  double ParallelTriangles = 0.0; ///< the whole mesh's triangles in parallel (the trace cap), 0 when serial
 };
 
 #endif

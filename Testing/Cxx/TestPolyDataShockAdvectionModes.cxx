@@ -662,7 +662,7 @@ TEST(PolyDataShockAdvectionFilter, PrintSelfListsTheParameters)
   filter->Print(os);
   for (const char* key : { "vtkPolyDataShockAdvectionFilter", "FlowTime: 123.25", "SmoothingPasses: 3",
          "StepFraction", "FlowMode: Naive", "NumberOfFlowUpdates: 5", "Sampling: Nearest",
-         "TracingMode: Stepped", "GenerateFlowArrays: On", "NumberOfThreads: 2", "LastGhostLevels: 0" })
+         "TracingMode: Stepped", "GenerateFlowArrays: On", "NumberOfThreads: 2", "LastGhostLevels: 0", "LastRingAttempts: 0" })
   {
     EXPECT_NE(os.str().find(key), std::string::npos) << key << "\n" << os.str();
   }

@@ -289,3 +289,37 @@ TEST(PieceRings, NoRingsNoRecord)
   EXPECT_EQ(MeshStencilRings(signal, p), 3);
 }
 }
+
+namespace
+{
+TEST(PieceRings, TheTraceCapIsTheWholeMeshs)
+{
+  // A flow turning about the sheet's centre: traces circle until the step cap
+  // (a few diameters of the mesh) stops them. A piece caps them as the whole
+  // mesh it is cut from would (MeshSignal::wholeTriangles), not as itself.
+  const MeshData data = shocktest::PlaneGrid(21, 21, 1.0);
+  const TriangleMesh mesh = Build(data);
+  std::vector<double> velocity(static_cast<size_t>(3 * mesh.NumberOfTriangles()));
+  for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+  {
+    const auto c = shocktest::TriangleCorners(data, f);
+    const double x = (c[0][0] + c[1][0] + c[2][0]) / 3.0 - 10.0, y = (c[0][1] + c[1][1] + c[2][1]) / 3.0 - 10.0;
+    velocity[3 * f] = -y;
+    velocity[3 * f + 1] = x;
+  }
+  AdvectionParameters p;
+  std::int64_t steps[2];
+  for (int k = 0; k < 2; ++k)
+  {
+    const SurfaceTracer tracer(mesh, velocity.data(), p, 1.0, k == 0 ? 0 : 16 * mesh.NumberOfTriangles());
+    SurfacePoint q;
+    q.triangle = mesh.NumberOfTriangles() / 2 + 41; // off the centre: a circle of a few edges
+    bool truncated = false;
+    steps[k] = tracer.Trace(q, 1e12, truncated);
+    EXPECT_TRUE(truncated);
+  }
+  // The cap grows with the diameter, sqrt(triangles): 16 times the triangles, about 4 times the steps.
+  EXPECT_GT(steps[1], 3 * steps[0]);
+  EXPECT_LT(steps[1], 5 * steps[0]);
+}
+}

@@ -576,6 +576,22 @@ def adaptive_rings_case():
                   "%s: the filter changes the signal" % label)
         else:
             compare_cells(label, pieces, serial, "Heat", 1e-12 * np.ptp(vtk_to_numpy(serial.GetCellData().GetArray("Heat"))))
+        attempts = filtered.GetPropertyValue("LastRingAttempts")
+        if rings > start:
+            check(attempts >= 2, "%s: the rings grew, so the pieces were filtered again (%d times)" % (label, attempts))
+            # A parameter changes, the input does not: the next execution starts with the agreed rings.
+            filtered.GenerateFlowArrays = 1
+            SaveData(out, proxy=filtered)
+            filtered.UpdatePropertyInformation()
+            check(filtered.GetPropertyValue("LastRingAttempts") == 1 and
+                  filtered.GetPropertyValue("LastGhostLevels") == rings,
+                  "%s: executed again, it starts with the %d agreed rings (%d attempts, %d rings)"
+                  % (label, rings, filtered.GetPropertyValue("LastRingAttempts"),
+                     filtered.GetPropertyValue("LastGhostLevels")))
+            if array[0] == "POINTS":
+                compare(label + ", again", read_pieces(out), serial, heat, 1e-12 * np.ptp(heat(serial)), "Heat")
+        else:
+            check(attempts == 1, "%s: one attempt (%d)" % (label, attempts))
         if name == "no smoothing":
             check(start <= rings < 16, "%s: %d rings, from the stencil's and two more (%d), fewer than Ghost Levels"
                   % (label, rings, start))

@@ -78,7 +78,7 @@ EXPECTED_NAMES = {
         "LastSetupSeconds", "LastFlowSeconds", "LastAdvectionSeconds", "LastTraceSteps",
         "GhostLevels"},
 }
-EXPECTED_NAMES["SurfaceShockAdvection"] = set(EXPECTED_NAMES["ImageShockAdvection"]) | {"LastGhostLevels"}
+EXPECTED_NAMES["SurfaceShockAdvection"] = set(EXPECTED_NAMES["ImageShockAdvection"]) | {"LastGhostLevels", "LastRingAttempts"}
 EXPECTED_NAMES["SurfaceShockSharpen"] = (EXPECTED_NAMES["ImageShockAdvection"] - {"InputArray"}) | {
     "FeatureAngle", "CurvatureContrast", "FitTarget", "LastRepeatedTriangles", "LastDegenerateTriangles", "LastFeatureEdges",
     "NormalSmoothingPasses", "ScreeningWeight", "Solver", "SolverIterations", "SolverTolerance",

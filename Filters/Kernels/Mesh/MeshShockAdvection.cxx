@@ -302,7 +302,7 @@ void RunUpdates(const MeshRun& run, MeshSteps& steps, bool advect, double* outpu
       continue;
     }
     const auto advectStart = Clock::now();
-    const SurfaceTracer tracer(mesh, velocity.data(), p, run.length);
+    const SurfaceTracer tracer(mesh, velocity.data(), p, run.length, run.signal.wholeTriangles);
     AdvectionPass pass{ mesh, tracer, p.time / updates, p.sampling, traceThreads, progress,
       progressStart, 0.9 / updates, report, run.signal.triangleRing };
     const bool completed = AdvectStep(run, steps, pass, output);

@@ -96,6 +96,12 @@ struct MeshSignal
    * deepest ring the traces of the own samples read (see MeshStencilRings).
    */
   const unsigned char* triangleRing = nullptr;
+  /**
+   * The triangles of the whole mesh a piece is cut from (0: this mesh's): a
+   * trace's steps are capped at a few diameters of the whole mesh, as in a
+   * serial run, not of the piece.
+   */
+  std::int64_t wholeTriangles = 0;
 };
 
 /**

@@ -96,9 +96,10 @@ struct Hinge
 class SurfaceTracer
 {
 public:
-  /// `length`: the length unit (mean edge length), so delta = stepFraction x length.
-  SurfaceTracer(
-    const TriangleMesh& mesh, const double* velocity, const AdvectionParameters& p, double length)
+  /// `length`: the length unit (mean edge length), so delta = stepFraction x length;
+  /// `capTriangles`: the triangles of the mesh whose diameter caps a trace (0: this mesh's).
+  SurfaceTracer(const TriangleMesh& mesh, const double* velocity, const AdvectionParameters& p, double length,
+    std::int64_t capTriangles = 0)
     : Mesh(mesh)
     , Velocity(velocity)
     , Mode(p.tracing)
@@ -107,7 +108,8 @@ public:
     // A discrete gradient flow has no cycles in the continuum limit; should the
     // discretisation create one, cap the work per trace at a few mesh diameters
     // (a diameter is about sqrt(#triangles) edges).
-    const double diameter = std::sqrt(2.0 * static_cast<double>(mesh.NumberOfTriangles())) + 1.0;
+    const std::int64_t triangles = capTriangles > 0 ? capTriangles : mesh.NumberOfTriangles();
+    const double diameter = std::sqrt(2.0 * static_cast<double>(triangles)) + 1.0;
     this->MaxSteps = (this->Mode == Tracing::FaceCrossing)
       ? static_cast<std::int64_t>(16.0 * diameter) + 64
       : static_cast<std::int64_t>(std::ceil(4.0 * diameter / p.stepFraction)) + 64;
