@@ -528,4 +528,12 @@ MUTANTS = [
          original="std::min(255, std::max(1, this->Layers + 1 - budget))",
          replacement="std::min(255, std::max(1, this->Layers - budget))",
          bug="a ghost cell is given the ring of its nearest point, one less than its own"),
+    dict(id="agreed-rings-forgotten", file="Filters/vtkPolyDataShockAdvectionFilter.cxx",
+         original="      this->AgreedRings = rings;",
+         replacement="      this->AgreedRings = 0;",
+         bug="every execution of the same input grows its rings again from the start"),
+    dict(id="trace-cap-of-the-piece", file=K + "Mesh/MeshTrace.h",
+         original="    const std::int64_t triangles = capTriangles > 0 ? capTriangles : mesh.NumberOfTriangles();",
+         replacement="    const std::int64_t triangles = mesh.NumberOfTriangles();",
+         bug="a piece cuts circling traces after a few of its own diameters, sooner than the whole mesh does"),
 ]
