@@ -67,12 +67,6 @@ int vtkPolyDataShockAdvectionFilter::FillInputPortInformation(int, vtkInformatio
 namespace
 {
 /**
- * The rings every piece gets next, the same on every process (collective):
- * more than `rings` when a flow line of a piece's own points read a triangle
- * deeper than its rings make exact (PieceReach), up to `most`; `rings` when
- * none did, or a process aborted. `tooFew`: some did with `most` rings already.
- */
-/**
  * What identifies an input between executions for the agreed rings: the
  * object, its sizes and where its points are (its modification time does not:
  * VTK's cell caches and the arrays an output shares touch it).
@@ -87,6 +81,12 @@ std::array<std::uintptr_t, 4> InputStamp(vtkDataObject* input)
     surface && surface->GetPoints() ? reinterpret_cast<std::uintptr_t>(surface->GetPoints()->GetData()) : 0 };
 }
 
+/**
+ * The rings every piece gets next, the same on every process (collective):
+ * more than `rings` when a flow line of a piece's own points read a triangle
+ * deeper than its rings make exact (PieceReach), up to `most`; `rings` when
+ * none did, or a process aborted. `tooFew`: some did with `most` rings already.
+ */
 int MoreRings(vtkMultiProcessController* controller, const ShockPolyDataInternals::PieceReach& reach, int rings,
   int most, bool& tooFew)
 {
