@@ -113,7 +113,12 @@ int TracersAgree(const RefGrid& g, unsigned seed)
 {
   return TracesAgree<D>(g, seed, 1e-9,
     [](const GridTracer<D>& tracer, std::array<double, D>& q, const std::array<std::int64_t, D>& c,
-      std::int64_t f, double t, bool& cut) { return tracer.TraceFaceCrossing(q, c, f, t, cut); });
+      std::int64_t f, double t, bool& cut) {
+      TraceMarks<D> marks;
+      const std::int64_t n = tracer.TraceFaceCrossing(q, c, f, t, marks);
+      cut = marks.truncated;
+      return n;
+    });
 }
 } // namespace
 
@@ -292,9 +297,8 @@ TEST(GridSteps, AdvectVerticesReadsWhereTracesThatStayInTheirFacesEnd)
         const std::array<std::int64_t, 3> rowStart{ 0, j, k };
         const AdjacentFaces<3> faces(L, rowStart);
         Stencil<3> stencil;
-        std::uint64_t steps = 0, truncated = 0;
-        const int n = TraceSample<3>(ctx, tracer, t, faces, index, s, nullptr, stencil, steps,
-          truncated);
+        TraceTally<3> tally;
+        const int n = TraceSample<3>(ctx, tracer, t, faces, index, s, nullptr, stencil, tally);
         ASSERT_EQ(n, traces);
         for (int c = 0; c < C; ++c)
           EXPECT_NEAR(out[s * C + c], stencil.Apply(values.data(), C, c) / n, 1e-12);
@@ -362,8 +366,8 @@ std::vector<double> AdvectRandom(const RefGrid& g, int C, const std::vector<doub
     }
     const AdjacentFaces<D> faces(L, rowStart);
     Stencil<D> stencil;
-    std::uint64_t steps = 0, truncated = 0;
-    const int n = TraceSample<D>(ctx, tracer, t, faces, index, s, nullptr, stencil, steps, truncated);
+    TraceTally<D> tally;
+    const int n = TraceSample<D>(ctx, tracer, t, faces, index, s, nullptr, stencil, tally);
     for (int c = 0; c < C; ++c)
       EXPECT_NEAR(out[s * C + c], stencil.Apply(signal.data(), C, c) / n, 1e-12) << s << " " << c;
     if (!interior)

@@ -105,6 +105,11 @@ struct AdvectionReport
   /// Mesh kernel on a piece (MeshSignal::triangleRing): the deepest ghost ring a
   /// trace of the piece's own samples read; -1 when none was traced.
   int deepestRing = -1;
+  /// Grid kernel with AdvectionParameters::writtenSamples: per grid axis x, y, z,
+  /// how many face layers below (2a) and above (2a + 1) the faces beside the
+  /// written samples the deepest of their traces went; 0 when none left them.
+  /// Every face a trace read lies within (GridTracer's fence).
+  std::array<std::int64_t, 6> haloReach{};
 };
 
 /**

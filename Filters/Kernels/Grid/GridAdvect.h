@@ -71,7 +71,7 @@ struct VertexAdvection
 
   template <bool Wide>
   SHOCK_ALWAYS_INLINE void Run(
-    ParallelItems& items, std::uint64_t& steps, std::uint64_t& truncated) const
+    ParallelItems& items, TraceTally<D>& tally) const
   {
     const Lattice<D>& L = this->ctx.L;
     const int C = this->ctx.C;
@@ -107,16 +107,16 @@ struct VertexAdvection
         {
           if (this->withinFirst)
           {
-            this->template ShortRoad<Wide>(i, s, faces, vectorReads, result, steps, truncated);
+            this->template ShortRoad<Wide>(i, s, faces, vectorReads, result, tally);
           }
           else
           {
-            this->template ShortRoadAllTraced<Wide>(i, s, faces, vectorReads, result, steps, truncated);
+            this->template ShortRoadAllTraced<Wide>(i, s, faces, vectorReads, result, tally);
           }
         }
         else
         {
-          this->template PaperPath<Wide>(i, s, faces, result, steps, truncated);
+          this->template PaperPath<Wide>(i, s, faces, result, tally);
         }
       }
       this->out(s0, length, row.data());
@@ -130,11 +130,11 @@ struct VertexAdvection
    */
   template <bool Wide>
   SHOCK_ALWAYS_INLINE void PaperPath(const std::array<std::int64_t, D>& i, std::int64_t s, const AdjacentFaces<D>& faces,
-    double* result, std::uint64_t& steps, std::uint64_t& truncated) const
+    double* result, TraceTally<D>& tally) const
   {
     Stencil<D> stencil;
     const int traces =
-      TraceSample<D, Wide>(this->ctx, this->tracer, this->time, faces, i, s, this->positions, stencil, steps, truncated);
+      TraceSample<D, Wide>(this->ctx, this->tracer, this->time, faces, i, s, this->positions, stencil, tally);
     for (int c = 0; c < this->ctx.C; ++c)
     {
       result[c] = stencil.Apply(this->source, this->ctx.C, c) / traces;
@@ -148,8 +148,7 @@ struct VertexAdvection
    */
   template <bool Wide>
   SHOCK_ALWAYS_INLINE void ShortRoad(const std::array<std::int64_t, D>& i, std::int64_t s,
-    const AdjacentFaces<D>& faces, bool vectorReads, double* result, std::uint64_t& steps,
-    std::uint64_t& truncated) const
+    const AdjacentFaces<D>& faces, bool vectorReads, double* result, TraceTally<D>& tally) const
   {
     constexpr int Corners = Lattice<D>::Corners;
     std::array<double, D> ends[Corners]; // of the traces that leave their faces
@@ -165,7 +164,7 @@ struct VertexAdvection
         const std::int64_t f = faces.Face(i[0], b);
         if (!TraceWithinFace<D>(this->tracer.Velocity(f), b, this->time, weights))
         {
-          TraceLeavingFaceOutOfLine<D, Wide>(this->tracer, this->time, i, b, f, ends[far++], steps, truncated);
+          TraceLeavingFaceOutOfLine<D, Wide>(this->tracer, this->time, i, b, f, ends[far++], tally);
         }
       }
     }
@@ -177,7 +176,7 @@ struct VertexAdvection
         const std::int64_t f = faces.Face(i[0], b);
         if (!TraceWithinFace<D>(this->tracer.Velocity(f), b, this->time, weights))
         {
-          TraceLeavingFace<D, Wide>(this->tracer, this->time, i, b, f, ends[far++], steps, truncated);
+          TraceLeavingFace<D, Wide>(this->tracer, this->time, i, b, f, ends[far++], tally);
         }
       }
     }
@@ -188,8 +187,7 @@ struct VertexAdvection
   /// The short road when traces seldom stay in their faces (images at large t): every trace through the tracer.
   template <bool Wide>
   SHOCK_ALWAYS_INLINE void ShortRoadAllTraced(const std::array<std::int64_t, D>& i, std::int64_t s,
-    const AdjacentFaces<D>& faces, bool vectorReads, double* result, std::uint64_t& steps,
-    std::uint64_t& truncated) const
+    const AdjacentFaces<D>& faces, bool vectorReads, double* result, TraceTally<D>& tally) const
   {
     constexpr int Corners = Lattice<D>::Corners;
     std::array<double, D> ends[Corners];
@@ -202,7 +200,7 @@ struct VertexAdvection
 #pragma GCC unroll 8
     for (int b = 0; b < Corners; ++b)
     {
-      TraceFromSample<D, Wide>(this->tracer, this->time, i, at, b, faces.Face(i[0], b), ends[b], steps, truncated);
+      TraceFromSample<D, Wide>(this->tracer, this->time, i, at, b, faces.Face(i[0], b), ends[b], tally);
     }
     CombineSampleReads<D, T, Wide, false>(
       vectorReads, this->lastLower, this->ctx.L, this->hood, this->source, s, this->ctx.C, nullptr, ends, Corners,
@@ -213,14 +211,15 @@ struct VertexAdvection
 /// The threads' region of a VertexAdvection pass, built for the baseline x86-64.
 template <int D, typename T>
 void RunVertexAdvection(const VertexAdvection<D, T>& pass, ParallelItems& items,
-  std::uint64_t& steps, std::uint64_t& truncated)
+  TraceTally<D>& tally)
 {
-  std::uint64_t passSteps = 0;
-  std::uint64_t passTruncated = 0;
-#pragma omp parallel num_threads(pass.ctx.threads) reduction(+ : passSteps, passTruncated)
-  pass.template Run<false>(items, passSteps, passTruncated);
-  steps += passSteps;
-  truncated += passTruncated;
+#pragma omp parallel num_threads(pass.ctx.threads)
+  {
+    TraceTally<D> mine;
+    pass.template Run<false>(items, mine);
+#pragma omp critical(ShockGridTraceTally)
+    tally.Merge(mine);
+  }
 }
 
 #ifdef SHOCK_GRID_AVX2
@@ -228,14 +227,15 @@ void RunVertexAdvection(const VertexAdvection<D, T>& pass, ParallelItems& items,
 /// again, not shared: GCC builds an OpenMP region for its enclosing function's target.
 template <int D, typename T>
 SHOCK_TARGET_AVX2 void RunVertexAdvectionAvx2(const VertexAdvection<D, T>& pass,
-  ParallelItems& items, std::uint64_t& steps, std::uint64_t& truncated)
+  ParallelItems& items, TraceTally<D>& tally)
 {
-  std::uint64_t passSteps = 0;
-  std::uint64_t passTruncated = 0;
-#pragma omp parallel num_threads(pass.ctx.threads) reduction(+ : passSteps, passTruncated)
-  pass.template Run<true>(items, passSteps, passTruncated);
-  steps += passSteps;
-  truncated += passTruncated;
+#pragma omp parallel num_threads(pass.ctx.threads)
+  {
+    TraceTally<D> mine;
+    pass.template Run<true>(items, mine);
+#pragma omp critical(ShockGridTraceTally)
+    tally.Merge(mine);
+  }
 }
 #endif
 
@@ -248,20 +248,25 @@ bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer,
   const VertexAdvection<D, T> pass(ctx, tracer, time, source, out, positions, blocks);
   // The blocks are independent: the threads take them one at a time as they come.
   ParallelItems items(pass.blocks.Count(), 1, ctx.progress, progressStart, progressSpan);
-  std::uint64_t steps = 0;
-  std::uint64_t truncated = 0;
+  TraceTally<D> tally;
 #ifdef SHOCK_GRID_AVX2
   if (UsesAvx2())
   {
-    RunVertexAdvectionAvx2<D, T>(pass, items, steps, truncated);
+    RunVertexAdvectionAvx2<D, T>(pass, items, tally);
   }
   else
 #endif
   {
-    RunVertexAdvection<D, T>(pass, items, steps, truncated);
+    RunVertexAdvection<D, T>(pass, items, tally);
   }
-  ctx.report.traceSteps += steps;
-  ctx.report.truncatedTraces += truncated;
+  ctx.report.traceSteps += tally.steps;
+  ctx.report.truncatedTraces += tally.truncated;
+  for (int d = 0; d < D; ++d)
+  {
+    const int a = ctx.L.axis[d];
+    ctx.report.haloReach[2 * a] = std::max<std::int64_t>(ctx.report.haloReach[2 * a], tally.reach[2 * d]);
+    ctx.report.haloReach[2 * a + 1] = std::max<std::int64_t>(ctx.report.haloReach[2 * a + 1], tally.reach[2 * d + 1]);
+  }
   return items.Finish();
 }
 

@@ -33,6 +33,12 @@ inline Status CheckGridShape(const GridShape& shape, int components)
       return { "the grid spacing along axis " + std::to_string(a) + " (" + std::to_string(shape.spacing[a]) +
         ") must be finite and > 0" };
     }
+    if (shape.wholeDimensions[a] != 0 && shape.wholeDimensions[a] < shape.dimensions[a])
+    {
+      return { "the whole grid's samples along axis " + std::to_string(a) + " (" +
+        std::to_string(shape.wholeDimensions[a]) + ") must be 0 or at least the grid's " +
+        std::to_string(shape.dimensions[a]) };
+    }
   }
   if (components < 1)
   {

@@ -31,6 +31,7 @@ std::vector<GridShape> PyramidShapes(const GridShape& fine, int requested)
       break;
     }
     GridShape coarse = last;
+    coarse.wholeDimensions = { { 0, 0, 0 } }; // a coarse level is its own grid
     for (int a = 0; a < 3; ++a)
     {
       const int n = last.dimensions[a];

@@ -35,6 +35,7 @@ struct Lattice
   std::array<int, D> axis{};                // grid axis (0..2) of each active axis
   std::array<std::int64_t, D> n{};          // samples per active axis (>= 2)
   std::array<std::int64_t, D> m{};          // faces per active axis (n - 1)
+  std::array<std::int64_t, D> wholeN{};     // samples per active axis of the whole grid (GridShape::wholeDimensions)
   std::array<std::int64_t, D> sampleStride{};
   std::array<std::int64_t, D> faceStride{};
   std::array<double, D> h{};                // spacing / mean edge length
@@ -56,6 +57,7 @@ struct Lattice
         this->axis[k] = a;
         this->n[k] = shape.dimensions[a];
         this->m[k] = shape.dimensions[a] - 1;
+        this->wholeN[k] = shape.WholeDimension(a);
         this->sampleStride[k] = stride;
         this->h[k] = shape.spacing[a] / meanEdge;
         this->h2[k] = this->h[k] * this->h[k];

@@ -204,6 +204,40 @@ struct AdvectionContext
   AdvectionReport& report;
 };
 
+/**
+ * One thread's account of its traces: their steps (face crossings or
+ * delta-steps), how many the step cap cut, and how far beyond the tracer's
+ * fence they went (TraceMarks::reach, per active axis below and above).
+ */
+template <int D>
+struct TraceTally
+{
+  std::uint64_t steps = 0;
+  std::uint64_t truncated = 0;
+  std::array<std::int64_t, 2 * D> reach{};
+
+  /// The marks of the next trace, its reach kept here.
+  TraceMarks<D> Marks() { return TraceMarks<D>{ false, &this->reach }; }
+
+  /// Count a trace of `n` steps that left `marks`.
+  void Count(std::int64_t n, const TraceMarks<D>& marks)
+  {
+    this->steps += static_cast<std::uint64_t>(n);
+    this->truncated += marks.truncated ? 1 : 0;
+  }
+
+  /// Add another thread's tally.
+  void Merge(const TraceTally& other)
+  {
+    this->steps += other.steps;
+    this->truncated += other.truncated;
+    for (int k = 0; k < 2 * D; ++k)
+    {
+      this->reach[k] = std::max(this->reach[k], other.reach[k]);
+    }
+  }
+};
+
 /// StartInFace with the sample's index coordinates also given as doubles (`at`).
 template <int D>
 SHOCK_ALWAYS_INLINE void StartInFace(const std::array<std::int64_t, D>& i,
@@ -243,7 +277,7 @@ void StartInFace(const std::array<std::int64_t, D>& i, int b, std::array<double,
 template <int D, bool Wide = false>
 int TraceSample(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, double time,
   const AdjacentFaces<D>& faces, const std::array<std::int64_t, D>& i, std::int64_t s,
-  float* positions, Stencil<D>& stencil, std::uint64_t& steps, std::uint64_t& truncated)
+  float* positions, Stencil<D>& stencil, TraceTally<D>& tally)
 {
   constexpr int Corners = Lattice<D>::Corners;
   int traces = 0;
@@ -266,9 +300,8 @@ int TraceSample(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, dou
     {
       StartInFace<D>(i, b, q, c);
     }
-    bool cut = false;
-    steps += static_cast<std::uint64_t>(tracer.template Trace<Wide>(q, c, f, time, cut));
-    truncated += cut ? 1 : 0;
+    TraceMarks<D> marks = tally.Marks();
+    tally.Count(tracer.template Trace<Wide>(q, c, f, time, marks), marks);
     if (stored)
     {
       std::copy(q.begin(), q.end(), stored);

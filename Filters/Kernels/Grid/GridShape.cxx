@@ -38,10 +38,10 @@ double GridShape::MeanEdgeLength() const
     {
       continue;
     }
-    double count = this->dimensions[a] - 1.0;
+    double count = this->WholeDimension(a) - 1.0;
     for (int b = 0; b < 3; ++b)
     {
-      count *= (b == a) ? 1.0 : this->dimensions[b];
+      count *= (b == a) ? 1.0 : this->WholeDimension(b);
     }
     edges += count;
     length += count * this->spacing[a];

@@ -375,4 +375,19 @@ template Status AdvectCarriedGridSignal(const GridShape&, int, const unsigned ch
   const CarriedSignal&, const SampleWriter&, const AdvectionParameters&, AdvectionReport*,
   GridFlowFields*, const ProgressFunction&);
 
+int GridStencilLayers(const AdvectionParameters& parameters)
+{
+  if ((parameters.flowMode != FlowMode::Fixed && parameters.flowUpdates > 1) || parameters.hierarchyLevels > 1)
+  {
+    return -1;
+  }
+  // Face c's flow (GridFlow.h: FlowComputation::Halo) is the gradient of the
+  // smoothed potential at its corners c and c + 1; the potential of a sample
+  // averages the energy of its faces, read from the smoothed signal at their
+  // corners; each smoothing pass reads one sample further: samples
+  // c - (2P + 1) .. c + 1 + (2P + 1). A trace that reached r faces beyond the
+  // faces beside the written samples reads samples r + 2P + 2 beyond them.
+  return 2 * std::max(0, parameters.smoothingPasses) + 2;
+}
+
 } // namespace shock

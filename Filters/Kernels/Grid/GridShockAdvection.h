@@ -100,6 +100,21 @@ Status AdvectCarriedGridSignal(const GridShape& shape, int components, const T* 
   AdvectionReport* report = nullptr, GridFlowFields* fields = nullptr,
   const ProgressFunction& progress = ProgressFunction());
 
+/**
+ * How many sample layers beyond a face its flow depends on, plus one: the
+ * flow of a face reads the signal 2 x smoothingPasses + 1 samples beyond its
+ * own corners (the signal's smoothing passes, the face energy, the potential's
+ * average over a sample's faces, the potential's smoothing passes, its
+ * gradient). On a piece of a larger grid with `h` samples of halo beyond its
+ * written samples on a side (AdvectionParameters::writtenSamples), the result
+ * of every written sample is the whole grid's when, on every side whose halo
+ * does not end at the whole grid's boundary,
+ * AdvectionReport::haloReach + GridStencilLayers <= h. -1 where the flow does
+ * not stay the one of the input (FlowMode Composed or Naive with more than one
+ * update) or the traces also follow coarser grids (hierarchyLevels > 1).
+ */
+int GridStencilLayers(const AdvectionParameters& parameters);
+
 } // namespace shock
 
 #endif

@@ -156,13 +156,12 @@ bool TriesWithinFaceFirst(const Lattice<D>& L, const GridTracer<D>& tracer, doub
 template <int D, bool Wide>
 SHOCK_ALWAYS_INLINE void TraceLeavingFace(const GridTracer<D>& tracer, double time,
   const std::array<std::int64_t, D>& i, int b, std::int64_t f, std::array<double, D>& end,
-  std::uint64_t& steps, std::uint64_t& truncated)
+  TraceTally<D>& tally)
 {
   std::array<std::int64_t, D> c;
   StartInFace<D>(i, b, end, c);
-  bool cut = false;
-  steps += static_cast<std::uint64_t>(tracer.template Trace<Wide>(end, c, f, time, cut));
-  truncated += cut ? 1 : 0;
+  TraceMarks<D> marks = tally.Marks();
+  tally.Count(tracer.template Trace<Wide>(end, c, f, time, marks), marks);
 }
 
 /// TraceLeavingFace for a trace that may stay in its face, the sample's index
@@ -170,13 +169,12 @@ SHOCK_ALWAYS_INLINE void TraceLeavingFace(const GridTracer<D>& tracer, double ti
 template <int D, bool Wide>
 SHOCK_ALWAYS_INLINE void TraceFromSample(const GridTracer<D>& tracer, double time,
   const std::array<std::int64_t, D>& i, const std::array<double, D>& at, int b, std::int64_t f,
-  std::array<double, D>& end, std::uint64_t& steps, std::uint64_t& truncated)
+  std::array<double, D>& end, TraceTally<D>& tally)
 {
   std::array<std::int64_t, D> c;
   StartInFace<D>(i, at, b, end, c);
-  bool cut = false;
-  steps += static_cast<std::uint64_t>(tracer.template Trace<Wide>(end, c, f, time, cut));
-  truncated += cut ? 1 : 0;
+  TraceMarks<D> marks = tally.Marks();
+  tally.Count(tracer.template Trace<Wide>(end, c, f, time, marks), marks);
 }
 
 /// TraceLeavingFace kept out of line, so that a loop of traces that mostly stay
@@ -184,9 +182,9 @@ SHOCK_ALWAYS_INLINE void TraceFromSample(const GridTracer<D>& tracer, double tim
 template <int D, bool Wide>
 SHOCK_NOINLINE void TraceLeavingFaceOutOfLine(const GridTracer<D>& tracer, double time,
   const std::array<std::int64_t, D>& i, int b, std::int64_t f, std::array<double, D>& end,
-  std::uint64_t& steps, std::uint64_t& truncated)
+  TraceTally<D>& tally)
 {
-  TraceLeavingFace<D, Wide>(tracer, time, i, b, f, end, steps, truncated);
+  TraceLeavingFace<D, Wide>(tracer, time, i, b, f, end, tally);
 }
 
 /**

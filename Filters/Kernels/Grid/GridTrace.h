@@ -48,12 +48,22 @@ public:
     std::int64_t samples = 0;
     for (int d = 0; d < D; ++d)
     {
-      diameter += L.n[d] * L.h[d];
-      samples += L.n[d];
+      diameter += L.wholeN[d] * L.h[d];
+      samples += L.wholeN[d];
     }
     this->MaxSteps = (this->Mode == Tracing::FaceCrossing)
       ? 8 * samples
       : static_cast<std::int64_t>(std::ceil(4.0 * diameter / this->Delta)) + 1;
+    // The fence: the faces the traces of the written samples start in (the
+    // faces beside them), the whole grid by default.
+    for (int d = 0; d < D; ++d)
+    {
+      const std::int64_t first = p.writtenSamples[2 * L.axis[d]];
+      const std::int64_t last = p.writtenSamples[2 * L.axis[d] + 1];
+      const bool whole = first > last;
+      this->FenceLow[d] = whole ? 0 : std::max<std::int64_t>(first - 1, 0);
+      this->FenceHigh[d] = whole ? L.m[d] - 1 : std::min(last, L.m[d] - 1);
+    }
   }
 
   /**
@@ -63,33 +73,51 @@ public:
    */
   template <bool Wide = false>
   std::int64_t Trace(std::array<double, D>& q, const std::array<std::int64_t, D>& c,
-    std::int64_t f, double t, bool& truncated) const
+    std::int64_t f, double t, TraceMarks<D>& marks) const
   {
     if (this->Mode != Tracing::FaceCrossing)
     {
-      return this->TraceStepped(q, c, f, t, truncated);
+      return this->TraceStepped(q, c, f, t, marks);
     }
 #ifdef SHOCK_GRID_AVX2
     // The volume tracer has no AVX2 build: it was slower (its selects become
     // blends on the position's chain; docs/performance.md).
     if constexpr (Wide && D == 2)
     {
-      return ScalarTracers<D>::TraceFaceCrossingPlanarAvx2(*this, q, c, f, t, truncated);
+      return ScalarTracers<D>::TraceFaceCrossingPlanarAvx2(*this, q, c, f, t, marks);
     }
 #endif
     if constexpr (D == 2)
     {
-      return ScalarTracers<D>::TraceFaceCrossingPlanar(*this, q, c, f, t, truncated);
+      return ScalarTracers<D>::TraceFaceCrossingPlanar(*this, q, c, f, t, marks);
     }
     else if constexpr (D == 3)
     {
-      return ScalarTracers<D>::TraceFaceCrossingSpatial(*this, q, c, f, t, truncated);
+      return ScalarTracers<D>::TraceFaceCrossingSpatial(*this, q, c, f, t, marks);
     }
     else
     {
-      return this->TraceFaceCrossing(q, c, f, t, truncated);
+      return this->TraceFaceCrossing(q, c, f, t, marks);
     }
   }
+
+  /// Trace, for callers that want only the step cap's mark.
+  template <bool Wide = false>
+  std::int64_t Trace(std::array<double, D>& q, const std::array<std::int64_t, D>& c, std::int64_t f, double t,
+    bool& truncated) const
+  {
+    TraceMarks<D> marks;
+    const std::int64_t steps = this->template Trace<Wide>(q, c, f, t, marks);
+    truncated = marks.truncated;
+    return steps;
+  }
+
+  /// The most steps a trace takes (a guard against cycles of the discrete flow: a few whole-grid diameters).
+  std::int64_t StepCap() const { return this->MaxSteps; }
+
+  /// The fence along active axis d: the lowest and the highest face coordinate inside it.
+  std::int64_t FenceLowest(int d) const { return this->FenceLow[d]; }
+  std::int64_t FenceHighest(int d) const { return this->FenceHigh[d]; }
 
   /// The back-trace velocity of face f: D floats, index units.
   const float* Velocity(std::int64_t f) const { return this->V + f * D; }
@@ -173,7 +201,7 @@ public:
    * written for D = 2 and 3 (GridTraceScalar.h: the same paths, to rounding).
    */
   std::int64_t TraceFaceCrossing(std::array<double, D>& q, std::array<std::int64_t, D> c,
-    std::int64_t f, double t, bool& truncated) const
+    std::int64_t f, double t, TraceMarks<D>& marks) const
   {
     std::array<double, D> v;
     this->Load(f, v);
@@ -209,14 +237,14 @@ public:
       q[exitAxis] = static_cast<double>(dir > 0 ? c[exitAxis] + 1 : c[exitAxis]);
       ++steps;
       std::array<double, D> w;
-      const Entry entry = this->Cross(c, f, exitAxis, dir, pinned, steps, truncated, v, w);
+      const Entry entry = this->Cross(c, f, exitAxis, dir, pinned, steps, marks, v, w);
       if (entry == Entry::Stop)
       {
         break;
       }
       if (entry == Entry::Corner)
       {
-        return steps + this->TraceSteppedFrom(q, c, t, truncated);
+        return steps + this->TraceSteppedFrom(q, c, t, marks);
       }
       v = w;
     }
@@ -266,7 +294,7 @@ private:
    * decides.
    */
   SHOCK_ALWAYS_INLINE Entry Cross(std::array<std::int64_t, D>& c, std::int64_t& f, int axis, int dir,
-    int& pinned, std::int64_t steps, bool& truncated, const std::array<double, D>& v,
+    int& pinned, std::int64_t steps, TraceMarks<D>& marks, const std::array<double, D>& v,
     std::array<double, D>& w) const
   {
     const std::int64_t next = c[axis] + dir;
@@ -276,9 +304,10 @@ private:
     }
     if (steps >= this->MaxSteps)
     {
-      truncated = true;
+      marks.truncated = true;
       return Entry::Stop;
     }
+    this->Fence(axis, next, marks);
     const std::int64_t left = f;
     c[axis] = next;
     if constexpr (D == 2)
@@ -336,11 +365,11 @@ private:
 
   /// The stepped rest of a trace at q (clamped to the grid), c its face's coordinates.
   std::int64_t TraceSteppedFrom(
-    std::array<double, D>& q, std::array<std::int64_t, D>& c, double t, bool& truncated) const
+    std::array<double, D>& q, std::array<std::int64_t, D>& c, double t, TraceMarks<D>& marks) const
   {
     this->ClampToGrid(q);
     const std::int64_t face = this->FaceOf(q, c);
-    return this->TraceStepped(q, c, face, t, truncated);
+    return this->TraceStepped(q, c, face, t, marks);
   }
 
   /**
@@ -384,7 +413,7 @@ private:
   }
 
   std::int64_t TraceStepped(std::array<double, D>& q, std::array<std::int64_t, D> c,
-    std::int64_t f, double t, bool& truncated) const
+    std::int64_t f, double t, TraceMarks<D>& marks) const
   {
     const float* v = this->V + f * D;
     const float* v0 = v;
@@ -407,14 +436,33 @@ private:
       }
       if (steps >= this->MaxSteps)
       {
-        truncated = true;
+        marks.truncated = true;
         break;
       }
       v0 = v;
       v = this->V + this->FaceOf(q, c) * D;
+      for (int d = 0; d < D; ++d)
+      {
+        this->Fence(d, c[d], marks);
+      }
     }
     this->ClampToGrid(q);
     return steps;
+  }
+
+  /// Record in `marks` a face coordinate along axis d beyond the fence (every face a trace reads passes here).
+  SHOCK_ALWAYS_INLINE void Fence(int d, std::int64_t coordinate, TraceMarks<D>& marks) const
+  {
+    if (coordinate < this->FenceLow[d] || coordinate > this->FenceHigh[d])
+    {
+      const bool below = coordinate < this->FenceLow[d];
+      const std::int64_t depth = below ? this->FenceLow[d] - coordinate : coordinate - this->FenceHigh[d];
+      if (marks.reach)
+      {
+        std::int64_t& deepest = (*marks.reach)[2 * d + (below ? 0 : 1)];
+        deepest = std::max(deepest, depth);
+      }
+    }
   }
 
   void ClampToGrid(std::array<double, D>& q) const
@@ -429,6 +477,8 @@ private:
   const float* V;
   Tracing Mode;
   double Delta;
+  std::array<std::int64_t, D> FenceLow;
+  std::array<std::int64_t, D> FenceHigh;
   std::int64_t MaxSteps = 0;
 };
 

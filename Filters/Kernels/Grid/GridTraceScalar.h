@@ -26,6 +26,21 @@ namespace shock
 namespace grid
 {
 
+/**
+ * What a trace reports besides its steps: whether the step cap cut it, and,
+ * where the tracer has a fence (GridTracer: the faces around the samples a
+ * piece of a distributed image traces, AdvectionParameters::writtenSamples),
+ * how far beyond it the trace went. `reach` is the caller's running maximum
+ * (several traces may share it), per active axis d the deepest face layer
+ * below the fence at 2d and above it at 2d + 1; null when not wanted.
+ */
+template <int D>
+struct TraceMarks
+{
+  bool truncated = false;
+  std::array<std::int64_t, 2 * D>* reach = nullptr;
+};
+
 template <int D>
 class GridTracer;
 
@@ -45,16 +60,16 @@ struct ScalarTracers
    * a crossing. An axis slid along has velocity 0 there and is never left.
    */
   static SHOCK_NOINLINE std::int64_t TraceFaceCrossingPlanar(const Tracer& tracer,
-    std::array<double, D>& q, std::array<std::int64_t, D> c, std::int64_t f, double t, bool& truncated)
+    std::array<double, D>& q, std::array<std::int64_t, D> c, std::int64_t f, double t, TraceMarks<D>& marks)
   {
-    return PlanarTrace(tracer, q, c, f, t, truncated);
+    return PlanarTrace(tracer, q, c, f, t, marks);
   }
 #ifdef SHOCK_GRID_AVX2
   /// TraceFaceCrossingPlanar built for AVX2.
   static SHOCK_NOINLINE SHOCK_TARGET_AVX2 std::int64_t TraceFaceCrossingPlanarAvx2(const Tracer& tracer,
-    std::array<double, D>& q, std::array<std::int64_t, D> c, std::int64_t f, double t, bool& truncated)
+    std::array<double, D>& q, std::array<std::int64_t, D> c, std::int64_t f, double t, TraceMarks<D>& marks)
   {
-    return PlanarTrace(tracer, q, c, f, t, truncated);
+    return PlanarTrace(tracer, q, c, f, t, marks);
   }
 #endif
 
@@ -66,7 +81,7 @@ struct ScalarTracers
    * motion, or the one slid along, has an infinite time and is never left.
    */
   static std::int64_t TraceFaceCrossingSpatial(const Tracer& tracer, std::array<double, D>& q,
-    std::array<std::int64_t, D> c, std::int64_t f, double t, bool& truncated)
+    std::array<std::int64_t, D> c, std::int64_t f, double t, TraceMarks<D>& marks)
   {
     static_assert(D == 3, "the spatial tracer is for volumes");
     constexpr double never = std::numeric_limits<double>::infinity();
@@ -108,7 +123,7 @@ struct ScalarTracers
       z = axis == 2 ? boundary : z;
       const std::array<double, D> v{ vx, vy, vz };
       std::array<double, D> w;
-      const Entry entry = tracer.Cross(c, f, axis, dir, pinned, steps, truncated, v, w);
+      const Entry entry = tracer.Cross(c, f, axis, dir, pinned, steps, marks, v, w);
       if (entry == Entry::Stop)
       {
         break;
@@ -116,7 +131,7 @@ struct ScalarTracers
       if (entry == Entry::Corner)
       {
         q = { x, y, z };
-        return steps + tracer.TraceSteppedFrom(q, c, t, truncated);
+        return steps + tracer.TraceSteppedFrom(q, c, t, marks);
       }
       vx = w[0];
       vy = w[1];
@@ -130,7 +145,7 @@ struct ScalarTracers
 private:
   /// The body of TraceFaceCrossingPlanar, built into each of its two versions.
   static SHOCK_ALWAYS_INLINE std::int64_t PlanarTrace(const Tracer& tracer, std::array<double, D>& q,
-    std::array<std::int64_t, D> c, std::int64_t f, double t, bool& truncated)
+    std::array<std::int64_t, D> c, std::int64_t f, double t, TraceMarks<D>& marks)
   {
     static_assert(D == 2, "the planar tracer is for images");
     const double hx = tracer.L.h2[0];
@@ -178,7 +193,7 @@ private:
       y = axis ? boundary : y;
       const std::array<double, D> v{ vx, vy };
       std::array<double, D> w;
-      const Entry entry = tracer.Cross(c, f, axis, dir, pinned, steps, truncated, v, w);
+      const Entry entry = tracer.Cross(c, f, axis, dir, pinned, steps, marks, v, w);
       if (entry == Entry::Stop)
       {
         break;
@@ -186,7 +201,7 @@ private:
       if (entry == Entry::Corner)
       {
         q = { x, y };
-        return steps + tracer.TraceSteppedFrom(q, c, t, truncated);
+        return steps + tracer.TraceSteppedFrom(q, c, t, marks);
       }
       vx = w[0];
       vy = w[1];
