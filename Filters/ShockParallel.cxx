@@ -277,6 +277,23 @@ bool AnyFailed(vtkMultiProcessController* controller, bool failed, std::string& 
   return true;
 }
 
+int MoreLayers(vtkMultiProcessController* controller, bool aborted, int needed, int layers, int most, bool& tooFew)
+{
+  int wanted = layers;
+  int beyond = 0;
+  if (!aborted && needed > layers)
+  {
+    // Two layers more than this piece's traces needed: with the exact flow they may run a little further.
+    wanted = std::min(most, std::max(layers + 1, needed + 2));
+    beyond = layers >= most ? 1 : 0;
+  }
+  const int local[3] = { aborted ? 1 : 0, wanted, beyond };
+  int global[3] = { 0, 0, 0 };
+  controller->AllReduce(local, global, 3, vtkCommunicator::MAX_OP);
+  tooFew = global[0] == 0 && global[2] != 0;
+  return global[0] != 0 ? layers : std::max(layers, global[1]);
+}
+
 bool Agree(vtkMultiProcessController* controller, const std::string& localError,
   const std::string& parameters, const std::string& arrays, std::string& error)
 {

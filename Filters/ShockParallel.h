@@ -203,6 +203,15 @@ bool PrepareSurfacePiece(vtkMultiProcessController* controller, vtkPolyData* inp
 bool AnyFailed(vtkMultiProcessController* controller, bool failed, std::string& error);
 
 /**
+ * The ghost layers (a surface's rings, an image's halo samples) every piece
+ * gets next, the same on every process (collective, one reduction): more than
+ * `layers` when a piece's own flow lines `needed` more to be exact (their
+ * reach plus the flow's stencil), up to `most`; `layers` when none did, or a
+ * process `aborted`. `tooFew`: some piece needed more with `most` already.
+ */
+int MoreLayers(vtkMultiProcessController* controller, bool aborted, int needed, int layers, int most, bool& tooFew);
+
+/**
  * The agreement before a distributed execution (collective, one reduction
  * when all is well): false when a process has a `localError`, or when the
  * processes' `parameters` (a "name=value;..." text of the filter's

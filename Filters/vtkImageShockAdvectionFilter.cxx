@@ -70,6 +70,45 @@ vtkImageShockAdvectionFilter::vtkImageShockAdvectionFilter()
     vtkDataSetAttributes::SCALARS);
 }
 
+namespace
+{
+/// What identifies an input between executions (compared only): the image, its size, the filtered array.
+std::array<std::uintptr_t, 3> ImageStamp(vtkImageData* input, vtkDataArray* array)
+{
+  return { reinterpret_cast<std::uintptr_t>(input),
+    input ? static_cast<std::uintptr_t>(input->GetNumberOfPoints()) : 0, reinterpret_cast<std::uintptr_t>(array) };
+}
+
+/**
+ * The halo samples the traces of a piece's own samples needed to be exact:
+ * their reach beyond the faces beside them plus the flow's stencil
+ * (shock::GridStencilLayers), on each side whose halo has all `layers`
+ * samples; a side whose halo ends at the whole image's boundary is exact
+ * however far the traces went. 0 when no side needed any.
+ */
+int HaloNeeded(vtkImageData* withHalo, vtkImageData* piece, bool cellData, int layers,
+  const std::array<std::int64_t, 6>& reach, int stencil)
+{
+  const std::array<std::int64_t, 6> own = SamplesOfExtent(withHalo, piece->GetExtent(), cellData);
+  const shock::GridShape grid = SampleGrid(withHalo, cellData);
+  std::int64_t needed = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const std::int64_t below = own[2 * a];
+    const std::int64_t above = grid.dimensions[a] - 1 - own[2 * a + 1];
+    if (below >= layers)
+    {
+      needed = std::max(needed, reach[2 * a] + stencil);
+    }
+    if (above >= layers)
+    {
+      needed = std::max(needed, reach[2 * a + 1] + stencil);
+    }
+  }
+  return static_cast<int>(std::min<std::int64_t>(needed, 1 << 20));
+}
+} // namespace
+
 bool vtkImageShockAdvectionFilter::FiltersType(vtkDataObject* input)
 {
   return vtkImageData::SafeDownCast(input) != nullptr;
@@ -156,7 +195,15 @@ int vtkImageShockAdvectionFilter::FilterSamples(
   vtkImageData* input, vtkDataArray* array, int association, const ShockImageInternals::SampleTarget& target)
 {
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
-  const shock::GridShape grid = SampleGrid(input, cellData);
+  shock::GridShape grid = SampleGrid(input, cellData);
+  if (target.wholeExtent)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const int points = target.wholeExtent[2 * a + 1] - target.wholeExtent[2 * a] + 1;
+      grid.wholeDimensions[a] = std::max(cellData && points > 1 ? points - 1 : points, grid.dimensions[a]);
+    }
+  }
   // The kernel reads the array in place when it is float or double, and writes
   // its results straight into a new array of the input's type: of the target's
   // samples (a box of the grid's, for a piece with its halo).
@@ -177,8 +224,13 @@ int vtkImageShockAdvectionFilter::FilterSamples(
   }
   shock::GridFlowFields fields;
   bool aborted = false;
+  std::array<std::int64_t, 6> reach{};
   const bool ran = this->RunKernel(grid, masked ? masked.GetPointer() : array, filtered,
-    this->GenerateFlowArrays ? &fields : nullptr, written, aborted);
+    this->GenerateFlowArrays ? &fields : nullptr, written, aborted, reach);
+  if (target.haloReach)
+  {
+    *target.haloReach = reach;
+  }
   if (!ran)
   {
     return 0;
@@ -245,25 +297,109 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
     return 0;
   }
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
-  vtkSmartPointer<vtkImageData> withHalo;
+  const bool hidden = array && AnyHidden(input, array, cellData);
+  int whole[6];
+  const bool knowsWhole = inputVector[0]->GetInformationObject(0)->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+  if (knowsWhole)
   {
-    vtkLogScopeF(TRACE, "shock: image halo exchange");
-    withHalo = ShockParallel::ImageWithHalo(controller, input, array, cellData,
-      array && AnyHidden(input, array, cellData), this->GhostLevels);
+    inputVector[0]->GetInformationObject(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   }
-  if (!withHalo)
+  // The pieces start with the halo the flow's stencil needs and two samples
+  // more, and get more only when the flow lines of their own samples run
+  // further (ShockParallel::MoreLayers), up to GhostLevels.
+  const int stencil = this->HaloStencil();
+  int layers = this->StartingHalo(input, array, controller, stencil);
+  for (;;)
   {
+    vtkSmartPointer<vtkImageData> withHalo;
+    {
+      vtkLogScopeF(TRACE, "shock: image halo exchange");
+      withHalo = ShockParallel::ImageWithHalo(controller, input, array, cellData, hidden, layers);
+    }
+    this->LastGhostLevels = layers;
+    ++this->LastHaloAttempts;
     output->ShallowCopy(input); // an empty piece of a parallel run is normal
+    bool done = true;
+    int needed = -1;
+    if (withHalo)
+    {
+      vtkDataArray* grownArray = (cellData ? static_cast<vtkDataSetAttributes*>(withHalo->GetCellData())
+                                            : static_cast<vtkDataSetAttributes*>(withHalo->GetPointData()))
+                                   ->GetScalars();
+      // The kernel traces the piece's own samples only (the halo feeds their
+      // flow and traces) and writes them straight into the piece's new array.
+      std::array<std::int64_t, 6> reach{};
+      ShockImageInternals::SampleTarget target{ output, array, input->GetExtent() };
+      target.wholeExtent = knowsWhole ? whole : nullptr;
+      target.haloReach = &reach;
+      done = this->FilterSamples(withHalo, grownArray, association, target) != 0;
+      needed = done && stencil >= 0 ? HaloNeeded(withHalo, input, cellData, layers, reach, stencil) : -1;
+      vtkLogF(TRACE, "shock: the own flow lines need a halo of %d of %d samples", needed, layers);
+    }
+    // Every process learns of a failure, and of a piece whose halo was too small.
+    std::string error = "its kernel failed (see its message)";
+    if (ShockParallel::AnyFailed(controller, !done, error))
+    {
+      if (done)
+      {
+        vtkErrorMacro(<< error);
+      }
+      return 0;
+    }
+    if (stencil < 0)
+    {
+      return 1; // GhostLevels, whatever the flow lines do
+    }
+    bool tooFew = false;
+    const int more =
+      ShockParallel::MoreLayers(controller, this->AbortExecute != 0, needed, layers, this->GhostLevels, tooFew);
+    if (more > layers)
+    {
+      vtkLogF(TRACE, "shock: a flow line ran too far into a halo of %d samples: again with %d", layers, more);
+      layers = more;
+      continue;
+    }
+    // Kept for the next execution of the same input (a parameter changed).
+    this->AgreedHalo = layers;
+    this->AgreedInputStamp = ImageStamp(input, array);
+    if (tooFew && this->GhostLevels > 0 && controller->GetLocalProcessId() == 0)
+    {
+      vtkWarningMacro("Flow lines of samples near the pieces' borders run further than the "
+        << this->GhostLevels << " halo samples (Ghost Levels) make exact: those samples may differ from a "
+        << "serial run. Raise Ghost Levels (up to 64) for the serial result.");
+    }
     return 1;
   }
-  vtkDataArray* grownArray = (cellData ? static_cast<vtkDataSetAttributes*>(withHalo->GetCellData())
-                                        : static_cast<vtkDataSetAttributes*>(withHalo->GetPointData()))
-                               ->GetScalars();
-  // The kernel traces the piece's own samples only (the halo feeds their
-  // flow and traces) and writes them straight into the piece's new array.
-  output->ShallowCopy(input);
-  return this->FilterSamples(withHalo, grownArray, association,
-    ShockImageInternals::SampleTarget{ output, array, input->GetExtent() });
+}
+
+int vtkImageShockAdvectionFilter::HaloStencil()
+{
+  if (this->Method != ADVECTION || this->Domain != VALUES)
+  {
+    return -1;
+  }
+  shock::AdvectionParameters parameters = ShockFilterInternals::MakeParameters(this);
+  parameters.hierarchyLevels = this->HierarchyLevels;
+  return shock::GridStencilLayers(parameters);
+}
+
+int vtkImageShockAdvectionFilter::StartingHalo(
+  vtkImageData* input, vtkDataArray* array, vtkMultiProcessController* controller, int stencil)
+{
+  if (stencil < 0)
+  {
+    return this->GhostLevels;
+  }
+  // The halo the last execution of this same input agreed on (0 for another
+  // input). A stale match costs samples, never the result: they only start higher.
+  if (ImageStamp(input, array) != this->AgreedInputStamp)
+  {
+    this->AgreedHalo = 0;
+  }
+  const int mine = std::min(this->GhostLevels, std::max(stencil + 2, this->AgreedHalo));
+  int layers = mine;
+  controller->AllReduce(&mine, &layers, 1, vtkCommunicator::MAX_OP); // the same on every process
+  return layers;
 }
 
 namespace ShockFilterInternals
@@ -283,7 +419,7 @@ struct GridRun
 
 bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDataArray* array,
   const ShockFilterInternals::KernelOutput& filtered, shock::GridFlowFields* fields,
-  const std::array<std::int64_t, 6>& written, bool& aborted)
+  const std::array<std::int64_t, 6>& written, bool& aborted, std::array<std::int64_t, 6>& reach)
 {
   // The phase a fraction belongs to (the gradient domain solves after 0.8).
   const bool gradients = this->Domain == GRADIENTS && this->Method == ADVECTION;
@@ -301,7 +437,7 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDa
   }
   else if (this->Method == ADVECTION)
   {
-    status = this->RunAdvection(run, aborted);
+    status = this->RunAdvection(run, aborted, reach);
   }
   else
   {
@@ -315,7 +451,8 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDa
   return true;
 }
 
-shock::Status vtkImageShockAdvectionFilter::RunAdvection(const ShockFilterInternals::GridRun& run, bool& aborted)
+shock::Status vtkImageShockAdvectionFilter::RunAdvection(
+  const ShockFilterInternals::GridRun& run, bool& aborted, std::array<std::int64_t, 6>& reach)
 {
   const shock::GridShape& grid = run.grid;
   const int components = run.array->GetNumberOfComponents();
@@ -340,6 +477,7 @@ shock::Status vtkImageShockAdvectionFilter::RunAdvection(const ShockFilterIntern
   {
     this->RecordRun(report.flowSeconds, report.advectionSeconds, report.traceSteps, report.truncatedTraces);
     aborted = report.aborted;
+    reach = report.haloReach;
   }
   return status;
 }
@@ -396,6 +534,8 @@ void vtkImageShockAdvectionFilter::ResetMeasurements()
   this->Superclass::ResetMeasurements();
   this->LastIterations = 0;
   this->LastReachedTime = 0.0;
+  this->LastGhostLevels = 0;
+  this->LastHaloAttempts = 0;
 }
 
 // --- Parallel execution: ghost samples in, cropped output out ------------------
@@ -521,4 +661,6 @@ void vtkImageShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumIterations: " << this->MaximumIterations << "\n";
   os << indent << "LastIterations: " << this->LastIterations << "\n";
   os << indent << "LastReachedTime: " << this->LastReachedTime << "\n";
+  os << indent << "LastGhostLevels: " << this->LastGhostLevels << "\n";
+  os << indent << "LastHaloAttempts: " << this->LastHaloAttempts << "\n";
 }

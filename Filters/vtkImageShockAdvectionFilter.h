@@ -199,6 +199,23 @@ public:
   vtkGetMacro(LastReachedTime, double);
   ///@}
 
+  /**
+   * Parallel runs (pieces with a controller), measurement of the last
+   * execution: the halo samples every piece had when its result was made, the
+   * same on every process (0 for a serial run). With Method ADVECTION, Domain
+   * VALUES and one flow (FlowMode Fixed, or one update) on one level, a piece
+   * starts with the halo the flow's stencil needs (2 x SmoothingPasses + 2
+   * samples) and two more; when the flow lines of some piece's own samples run
+   * further into the halo than that leaves exact, every process filters its
+   * piece again with a larger halo, up to GhostLevels (a warning when that is
+   * still too small). The result then equals the serial one. Other methods
+   * and flows take GhostLevels samples.
+   */
+  vtkGetMacro(LastGhostLevels, int);
+
+  /// Parallel runs: how many times the last execution filtered the pieces (1 + the halo's growths; 0 serial).
+  vtkGetMacro(LastHaloAttempts, int);
+
   ///@{
   /// The filtered image (output port 0, or the given port).
   vtkImageData* GetOutput();
@@ -251,6 +268,12 @@ protected:
 
   void ResetMeasurements() override;
 
+  /// The flow's stencil in halo samples (shock::GridStencilLayers); -1 when the halo stays GhostLevels.
+  int HaloStencil();
+  /// The halo the pieces start with (collective): the stencil and two more, or what the last
+  /// execution of this input agreed on, at most GhostLevels.
+  int StartingHalo(vtkImageData* input, vtkDataArray* array, vtkMultiProcessController* controller, int stencil);
+
   int Method = ADVECTION;
   int Domain = VALUES;
   double GradientScreening = 0.01;
@@ -259,15 +282,20 @@ protected:
   int MaximumIterations = 100000;
   vtkTypeInt64 LastIterations = 0;
   double LastReachedTime = 0.0;
+  int LastGhostLevels = 0;
+  int LastHaloAttempts = 0;
+  int AgreedHalo = 0;                               ///< the halo the last parallel execution agreed on
+  std::array<std::uintptr_t, 3> AgreedInputStamp{}; ///< of this input (object, size, array; compared only)
 
 private:
   /// Run the selected method on the array's samples, results to `output`; false (with
   /// vtkErrorMacro) on failure.
   bool RunKernel(const shock::GridShape& grid, vtkDataArray* array,
     const ShockFilterInternals::KernelOutput& output, shock::GridFlowFields* fields,
-    const std::array<std::int64_t, 6>& written, bool& aborted);
+    const std::array<std::int64_t, 6>& written, bool& aborted, std::array<std::int64_t, 6>& reach);
   /// The paper's advection (Method ADVECTION), of the values or of their gradients (Domain).
-  shock::Status RunAdvection(const ShockFilterInternals::GridRun& run, bool& aborted);
+  shock::Status RunAdvection(
+    const ShockFilterInternals::GridRun& run, bool& aborted, std::array<std::int64_t, 6>& reach);
   /// The Osher-Rudin PDE, integrated explicitly (Method PDE), on a double copy of the signal.
   shock::Status RunPDE(ShockFilterInternals::GridRun& run, bool& aborted);
 

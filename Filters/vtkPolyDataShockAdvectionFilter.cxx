@@ -90,19 +90,8 @@ std::array<std::uintptr_t, 4> InputStamp(vtkDataObject* input)
 int MoreRings(vtkMultiProcessController* controller, const ShockPolyDataInternals::PieceReach& reach, int rings,
   int most, bool& tooFew)
 {
-  int wanted = rings;
-  int beyond = 0;
-  if (!reach.aborted && reach.stencil >= 0 && reach.deepest > rings - reach.stencil)
-  {
-    // Two rings more than this trace read: with exact flow it may run a little further.
-    wanted = std::min(most, std::max(rings + 1, reach.deepest + reach.stencil + 2));
-    beyond = rings >= most ? 1 : 0;
-  }
-  const int local[3] = { reach.aborted ? 1 : 0, wanted, beyond };
-  int global[3] = { 0, 0, 0 };
-  controller->AllReduce(local, global, 3, vtkCommunicator::MAX_OP);
-  tooFew = global[0] == 0 && global[2] != 0;
-  return global[0] != 0 ? rings : std::max(rings, global[1]);
+  const int needed = reach.stencil >= 0 ? reach.deepest + reach.stencil : -1;
+  return ShockParallel::MoreLayers(controller, reach.aborted, needed, rings, most, tooFew);
 }
 }
 

@@ -191,13 +191,18 @@ public:
    * instead of n^d samples for a piece of n^d samples (images), or G rings of
    * cells more (meshes), plus the exchange of those layers.
    *
-   * Images: for a piece request the source cuts its piece GhostLevels layers
-   * larger (VTK 9 keeps UPDATE_EXTENT at the whole extent and lets the source
-   * split it, marking the extra samples in vtkGhostType); a one-piece request
-   * for a sub-extent is grown by GhostLevels on every axis with more than one
-   * sample (clamped to the whole extent). The output is cropped back to what
-   * was requested, so pieces tile the image exactly. Cell arrays are grown by
-   * the same number of layers.
+   * Images: with a controller (MPI), each piece gets a halo of samples from
+   * the processes that hold them (vtkImageShockAdvectionFilter uses
+   * GhostLevels as the largest halo: with Method ADVECTION and one flow it
+   * starts with the flow's stencil, 2 x SmoothingPasses + 2 samples, and two
+   * more, and all pieces get a larger one only when the flow lines of some
+   * piece's own samples run further than that leaves exact
+   * (shock::GridStencilLayers), so that its result is the serial one; when
+   * GhostLevels samples are still too few it warns). Without a controller
+   * (serial streaming) the source cuts its piece GhostLevels layers larger.
+   * A one-piece request for a sub-extent is served from the whole image. The
+   * output is cropped back to what was requested, so pieces tile the image
+   * exactly. Cell arrays are grown by the same number of layers.
    * Surfaces: the piece's own cells get rings of their neighbours' cells
    * (fetched over the Controller, one exchange per ring), are filtered with
    * them, and the output holds each owned cell once, shared points marked in

@@ -151,7 +151,8 @@ TEST(ImageShockAdvectionFilter, PrintSelfListsTheParameters)
   filter->Print(os);
   for (const char* key : { "FlowTime", "SmoothingPasses", "StepFraction", "FlowMode: Composed",
          "NumberOfFlowUpdates", "Sampling: Nearest", "TracingMode: Stepped", "GenerateFlowArrays",
-         "NumberOfThreads", "Method: Advection", "CourantNumber", "MaximumIterations" })
+         "NumberOfThreads", "Method: Advection", "CourantNumber", "MaximumIterations", "LastGhostLevels: 0",
+         "LastHaloAttempts: 0" })
   {
     EXPECT_NE(os.str().find(key), std::string::npos) << key;
   }

@@ -279,6 +279,87 @@ def compare_image_array(label, image, serial, name, cells, extent, pieces, flow_
     return parallel
 
 
+def image_adaptive_case():
+    """Image Shock Advection sizes each piece's halo from its flow lines: far-running
+    flow lines grow it (the pieces filtered again) and the result equals serial;
+    executed again after a parameter change, it starts with the agreed halo; with
+    Ghost Levels below what the flow lines need, a warning; short flow lines keep
+    a halo smaller than Ghost Levels."""
+    from vtkmodules.vtkFiltersCore import vtkPointDataToCellData
+    extent = [-128, 127, -128, 127, 0, 0]
+    expression = "tanh((coordsY-0.8*coordsX-5)/6)"  # a diagonal step: it crosses every cut of the pieces
+    start = 6  # 2 x SmoothingPasses + 2, and two more
+    for name, flow_time, cells in (("step, t = 65536", 65536, False), ("step, cell data", 65536, True),
+                                   ("step, t = 64", 64, False)):
+        label = "adaptive halo, %s np=%d" % (name, PROCESSES)
+        association = "CELLS" if cells else "POINTS"
+        reference_input, keep = wavelet(extent, expression)
+        last = reference_input
+        if cells:
+            to_cells = vtkPointDataToCellData()
+            to_cells.SetInputConnection(reference_input.GetOutputPort())
+            keep.append(to_cells)
+            last = to_cells
+        serial = serial_filter("ImageShockAdvection", last, InputArray=[association, "Step"], FlowTime=flow_time)
+        proxies = [Wavelet(WholeExtent=extent)]
+        proxies.append(Calculator(Input=proxies[-1], Function=expression, ResultArrayName="Step"))
+        if cells:
+            proxies.append(PointDatatoCellData(Input=proxies[-1]))
+        del messages.errors[:]
+        del messages.warnings[:]
+        filtered = ImageShockAdvection(Input=proxies[-1], InputArray=[association, "Step"], FlowTime=flow_time)
+        path = os.path.join(OUTPUT, "image_adaptive.pvti")
+        SaveData(path, proxy=filtered)
+        filtered.UpdatePropertyInformation()
+        layers = filtered.GetPropertyValue("LastGhostLevels")
+        attempts = filtered.GetPropertyValue("LastHaloAttempts")
+        check(not messages.errors and not messages.warnings,
+              "%s: no error or warning (%s %s)" % (label, messages.errors, messages.warnings))
+
+        def compare_saved(suffix):
+            reader = vtkXMLPImageDataReader()
+            reader.SetFileName(path)
+            reader.Update()
+            image = reader.GetOutput()
+            # Every sample equal to serial (band -1: none may differ anywhere).
+            return compare_image_array(label + suffix, image, serial, "Step", cells, extent, piece_extents(path),
+                                       flow_time, layers, -1, 0.0)
+
+        compare_saved("")
+        if flow_time > 64:
+            check(start < layers <= 16 and attempts >= 2,
+                  "%s: the halo grew from %d to %d samples, at most Ghost Levels, in %d attempts"
+                  % (label, start, layers, attempts))
+            # A parameter changes, the input does not: the next execution starts with the agreed halo.
+            filtered.GenerateFlowArrays = 1
+            SaveData(path, proxy=filtered)
+            filtered.UpdatePropertyInformation()
+            check(filtered.GetPropertyValue("LastHaloAttempts") == 1 and
+                  filtered.GetPropertyValue("LastGhostLevels") == layers,
+                  "%s: executed again, it starts with the agreed %d samples (%d attempts, %d samples)"
+                  % (label, layers, filtered.GetPropertyValue("LastHaloAttempts"),
+                     filtered.GetPropertyValue("LastGhostLevels")))
+            compare_saved(", again")
+        else:
+            check(attempts == 1 and start <= layers < 16,
+                  "%s: short flow lines keep a halo of %d samples, fewer than Ghost Levels (%d attempts)"
+                  % (label, layers, attempts))
+        Delete(filtered)
+        if flow_time > 64:
+            # At most `start` samples: too few, and a warning says so.
+            del messages.warnings[:]
+            capped = ImageShockAdvection(Input=proxies[-1], InputArray=[association, "Step"], FlowTime=flow_time,
+                                         GhostLevels=start)
+            SaveData(path, proxy=capped)
+            capped.UpdatePropertyInformation()
+            check(capped.GetPropertyValue("LastGhostLevels") == start, "%s: capped at %d samples" % (label, start))
+            check(len(messages.warnings) >= 1 and "Ghost Levels" in messages.warnings[-1] and not messages.errors,
+                  "%s, Ghost Levels %d: a warning that the halo is too small (%s)" % (label, start, messages.warnings))
+            Delete(capped)
+        for proxy in proxies[::-1]:
+            Delete(proxy)
+
+
 def unsplit_image_case():
     """A reader that cannot cut pieces (legacy .vtk) gives the whole image to
     process 0: the filter must keep it whole (no crop) and match the serial result."""
@@ -794,19 +875,23 @@ def surface_cases():
 
 cases = [
     # label, extent, FlowTime, GhostLevels, band W, bound on the differing fraction
-    lambda: image_case("wavelet2d", [0, 255, 0, 255, 0, 0], 64, 16, 16, 0.005),
+    # Advection with one flow: the halo is sized from the flow lines, every sample
+    # equals serial (band -1, bound 0); Ghost Levels 0 (pieces alone), 4 (too
+    # few for t = 4096) and the PDE (Ghost Levels samples) within a band.
+    lambda: image_case("wavelet2d", [0, 255, 0, 255, 0, 0], 64, 16, -1, 0.0),
     lambda: image_case("wavelet2d_g0", [0, 255, 0, 255, 0, 0], 64, 0, 8, 0.05),
     lambda: image_case("step2d_t4096_g4", [-128, 127, -128, 127, 0, 0], 4096, 4, 8, 0.01,
                        expression="tanh((coordsY-12+0.1*coordsX)/6)"),
-    lambda: image_case("step2d_t4096", [-128, 127, -128, 127, 0, 0], 4096, 16, 16, 0.005,
+    lambda: image_case("step2d_t4096", [-128, 127, -128, 127, 0, 0], 4096, 16, -1, 0.0,
                        expression="tanh((coordsY-12+0.1*coordsX)/6)"),
-    lambda: image_case("wavelet2d_cells", [0, 255, 0, 255, 0, 0], 64, 16, 16, 0.005, cells=True),
-    lambda: image_case("wavelet2d_blanked", [0, 255, 0, 255, 0, 0], 64, 16, 16, 0.005, blanked=True),
-    lambda: image_case("wavelet3d", [0, 95, 0, 95, 0, 95], 256, 16, 16, 0.005),
-    lambda: image_case("wavelet3d_flow_arrays", [0, 47, 0, 39, 0, 35], 64, 16, 16, 0.005, GenerateFlowArrays=1),
-    lambda: image_case("wavelet3d_cells_flow_arrays", [0, 47, 0, 39, 0, 35], 64, 16, 16, 0.005, cells=True,
+    lambda: image_case("wavelet2d_cells", [0, 255, 0, 255, 0, 0], 64, 16, -1, 0.0, cells=True),
+    lambda: image_case("wavelet2d_blanked", [0, 255, 0, 255, 0, 0], 64, 16, -1, 0.0, blanked=True),
+    lambda: image_case("wavelet3d", [0, 95, 0, 95, 0, 95], 256, 16, -1, 0.0),
+    lambda: image_case("wavelet3d_flow_arrays", [0, 47, 0, 39, 0, 35], 64, 16, -1, 0.0, GenerateFlowArrays=1),
+    lambda: image_case("wavelet3d_cells_flow_arrays", [0, 47, 0, 39, 0, 35], 64, 16, -1, 0.0, cells=True,
                        GenerateFlowArrays=1),
     lambda: image_case("wavelet3d_pde", [0, 47, 0, 39, 0, 35], 16, 16, 16, 0.005, Method="PDE"),
+    image_adaptive_case,
     unsplit_image_case,
     surface_cases,
 ]

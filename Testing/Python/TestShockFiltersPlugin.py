@@ -71,15 +71,14 @@ for abstract in ["ShockFilterBase", "ShockAdvectionBase"]:
     check(pxm.GetPrototypeProxy("filters", abstract) is None, abstract + " is not a filter")
     check(abstract not in globals(), abstract + " is not a pvpython function")
 
-EXPECTED_NAMES = {
-    "ImageShockAdvection": {
-        "Input", "InputArray", "FlowTime", "SmoothingPasses", "FlowMode", "NumberOfFlowUpdates",
-        "TracingMode", "StepFraction", "Sampling", "GenerateFlowArrays", "NumberOfThreads",
-        "LastSetupSeconds", "LastFlowSeconds", "LastAdvectionSeconds", "LastTraceSteps",
-        "GhostLevels"},
-}
-EXPECTED_NAMES["SurfaceShockAdvection"] = set(EXPECTED_NAMES["ImageShockAdvection"]) | {"LastGhostLevels", "LastRingAttempts"}
-EXPECTED_NAMES["SurfaceShockSharpen"] = (EXPECTED_NAMES["ImageShockAdvection"] - {"InputArray"}) | {
+COMMON_NAMES = {
+    "Input", "InputArray", "FlowTime", "SmoothingPasses", "FlowMode", "NumberOfFlowUpdates",
+    "TracingMode", "StepFraction", "Sampling", "GenerateFlowArrays", "NumberOfThreads",
+    "LastSetupSeconds", "LastFlowSeconds", "LastAdvectionSeconds", "LastTraceSteps",
+    "GhostLevels"}
+EXPECTED_NAMES = {"ImageShockAdvection": COMMON_NAMES | {"LastGhostLevels", "LastHaloAttempts"}}
+EXPECTED_NAMES["SurfaceShockAdvection"] = COMMON_NAMES | {"LastGhostLevels", "LastRingAttempts"}
+EXPECTED_NAMES["SurfaceShockSharpen"] = (COMMON_NAMES - {"InputArray"}) | {
     "FeatureAngle", "CurvatureContrast", "FitTarget", "LastRepeatedTriangles", "LastDegenerateTriangles", "LastFeatureEdges",
     "NormalSmoothingPasses", "ScreeningWeight", "Solver", "SolverIterations", "SolverTolerance",
     "MergeCoincidentPoints", "GenerateSharpenedNormals", "LastFitSetupSeconds",
@@ -197,7 +196,7 @@ if SOURCE_DIR:
     check(set(definitions) == set(LABELS), "source XML: one flat definition per filter, %s" % sorted(definitions))
     # Deliberately different texts (what is sharpened, what is measured).
     OWN_TEXT = {"FlowTime", "Sampling", "GenerateFlowArrays", "LastSetupSeconds", "LastFlowSeconds",
-                "LastAdvectionSeconds", "LastTraceSteps", "GhostLevels"}
+                "LastAdvectionSeconds", "LastTraceSteps", "GhostLevels", "LastGhostLevels"}
 
     # Deliberately different defaults: the sharpen filter's flow time (256, the
     # advection filters' 64; docs/sharpening.md, "Choosing the flow time").
