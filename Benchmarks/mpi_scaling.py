@@ -157,15 +157,18 @@ def run(plugin, work, path):
     points = data.GetNumberOfPoints()
     owned = points
     if work == "image" and points > 0:
-        # The piece's halo: GhostLevels samples on each side, within the whole extent.
+        # The piece's halo: the samples it used on each side (Last Ghost Levels;
+        # Ghost Levels before it was sized from the flow lines), within the whole extent.
         from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
         whole = source.GetClientSideObject().GetOutputInformation(0).Get(
             vtkStreamingDemandDrivenPipeline.WHOLE_EXTENT())
         extent = data.GetExtent()
+        used = getattr(filtered.GetClientSideObject(), "GetLastGhostLevels", None)
+        halo = used() if used and ranks > 1 else (filtered.GhostLevels if ranks > 1 else 0)
         grown = 1
         for a in range(3):
-            low = max(whole[2 * a], extent[2 * a] - filtered.GhostLevels)
-            high = min(whole[2 * a + 1], extent[2 * a + 1] + filtered.GhostLevels)
+            low = max(whole[2 * a], extent[2 * a] - halo)
+            high = min(whole[2 * a + 1], extent[2 * a + 1] + halo)
             grown *= high - low + 1
         points = grown  # the samples filtered: the piece and its halo
     if ghosts is not None:
