@@ -59,8 +59,9 @@ struct SampleTarget
   vtkImageData* output;
   vtkDataArray* replaced;
   const int* extent = nullptr;
-  /// With `extent`: the whole image's extent, so that lengths and the trace
-  /// step cap are the whole image's (GridShape::wholeDimensions); null: the input's.
+  /// The whole image's extent when the input is a piece of it, so that lengths
+  /// and the trace step cap are the whole image's (GridShape::wholeDimensions);
+  /// null: the input's.
   const int* wholeExtent = nullptr;
   /// With `extent`: where the kernel reports how far the traces of the written
   /// samples went beyond them (AdvectionReport::haloReach); null when not wanted.

@@ -180,15 +180,26 @@ int vtkImageShockAdvectionFilter::FilterImage(
     vtkErrorMacro(<< error);
     return 0;
   }
-  return this->FilterImageArray(input, array, association, output);
+  // A piece with its ghost layers (serial streaming): lengths and the trace
+  // step cap are the whole image's, as when the whole image is filtered.
+  int whole[6];
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  const bool knowsWhole = piece && inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+  if (knowsWhole)
+  {
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  }
+  return this->FilterImageArray(input, array, association, output, knowsWhole ? whole : nullptr);
 }
 
 int vtkImageShockAdvectionFilter::FilterImageArray(
-  vtkImageData* input, vtkDataArray* array, int association, vtkImageData* output)
+  vtkImageData* input, vtkDataArray* array, int association, vtkImageData* output, const int* wholeExtent)
 {
   // Everything checked: the output starts as the input, arrays shared.
   output->ShallowCopy(input);
-  return this->FilterSamples(input, array, association, ShockImageInternals::SampleTarget{ output, array });
+  ShockImageInternals::SampleTarget target{ output, array };
+  target.wholeExtent = wholeExtent;
+  return this->FilterSamples(input, array, association, target);
 }
 
 int vtkImageShockAdvectionFilter::FilterSamples(
@@ -196,7 +207,7 @@ int vtkImageShockAdvectionFilter::FilterSamples(
 {
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
   shock::GridShape grid = SampleGrid(input, cellData);
-  if (target.wholeExtent)
+  if (target.wholeExtent) // a piece of a larger image
   {
     for (int a = 0; a < 3; ++a)
     {

@@ -249,8 +249,10 @@ protected:
   /// Filter the input image (with its ghost layers) into the output; `piece`: one of several.
   int FilterImage(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool piece);
 
-  /// Filter `array` (checked, of `association`) of `input` into `output` (which starts as `input`).
-  int FilterImageArray(vtkImageData* input, vtkDataArray* array, int association, vtkImageData* output);
+  /// Filter `array` (checked, of `association`) of `input` into `output` (which starts as
+  /// `input`); `wholeExtent`: of the image `input` is a piece of (null: `input` is whole).
+  int FilterImageArray(vtkImageData* input, vtkDataArray* array, int association, vtkImageData* output,
+    const int* wholeExtent = nullptr);
 
   /// Filter `array` (checked, of `association`) of `input`: the results of the
   /// target's samples replace its array (see SampleTarget).

@@ -4,6 +4,8 @@
 // TestImageShockAdvectionErrors.cxx; Method PDE: TestImageShockAdvectionPDE.cxx).
 #include "TestImageShockAdvection.h"
 
+#include "vtkImageChangeInformation.h"
+
 namespace
 {
 
@@ -470,4 +472,54 @@ TEST(ImageShockAdvectionFilter, ASubExtentRequestGetsTheWholeImagesResult)
     }
   }
   EXPECT_GT(changed, 0.1) << "the filter changed those samples";
+}
+
+TEST(ImageShockAdvectionFilter, StreamedPiecesOfAnAnisotropicImageGetTheWholeImagesResult)
+{
+  // Serial streaming (pieces without a controller): each piece is filtered
+  // with Ghost Levels layers and cropped. Its lengths are in the whole image's
+  // mean edge: a piece's own differs when the spacing differs between axes.
+  // (A piece has no other process to learn the whole image's range from: a
+  // signal of x alone gives every piece of this cut along y the whole range.)
+  vtkNew<vtkRTAnalyticSource> source;
+  source->SetWholeExtent(0, 39, 0, 59, 0, 0);
+  source->SetMaximum(0.0); // no Gaussian: RTData = XMag sin(XFreq x) + a constant
+  source->SetYMag(0.0);
+  vtkNew<vtkImageChangeInformation> spaced;
+  spaced->SetInputConnection(source->GetOutputPort());
+  spaced->SetOutputSpacing(1.0, 1.7, 1.0);
+  vtkNew<vtkImageShockAdvectionFilter> whole;
+  whole->SetInputConnection(spaced->GetOutputPort());
+  whole->SetFlowTime(64.0);
+  whole->Update();
+  vtkNew<vtkImageData> result; // kept: the pieces' requests execute the pipeline again
+  result->DeepCopy(whole->GetOutput());
+  vtkNew<vtkImageData> original;
+  original->DeepCopy(spaced->GetOutput());
+  vtkDataArray* expected = result->GetPointData()->GetArray("RTData");
+  vtkDataArray* input = original->GetPointData()->GetArray("RTData");
+  double changed = 0.0;
+  for (int piece = 0; piece < 3; ++piece)
+  {
+    vtkNew<vtkImageShockAdvectionFilter> filter;
+    filter->SetInputConnection(spaced->GetOutputPort());
+    filter->SetFlowTime(64.0);
+    ASSERT_TRUE(filter->UpdatePiece(piece, 3, 0));
+    vtkImageData* part = filter->GetOutput();
+    ASSERT_GT(part->GetNumberOfPoints(), 0);
+    ASSERT_LT(part->GetNumberOfPoints(), 40 * 60) << "a piece, not the whole image";
+    const int* extent = part->GetExtent();
+    for (int j = extent[2]; j <= extent[3]; ++j)
+    {
+      for (int i = extent[0]; i <= extent[1]; ++i)
+      {
+        int ijk[3] = { i, j, 0 };
+        const vtkIdType w = result->ComputePointId(ijk);
+        const double value = part->GetPointData()->GetArray("RTData")->GetTuple1(part->ComputePointId(ijk));
+        ASSERT_NEAR(value, expected->GetTuple1(w), 1e-12) << "piece " << piece << " at " << i << ", " << j;
+        changed = std::max(changed, std::abs(expected->GetTuple1(w) - input->GetTuple1(w)));
+      }
+    }
+  }
+  EXPECT_GT(changed, 0.05) << "the filter changed the samples";
 }
