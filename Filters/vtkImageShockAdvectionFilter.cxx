@@ -82,25 +82,30 @@ std::array<std::uintptr_t, 3> ImageStamp(vtkImageData* input, vtkDataArray* arra
 /**
  * The halo samples the traces of a piece's own samples needed to be exact:
  * their reach beyond the faces beside them plus the flow's stencil
- * (shock::GridStencilLayers), on each side whose halo has all `layers`
- * samples; a side whose halo ends at the whole image's boundary is exact
- * however far the traces went. 0 when no side needed any.
+ * (shock::GridStencilLayers), on each side whose halo does not end at the
+ * whole image's boundary (`whole`, the whole extent; null: the sides whose
+ * halo has fewer than `layers` samples are taken to end there). There the
+ * piece's grid ends where the whole image's does: exact however far the
+ * traces went. 0 when no side needed any.
  */
-int HaloNeeded(vtkImageData* withHalo, vtkImageData* piece, bool cellData, int layers,
+int HaloNeeded(vtkImageData* withHalo, vtkImageData* piece, bool cellData, int layers, const int* whole,
   const std::array<std::int64_t, 6>& reach, int stencil)
 {
   const std::array<std::int64_t, 6> own = SamplesOfExtent(withHalo, piece->GetExtent(), cellData);
   const shock::GridShape grid = SampleGrid(withHalo, cellData);
+  const int* grown = withHalo->GetExtent();
   std::int64_t needed = 0;
   for (int a = 0; a < 3; ++a)
   {
     const std::int64_t below = own[2 * a];
     const std::int64_t above = grid.dimensions[a] - 1 - own[2 * a + 1];
-    if (below >= layers)
+    const bool openBelow = whole ? grown[2 * a] > whole[2 * a] : below >= layers;
+    const bool openAbove = whole ? grown[2 * a + 1] < whole[2 * a + 1] : above >= layers;
+    if (openBelow)
     {
       needed = std::max(needed, reach[2 * a] + stencil);
     }
-    if (above >= layers)
+    if (openAbove)
     {
       needed = std::max(needed, reach[2 * a + 1] + stencil);
     }
@@ -344,7 +349,9 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
       target.wholeExtent = knowsWhole ? whole : nullptr;
       target.haloReach = &reach;
       done = this->FilterSamples(withHalo, grownArray, association, target) != 0;
-      needed = done && stencil >= 0 ? HaloNeeded(withHalo, input, cellData, layers, reach, stencil) : -1;
+      needed = done && stencil >= 0
+        ? HaloNeeded(withHalo, input, cellData, layers, knowsWhole ? whole : nullptr, reach, stencil)
+        : -1;
       vtkLogF(TRACE, "shock: the own flow lines need a halo of %d of %d samples", needed, layers);
     }
     // Every process learns of a failure, and of a piece whose halo was too small.

@@ -554,7 +554,7 @@ MUTANTS = [
          replacement="    this->AgreedHalo = 0;",
          bug="every execution of the same image grows its halo again from the start"),
     dict(id="halo-side-below-ignored", file="Filters/vtkImageShockAdvectionFilter.cxx",
-         original="    if (below >= layers)",
+         original="    if (openBelow)",
          replacement="    if (false)",
          bug="the flow lines that run below a piece's own samples never grow its halo"),
 ]
