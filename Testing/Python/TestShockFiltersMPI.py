@@ -114,6 +114,48 @@ def wavelet(extent, expression=None):
     return calculator, [source, calculator]
 
 
+def wavelet_inputs(extent, expression, cells):
+    """The serial reference input (a VTK pipeline: the Wavelet, its 'Step' if
+    `expression`, to cell data if `cells`; its last algorithm and the objects
+    to keep) and the same as ParaView proxies for the parallel run."""
+    from vtkmodules.vtkFiltersCore import vtkPointDataToCellData
+    reference_input, keep = wavelet(extent, expression)
+    last = reference_input
+    if cells:
+        to_cells = vtkPointDataToCellData()
+        to_cells.SetInputConnection(reference_input.GetOutputPort())
+        keep.append(to_cells)
+        last = to_cells
+    proxies = [Wavelet(WholeExtent=extent)]
+    if expression:
+        proxies.append(Calculator(Input=proxies[-1], Function=expression, ResultArrayName="Step"))
+    if cells:
+        proxies.append(PointDatatoCellData(Input=proxies[-1]))
+    return last, keep, proxies
+
+
+def check_starts_as_agreed(label, filtered, path, attempts_property, agreed, unit):
+    """A parameter changes, the input does not: executed again (saved to
+    `path`), `filtered` starts with the ghost layers the last execution agreed on."""
+    filtered.GenerateFlowArrays = 1
+    SaveData(path, proxy=filtered)
+    filtered.UpdatePropertyInformation()
+    attempts, used = filtered.GetPropertyValue(attempts_property), filtered.GetPropertyValue("LastGhostLevels")
+    check(attempts == 1 and used == agreed, "%s: executed again, it starts with the %d agreed %s (%d attempts, %d %s)"
+          % (label, agreed, unit, attempts, used, unit))
+
+
+def check_capped_warns(label, capped, path, start, unit):
+    """`capped` (Ghost Levels `start`, too few for its flow lines), saved to
+    `path`: it keeps `start` ghost layers and process 0 warns that they are too few."""
+    SaveData(path, proxy=capped)
+    capped.UpdatePropertyInformation()
+    check(capped.GetPropertyValue("LastGhostLevels") == start, "%s: capped at %d %s" % (label, start, unit))
+    check(len(messages.warnings) >= 1 and "Ghost Levels" in messages.warnings[-1] and not messages.errors,
+          "%s, Ghost Levels %d: a warning that the %s are too few (%s)" % (label, start, unit, messages.warnings))
+    Delete(capped)
+
+
 def piece_extents(path):
     with open(path) as handle:
         return [list(map(int, e.split())) for e in re.findall(r'<Piece Extent="([^"]*)"', handle.read())]
@@ -179,15 +221,8 @@ def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=N
     samples differing, in the filtered array and in the flow arrays if asked for."""
     name = "Step" if expression else "RTData"
     association = "CELLS" if cells else "POINTS"
-    # Serial reference.
-    reference_input, keep = wavelet(extent, expression)
-    last = reference_input
-    if cells:
-        from vtkmodules.vtkFiltersCore import vtkPointDataToCellData
-        to_cells = vtkPointDataToCellData()
-        to_cells.SetInputConnection(reference_input.GetOutputPort())
-        keep.append(to_cells)
-        last = to_cells
+    # Serial reference, and the proxies of the parallel run.
+    last, keep, proxies = wavelet_inputs(extent, expression, cells)
     if blanked:
         from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
         last.Update()
@@ -198,11 +233,6 @@ def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=N
     serial = serial_filter("ImageShockAdvection", last, InputArray=[association, name], FlowTime=flow_time,
                            **properties)
     # Parallel run (fresh proxies: a source keeps the ghost layers of an earlier request).
-    proxies = [Wavelet(WholeExtent=extent)]
-    if expression:
-        proxies.append(Calculator(Input=proxies[-1], Function=expression, ResultArrayName="Step"))
-    if cells:
-        proxies.append(PointDatatoCellData(Input=proxies[-1]))
     if blanked:
         proxies.append(ProgrammableFilter(Input=proxies[-1], Script=BLANK_SCRIPT))
     filtered = ImageShockAdvection(Input=proxies[-1], InputArray=[association, name], FlowTime=flow_time,
@@ -285,7 +315,6 @@ def image_adaptive_case():
     executed again after a parameter change, it starts with the agreed halo; with
     Ghost Levels below what the flow lines need, a warning; short flow lines keep
     a halo smaller than Ghost Levels."""
-    from vtkmodules.vtkFiltersCore import vtkPointDataToCellData
     extent = [-128, 127, -128, 127, 0, 0]
     diagonal = "tanh((coordsY-0.8*coordsX-5)/6)"  # a step across every cut of the pieces
     # A step 4 samples above the cut of 2 pieces (VTK's extent translator cuts
@@ -300,18 +329,8 @@ def image_adaptive_case():
                                                ("step, t = 64", diagonal, 64, False)):
         label = "adaptive halo, %s np=%d" % (name, PROCESSES)
         association = "CELLS" if cells else "POINTS"
-        reference_input, keep = wavelet(extent, expression)
-        last = reference_input
-        if cells:
-            to_cells = vtkPointDataToCellData()
-            to_cells.SetInputConnection(reference_input.GetOutputPort())
-            keep.append(to_cells)
-            last = to_cells
+        last, keep, proxies = wavelet_inputs(extent, expression, cells)
         serial = serial_filter("ImageShockAdvection", last, InputArray=[association, "Step"], FlowTime=flow_time)
-        proxies = [Wavelet(WholeExtent=extent)]
-        proxies.append(Calculator(Input=proxies[-1], Function=expression, ResultArrayName="Step"))
-        if cells:
-            proxies.append(PointDatatoCellData(Input=proxies[-1]))
         del messages.errors[:]
         del messages.warnings[:]
         filtered = ImageShockAdvection(Input=proxies[-1], InputArray=[association, "Step"], FlowTime=flow_time)
@@ -339,15 +358,7 @@ def image_adaptive_case():
             check(start < layers <= 16 and attempts >= 2,
                   "%s: the halo grew from %d to %d samples, at most Ghost Levels, in %d attempts"
                   % (label, start, layers, attempts))
-            # A parameter changes, the input does not: the next execution starts with the agreed halo.
-            filtered.GenerateFlowArrays = 1
-            SaveData(path, proxy=filtered)
-            filtered.UpdatePropertyInformation()
-            check(filtered.GetPropertyValue("LastHaloAttempts") == 1 and
-                  filtered.GetPropertyValue("LastGhostLevels") == layers,
-                  "%s: executed again, it starts with the agreed %d samples (%d attempts, %d samples)"
-                  % (label, layers, filtered.GetPropertyValue("LastHaloAttempts"),
-                     filtered.GetPropertyValue("LastGhostLevels")))
+            check_starts_as_agreed(label, filtered, path, "LastHaloAttempts", layers, "samples")
             compare_saved(", again")
         else:
             check(attempts == 1 and start <= layers < 16,
@@ -358,14 +369,8 @@ def image_adaptive_case():
         if flow_time > 64 and (name != "one-sided step" or PROCESSES == 2):
             # At most `start` samples: too few, and a warning says so.
             del messages.warnings[:]
-            capped = ImageShockAdvection(Input=proxies[-1], InputArray=[association, "Step"], FlowTime=flow_time,
-                                         GhostLevels=start)
-            SaveData(path, proxy=capped)
-            capped.UpdatePropertyInformation()
-            check(capped.GetPropertyValue("LastGhostLevels") == start, "%s: capped at %d samples" % (label, start))
-            check(len(messages.warnings) >= 1 and "Ghost Levels" in messages.warnings[-1] and not messages.errors,
-                  "%s, Ghost Levels %d: a warning that the halo is too small (%s)" % (label, start, messages.warnings))
-            Delete(capped)
+            check_capped_warns(label, ImageShockAdvection(Input=proxies[-1], InputArray=[association, "Step"],
+                                                          FlowTime=flow_time, GhostLevels=start), path, start, "samples")
         for proxy in proxies[::-1]:
             Delete(proxy)
 
@@ -670,15 +675,7 @@ def adaptive_rings_case():
         attempts = filtered.GetPropertyValue("LastRingAttempts")
         if rings > start:
             check(attempts >= 2, "%s: the rings grew, so the pieces were filtered again (%d times)" % (label, attempts))
-            # A parameter changes, the input does not: the next execution starts with the agreed rings.
-            filtered.GenerateFlowArrays = 1
-            SaveData(out, proxy=filtered)
-            filtered.UpdatePropertyInformation()
-            check(filtered.GetPropertyValue("LastRingAttempts") == 1 and
-                  filtered.GetPropertyValue("LastGhostLevels") == rings,
-                  "%s: executed again, it starts with the %d agreed rings (%d attempts, %d rings)"
-                  % (label, rings, filtered.GetPropertyValue("LastRingAttempts"),
-                     filtered.GetPropertyValue("LastGhostLevels")))
+            check_starts_as_agreed(label, filtered, out, "LastRingAttempts", rings, "rings")
             if array[0] == "POINTS":
                 compare(label + ", again", read_pieces(out), serial, heat, 1e-12 * np.ptp(heat(serial)), "Heat")
         else:
@@ -691,13 +688,8 @@ def adaptive_rings_case():
         Delete(filtered)
         # The same with at most `start` rings: not enough; a warning says so.
         if name != "no smoothing":
-            capped = SurfaceShockAdvection(Input=split, InputArray=array, GhostLevels=start, **properties)
-            SaveData(out, proxy=capped)
-            capped.UpdatePropertyInformation()
-            check(capped.GetPropertyValue("LastGhostLevels") == start, "%s: capped at %d rings" % (label, start))
-            check(len(messages.warnings) >= 1 and "Ghost Levels" in messages.warnings[-1] and not messages.errors,
-                  "%s, Ghost Levels %d: a warning that the rings are too few (%s)" % (label, start, messages.warnings))
-            Delete(capped)
+            check_capped_warns(label, SurfaceShockAdvection(Input=split, InputArray=array, GhostLevels=start,
+                                                            **properties), out, start, "rings")
         Delete(split)
         Delete(reader)
 
