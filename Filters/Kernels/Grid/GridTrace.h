@@ -369,6 +369,10 @@ private:
   {
     this->ClampToGrid(q);
     const std::int64_t face = this->FaceOf(q, c);
+    for (int d = 0; d < D; ++d)
+    {
+      this->Fence(d, c[d], marks);
+    }
     return this->TraceStepped(q, c, face, t, marks);
   }
 
