@@ -41,6 +41,9 @@ process 0 prints a MEASURE line with what each process did and checks:
 - image Domain Gradients on pieces: vtkRTAnalyticSource -> the image filter
   with Domain Gradients, the source cutting its pieces: every process fails
   with the same one-line error (the solve needs the whole image), empty output.
+- image abort on process 0: the same during Image Shock Advection of a
+  diagonal step whose pieces would grow their halo: every process returns
+  after one attempt (the abort is agreed with the halo's reduction).
 - abort on process 0: a ProgressEvent observer on process 0 only sets
   AbortExecute during a sharpening of a 200 x 200 sphere: every process
   returns from UpdatePiece and reaches the Barrier after it.
@@ -636,6 +639,57 @@ def abort_case():
     return local, judge
 
 
+def image_abort_case():
+    label = "image abort on rank 0 np=%d" % PROCESSES
+
+    def local():
+        # A diagonal step at a long time: the pieces' halo must grow (a second
+        # attempt) unless a process aborted; rank 0 aborts during its first one.
+        from vtkmodules.vtkFiltersCore import vtkArrayCalculator
+        source = vtkRTAnalyticSource()
+        source.SetWholeExtent(-128, 127, -128, 127, 0, 0)
+        step = vtkArrayCalculator()
+        step.SetInputConnection(source.GetOutputPort())
+        step.AddCoordinateScalarVariable("coordsX", 0)
+        step.AddCoordinateScalarVariable("coordsY", 1)
+        step.SetFunction("tanh((coordsY-0.8*coordsX-5)/6)")
+        step.SetResultArrayName("Step")
+        algorithm = vtkImageShockAdvectionFilter()
+        algorithm.SetController(controller)
+        algorithm.SetNumberOfThreads(1)
+        algorithm.SetFlowTime(65536)
+        algorithm.SetInputArrayToProcess(0, 0, 0, 0, "Step")
+        algorithm.SetInputConnection(step.GetOutputPort())
+        requested = []
+
+        def abort(caller, event):
+            progress = caller.GetProgress()
+            if not requested and 0.0 < progress < 1.0:
+                requested.append(progress)
+                caller.SetAbortExecute(1)
+
+        if RANK == 0:
+            algorithm.AddObserver("ProgressEvent", abort)
+        messages.take()
+        rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
+        controller.Barrier()
+        return {"rank": RANK, "rc": rc, "returned": True, "abort_at": requested[0] if requested else None,
+                "attempts": algorithm.GetLastHaloAttempts(), "halo": algorithm.GetLastGhostLevels(),
+                "errors": messages.take()}
+
+    def judge(records):
+        print("MEASURE %-40s attempts %s, halo %s; abort requested at progress %s" % (
+            label, [r["attempts"] for r in records], [r["halo"] for r in records], records[0].get("abort_at")),
+            flush=True)
+        check(all(r.get("returned") for r in records), "%s: every process returned and reached the Barrier" % label)
+        check(records[0].get("abort_at") is not None, "%s: no progress report on rank 0 to abort at" % label)
+        check(all(r["attempts"] == 1 and r["halo"] == records[0]["halo"] for r in records),
+              "%s: the abort is agreed: no process grows its halo and filters again (%s)"
+              % (label, [(r["attempts"], r["halo"]) for r in records]))
+
+    return local, judge
+
+
 def all_cases():
     """(name, case) pairs; a name is dotted (e.g. bad_cell_id.sharpen.line.bad1)."""
     cases = [("replicated", replicated_case()), ("source_pieces", source_pieces_case()),
@@ -653,6 +707,7 @@ def all_cases():
     for bad in bad_ranks():
         cases.append(("iterations.bad%d" % bad, iterations_case(bad)))
     cases.append(("abort", abort_case()))
+    cases.append(("image_abort", image_abort_case()))
     return cases
 
 
