@@ -28,17 +28,20 @@
  * for cell data a point array on the interior points (the centres of the faces
  * between cell centres; zero on the boundary).
  *
- * In parallel (one piece per process, as in pvbatch or pvserver with MPI)
- * the filter asks for GhostLevels more ghost levels, so that the source cuts
- * its piece that many samples larger on every axis with more than one sample
- * (RequestUpdateExtent), filters the whole input extent it receives and crops
- * the output back to the piece requested from it, so that the pieces tile the
- * image; every piece is normalised by the data range
- * over all pieces (ParallelValueScale). The result equals the serial one
- * except where a flow line leaves the ghost region: see GhostLevels and
- * docs/parallel.md. Cell data: the cells grow by the same number of layers.
- * An input that is not cut into pieces (a reader that gives the whole image to
- * one process) is kept whole.
+ * In parallel (one piece per process, as in pvbatch or pvserver with MPI,
+ * the filter's Controller set) each piece gets a halo of samples from the
+ * processes that hold them, is filtered with it (only its own samples are
+ * traced) and keeps its own extent, so that the pieces tile the image; every
+ * piece is normalised by the data range over all pieces (ParallelValueScale)
+ * and measures lengths in the whole image's mean edge. With Method ADVECTION
+ * and one flow the halo is sized from the flow lines (GetLastGhostLevels): the
+ * result equals the serial one, or a warning says GhostLevels is too small;
+ * the other methods take GhostLevels samples. See GhostLevels and
+ * docs/parallel.md. Without a controller (serial streaming) the filter asks
+ * the source for GhostLevels more ghost levels and crops the output back to
+ * the piece requested. Cell data: the halo is counted in cells. An input that
+ * is not cut into pieces (a reader that gives the whole image to one process)
+ * is kept whole.
  *
  * Method selects how the shock filter is computed: ADVECTION (default, the
  * paper's method, above) or PDE, the Osher-Rudin shock-filter PDE integrated
