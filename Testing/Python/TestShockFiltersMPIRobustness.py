@@ -610,19 +610,26 @@ def gradient_domain_case():
     return local, judge
 
 
+def abort_at_first_progress():
+    """A ProgressEvent observer that sets AbortExecute at the first report from
+    within RequestData (progress 0 comes before it), and the list of the
+    progress it aborted at."""
+    requested = []
+
+    def abort(caller, event):
+        progress = caller.GetProgress()
+        if not requested and 0.0 < progress < 1.0:
+            requested.append(progress)
+            caller.SetAbortExecute(1)
+
+    return requested, abort
+
+
 def abort_case():
     label = "abort on rank 0 np=%d" % PROCESSES
 
     def local():
-        requested = []
-
-        def abort(caller, event):
-            # Progress 0 comes before RequestData: abort at the first report from within it.
-            progress = caller.GetProgress()
-            if not requested and 0.0 < progress < 1.0:
-                requested.append(progress)
-                caller.SetAbortExecute(1)
-
+        requested, abort = abort_at_first_progress()
         record, algorithm = run("sharpen", piece_mesh(resolution=200), label,
                                 observe=abort if RANK == 0 else None)
         controller.Barrier()
@@ -660,14 +667,7 @@ def image_abort_case():
         algorithm.SetFlowTime(65536)
         algorithm.SetInputArrayToProcess(0, 0, 0, 0, "Step")
         algorithm.SetInputConnection(step.GetOutputPort())
-        requested = []
-
-        def abort(caller, event):
-            progress = caller.GetProgress()
-            if not requested and 0.0 < progress < 1.0:
-                requested.append(progress)
-                caller.SetAbortExecute(1)
-
+        requested, abort = abort_at_first_progress()
         if RANK == 0:
             algorithm.AddObserver("ProgressEvent", abort)
         messages.take()
