@@ -277,7 +277,8 @@ bool AnyFailed(vtkMultiProcessController* controller, bool failed, std::string& 
   return true;
 }
 
-int MoreLayers(vtkMultiProcessController* controller, bool aborted, int needed, int layers, int most, bool& tooFew)
+int MoreLayers(vtkMultiProcessController* controller, bool aborted, int needed, int layers, int most, bool& tooFew,
+  bool* anyAborted)
 {
   int wanted = layers;
   int beyond = 0;
@@ -291,6 +292,10 @@ int MoreLayers(vtkMultiProcessController* controller, bool aborted, int needed, 
   int global[3] = { 0, 0, 0 };
   controller->AllReduce(local, global, 3, vtkCommunicator::MAX_OP);
   tooFew = global[0] == 0 && global[2] != 0;
+  if (anyAborted)
+  {
+    *anyAborted = global[0] != 0;
+  }
   return global[0] != 0 ? layers : std::max(layers, global[1]);
 }
 

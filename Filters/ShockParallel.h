@@ -208,8 +208,10 @@ bool AnyFailed(vtkMultiProcessController* controller, bool failed, std::string& 
  * `layers` when a piece's own flow lines `needed` more to be exact (their
  * reach plus the flow's stencil), up to `most`; `layers` when none did, or a
  * process `aborted`. `tooFew`: some piece needed more with `most` already.
+ * `anyAborted`, when given: whether some process aborted.
  */
-int MoreLayers(vtkMultiProcessController* controller, bool aborted, int needed, int layers, int most, bool& tooFew);
+int MoreLayers(vtkMultiProcessController* controller, bool aborted, int needed, int layers, int most, bool& tooFew,
+  bool* anyAborted = nullptr);
 
 /**
  * The agreement before a distributed execution (collective, one reduction

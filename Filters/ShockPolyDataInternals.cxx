@@ -23,6 +23,7 @@
 #include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolygon.h"
@@ -44,6 +45,48 @@
 
 namespace ShockPolyDataInternals
 {
+namespace
+{
+std::array<std::uintptr_t, 4> InputStamp(vtkDataObject* input)
+{
+  auto* data = vtkDataSet::SafeDownCast(input);
+  auto* surface = vtkPointSet::SafeDownCast(input);
+  return { reinterpret_cast<std::uintptr_t>(input),
+    data ? static_cast<std::uintptr_t>(data->GetNumberOfPoints()) : 0,
+    data ? static_cast<std::uintptr_t>(data->GetNumberOfCells()) : 0,
+    surface && surface->GetPoints() ? reinterpret_cast<std::uintptr_t>(surface->GetPoints()->GetData()) : 0 };
+}
+}
+
+int RingAgreement::Start(vtkMultiProcessController* controller, vtkDataObject* input, int stencil, int spare, int most)
+{
+  if (!controller)
+  {
+    return most;
+  }
+  if (!input || InputStamp(input) != this->Stamp)
+  {
+    this->Rings = 0; // another input: grown again from the stencil
+  }
+  // Every process takes part, whatever its parameters (they are compared after this).
+  const int mine = stencil < 0 ? most : std::min(most, std::max(stencil + spare, this->Rings));
+  int rings = mine;
+  controller->AllReduce(&mine, &rings, 1, vtkCommunicator::MAX_OP); // the same on every process
+  return rings;
+}
+
+void RingAgreement::Keep(vtkDataObject* input, int rings)
+{
+  this->Rings = rings;
+  this->Stamp = InputStamp(input);
+}
+
+std::string TooFewRingsWarning(int ghostLevels, const char* samples)
+{
+  return std::string("Flow lines of ") + samples + " near the pieces' borders run further than the " +
+    std::to_string(ghostLevels) + " ghost rings (Ghost Levels) make exact: those " + samples +
+    " may differ from a serial run. Raise Ghost Levels (up to 64) for the serial result.";
+}
 
 vtkSmartPointer<vtkDoubleArray> TrianglesToCells(const char* name, vtkIdType numberOfCells,
   const shock::TriangleMesh& mesh, const Triangles& triangles, const std::vector<double>& vectors)

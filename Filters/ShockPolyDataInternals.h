@@ -10,6 +10,8 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include <array>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -60,6 +62,37 @@ struct PieceReach
   int stencil = -1;
   bool aborted = false;
 };
+
+/**
+ * The ghost rings the pieces of a surface filter agreed on for an input, kept
+ * for the next execution of the same input (a parameter changed), so that it
+ * starts with them instead of growing them again. A stale match costs rings,
+ * never the result: they only start higher.
+ */
+class RingAgreement
+{
+public:
+  /**
+   * The rings a piece starts with: `stencil` + `spare`, or the rings the last
+   * execution of this same input agreed on, at most `most` (`most` when
+   * `stencil` < 0: no bound, or without a controller); the largest over the
+   * processes (collective: every process of `controller` calls it).
+   */
+  int Start(vtkMultiProcessController* controller, vtkDataObject* input, int stencil, int spare, int most);
+  /// Keep `rings` as agreed for `input`.
+  void Keep(vtkDataObject* input, int rings);
+
+private:
+  int Rings = 0;
+  std::array<std::uintptr_t, 4> Stamp{}; ///< of the input (object, sizes, points; compared only)
+};
+
+/**
+ * The warning of process 0 when the flow lines of a piece's `samples` (what
+ * the filter traces: "points", "normals") ran further than `ghostLevels`
+ * rings make exact.
+ */
+std::string TooFewRingsWarning(int ghostLevels, const char* samples);
 
 /// Whether a cell's point ids lie in [0, numberOfPoints); else the message in `error`.
 bool IdsInRange(const char* kind, vtkIdType cellId, vtkIdType size, const vtkIdType* ids,

@@ -118,6 +118,7 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
   }
   ShockParallel::Sum(controller, lengths, 2);
   out.meanEdgeLength = lengths[1] > 0.0 ? lengths[0] / lengths[1] : 0.0;
+  out.wholeTriangles = lengths[1] / 3.0;
   vtkDataArray* ids = piece->GetPointData()->GetGlobalIds();
   std::vector<vtkIdType> globalIds(static_cast<size_t>(np), -1);
   for (std::int64_t p = 0; ids && p < np; ++p)
@@ -144,6 +145,6 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
     ShockParallel::Sum(controller, values, count);
   };
   partition.exchangePoints = [&out](double* values) { out.exchange.Exchange(values); };
-  partition.anyStopped = [controller](bool stopped) { return ShockParallel::Count(controller, stopped) > 0; };
+  partition.anyStopped = [controller](bool stopped, int) { return ShockParallel::Count(controller, stopped) > 0; };
 }
 }

@@ -25,13 +25,14 @@ struct Distribution
   shock::MeshPartition partition;
   ShockParallel::PointExchange exchange;
   double meanEdgeLength = 0.0;
+  double wholeTriangles = 0.0; ///< the triangles all pieces own (the traces' step cap)
 };
 
 /**
  * Ownership from the ghost marks (each point and triangle owned by one
  * process), the points whose owners' values this piece needs (corners of the
  * triangles around its owned points and of its owned triangles), the exchange
- * keyed by global point ids, and the mean edge length over all pieces.
+ * keyed by global point ids, and the mean edge length and triangle count over all pieces.
  * Collective.
  */
 void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,

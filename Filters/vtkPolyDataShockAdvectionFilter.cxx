@@ -44,6 +44,7 @@ vtkPolyData* vtkPolyDataShockAdvectionFilter::GetOutput(int port)
 
 vtkPolyDataShockAdvectionFilter::vtkPolyDataShockAdvectionFilter()
   : PreparedMeshes(new ShockPolyDataInternals::MeshCache)
+  , Rings(new ShockPolyDataInternals::RingAgreement)
 {
   // Default array: the active point scalars.
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS,
@@ -71,16 +72,6 @@ namespace
  * object, its sizes and where its points are (its modification time does not:
  * VTK's cell caches and the arrays an output shares touch it).
  */
-std::array<std::uintptr_t, 4> InputStamp(vtkDataObject* input)
-{
-  auto* data = vtkDataSet::SafeDownCast(input);
-  auto* surface = vtkPointSet::SafeDownCast(input);
-  return { reinterpret_cast<std::uintptr_t>(input),
-    data ? static_cast<std::uintptr_t>(data->GetNumberOfPoints()) : 0,
-    data ? static_cast<std::uintptr_t>(data->GetNumberOfCells()) : 0,
-    surface && surface->GetPoints() ? reinterpret_cast<std::uintptr_t>(surface->GetPoints()->GetData()) : 0 };
-}
-
 /**
  * The rings every piece gets next, the same on every process (collective):
  * more than `rings` when a flow line of a piece's own points read a triangle
@@ -213,13 +204,10 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
       }
       // Kept for the next execution of the same input (a parameter changed):
       // it starts with the rings agreed here instead of growing them again.
-      this->AgreedRings = rings;
-      this->AgreedInputStamp = InputStamp(vtkDataObject::GetData(inputVector[0]));
+      this->Rings->Keep(vtkDataObject::GetData(inputVector[0]), rings);
       if (tooFew && this->GhostLevels > 0 && piece.controller->GetLocalProcessId() == 0)
       {
-        vtkWarningMacro("Flow lines of points near the pieces' borders run further than the "
-          << this->GhostLevels << " ghost rings (Ghost Levels) make exact: those points may differ from a "
-          << "serial run. Raise Ghost Levels (up to 64) for the serial result.");
+        vtkWarningMacro(<< ShockPolyDataInternals::TooFewRingsWarning(this->GhostLevels, "points"));
       }
     }
     if (!done)
@@ -243,20 +231,7 @@ int vtkPolyDataShockAdvectionFilter::StartingRings(vtkDataObject* input, vtkMult
   shock::MeshSignal points; // a point signal: a cell signal's one more ring is found by MoreRings
   points.location = shock::MeshLocation::Points;
   const int stencil = shock::MeshStencilRings(points, ShockFilterInternals::MakeParameters(this));
-  if (stencil < 0 || !controller)
-  {
-    return this->GhostLevels;
-  }
-  // The rings the last execution of this same input agreed on (0 for another
-  // input). A stale match costs rings, never the result: they only start higher.
-  if (!input || InputStamp(input) != this->AgreedInputStamp)
-  {
-    this->AgreedRings = 0;
-  }
-  const int mine = std::min(this->GhostLevels, std::max(stencil + 2, this->AgreedRings));
-  int rings = mine;
-  controller->AllReduce(&mine, &rings, 1, vtkCommunicator::MAX_OP); // the same on every process
-  return rings;
+  return this->Rings->Start(controller, input, stencil, 2, this->GhostLevels);
 }
 
 void vtkPolyDataShockAdvectionFilter::ResetMeasurements()

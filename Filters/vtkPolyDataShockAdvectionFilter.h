@@ -81,9 +81,7 @@
 #include "vtkFiltersShockModule.h" // for export macro
 #include "vtkShockAdvectionFilter.h"
 
-#include <array>   // for std::array
-#include <cstdint> // for std::uintptr_t
-#include <memory>  // for std::unique_ptr
+#include <memory> // for std::unique_ptr
 
 class vtkDataArray;
 class vtkPolyData;
@@ -91,6 +89,7 @@ namespace ShockPolyDataInternals
 {
 class MeshCache;
 struct PieceReach;
+class RingAgreement;
 }
 
 class VTKFILTERSSHOCK_EXPORT vtkPolyDataShockAdvectionFilter : public vtkShockAdvectionFilter
@@ -183,8 +182,7 @@ private:
   std::unique_ptr<ShockPolyDataInternals::MeshCache> PreparedMeshes;
   int LastGhostLevels = 0;
   int LastRingAttempts = 0;
-  int AgreedRings = 0;                  ///< the rings the last parallel execution agreed on
-  std::array<std::uintptr_t, 4> AgreedInputStamp{}; ///< of this input (object, sizes, points; compared only)
+  std::unique_ptr<ShockPolyDataInternals::RingAgreement> Rings; ///< the rings the last parallel execution agreed on
   double ParallelTriangles = 0.0; ///< the whole mesh's triangles in parallel (the trace cap), 0 when serial
 };
 

@@ -26,6 +26,7 @@
 #include <chrono>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -214,6 +215,7 @@ void RecomputeActiveNormals(vtkPolyData* output, const ShockPolyDataInternals::T
 vtkPolyDataShockSharpenFilter::vtkPolyDataShockSharpenFilter()
   : PreparedMeshes(new ShockPolyDataInternals::MeshCache)
   , KernelCache(new shock::SharpeningCache)
+  , Rings(new ShockPolyDataInternals::RingAgreement)
 {
   // Roundings over 4 to 6 rows of triangles are sharp at 256; at 64 (the advection
   // filters' default) most blurred parts of docs/sharpening.md hardly changed.
@@ -309,24 +311,64 @@ int vtkPolyDataShockSharpenFilter::RequestData(
         "processes is available to fit them together; give the whole mesh to one process."
       : "";
   };
-  vtkSmartPointer<vtkPolyData> input;
-  ShockParallel::SurfacePiece piece;
-  std::string error;
-  vtkLogStartScope(TRACE, "shock: input, agreement and ghost rings");
-  const bool begun = ShockPolyDataInternals::BeginSurface(inputVector, controller,
-    std::max(1, this->GhostLevels), wholeOrPieces, this->ParametersText(), nullptr, carried, input, piece, error);
-  vtkLogEndScope("shock: input, agreement and ghost rings");
-  if (!begun)
+  // The pieces start with the rings the stencils of the normals the fit reads
+  // need and StartingReach more, and get more only when their flow lines run
+  // deeper (the agreement before the fit), up to GhostLevels.
+  const int most = std::max(1, this->GhostLevels);
+  vtkDataObject* given = vtkDataObject::GetData(inputVector[0]);
+  int rings = this->Rings->Start(controller, given, started ? this->RingStencil() : -1, StartingReach, most);
+  for (;;)
   {
-    vtkErrorMacro(<< error);
-    return 0;
+    carried = ShockParallel::CarriedArrays{ false, {}, {} };
+    vtkSmartPointer<vtkPolyData> input;
+    ShockParallel::SurfacePiece piece;
+    std::string error;
+    vtkLogStartScope(TRACE, "shock: input, agreement and ghost rings");
+    const bool begun = ShockPolyDataInternals::BeginSurface(
+      inputVector, controller, rings, wholeOrPieces, this->ParametersText(), nullptr, carried, input, piece, error);
+    vtkLogEndScope("shock: input, agreement and ghost rings");
+    if (!begun)
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+    if (piece.skip)
+    {
+      output->Initialize();
+      return 1; // replicated data: process 0 sharpens it once
+    }
+    this->LastGhostLevels = piece.controller ? piece.rings : 0;
+    ++this->LastRingAttempts;
+    int more = 0;
+    bool tooFew = false;
+    const int done = this->SharpenPiece(input, piece, output, more, tooFew);
+    if (done && piece.controller && more > piece.rings)
+    {
+      vtkLogF(TRACE, "shock: a flow line of the normals read too deep into %d ghost rings: again with %d", rings, more);
+      rings = more;
+      continue;
+    }
+    if (done && piece.controller)
+    {
+      // Kept for the next execution of the same input (a parameter changed).
+      this->Rings->Keep(given, rings);
+      if (tooFew && this->GhostLevels > 0 && piece.controller->GetLocalProcessId() == 0)
+      {
+        vtkWarningMacro(<< ShockPolyDataInternals::TooFewRingsWarning(this->GhostLevels, "normals"));
+      }
+    }
+    return done;
   }
-  if (piece.skip)
-  {
-    output->Initialize();
-    return 1; // replicated data: process 0 sharpens it once
-  }
-  return this->SharpenPiece(input, piece, output);
+}
+
+int vtkPolyDataShockSharpenFilter::RingStencil()
+{
+  shock::SharpeningParameters parameters;
+  parameters.advection = ShockFilterInternals::MakeParameters(this);
+  parameters.normalSmoothingPasses = this->NormalSmoothingPasses;
+  parameters.curvatureContrast = this->CurvatureContrast;
+  const int normals = shock::SharpeningStencilRings(parameters);
+  return normals < 0 ? -1 : normals + 1;
 }
 
 /**
@@ -334,9 +376,11 @@ int vtkPolyDataShockSharpenFilter::RequestData(
  * every step that can fail agrees across the processes first.
  */
 int vtkPolyDataShockSharpenFilter::SharpenPiece(
-  vtkPolyData* input, ShockParallel::SurfacePiece& piece, vtkPolyData* output)
+  vtkPolyData* input, ShockParallel::SurfacePiece& piece, vtkPolyData* output, int& moreRings, bool& tooFew)
 {
   std::string error;
+  moreRings = piece.rings; // unless the pieces agree on more before the fit
+  tooFew = false;
   if (piece.controller && this->Solver == EXACT)
   {
     vtkErrorMacro("The EXACT solver factorises the whole system on one process, but the mesh is "
@@ -380,6 +424,37 @@ int vtkPolyDataShockSharpenFilter::SharpenPiece(
   {
     ShockParallel::ReleaseGeometry(piece);
   }
+  // The fit's rows read the triangles around the owned points (ring 1 at
+  // most), so the rings count from those: a ring-1 triangle is one whose
+  // sharpened normal must be the whole mesh's, as the piece's own ones.
+  const int stencil = piece.controller ? this->RingStencil() : -1;
+  std::vector<unsigned char> triangleRing;
+  if (stencil >= 0)
+  {
+    triangleRing.resize(prepared.triangles.sourceCell.size());
+    for (size_t f = 0; f < triangleRing.size(); ++f)
+    {
+      const vtkIdType cell = prepared.triangles.sourceCell[f];
+      const unsigned char ring = cell < static_cast<vtkIdType>(piece.cellRing.size())
+        ? piece.cellRing[static_cast<size_t>(cell)]
+        : std::numeric_limits<unsigned char>::max();
+      triangleRing[f] = ring <= 1 ? 0 : static_cast<unsigned char>(ring - 1);
+    }
+    // After the advection, before the fit: all stop when one stopped, or
+    // when some piece's flow lines ran deeper than its rings make exact.
+    const int most = std::max(1, this->GhostLevels);
+    const int rings = piece.rings;
+    vtkMultiProcessController* controller = piece.controller;
+    distribution.partition.anyStopped = [controller, stencil, rings, most, &moreRings, &tooFew](
+                                          bool stopped, int deepest) {
+      vtkLogF(TRACE, "shock: the normals' flow lines read ring %d of %d (the stencils: %d rings)", deepest, rings,
+        stencil);
+      bool anyStopped = false;
+      moreRings = ShockParallel::MoreLayers(
+        controller, stopped, deepest >= 0 ? deepest + stencil : -1, rings, most, tooFew, &anyStopped);
+      return anyStopped || moreRings > rings;
+    };
+  }
   // Normals, potential, flow and advection on the piece; the fit across pieces.
   std::vector<double> positions(prepared.triangles.points.size());
   std::vector<double> normals( // only asked for when they become an array
@@ -388,12 +463,17 @@ int vtkPolyDataShockSharpenFilter::SharpenPiece(
   shock::MeshFlowFields fields;
   vtkLogStartScope(TRACE, "shock: sharpen the piece");
   bool sharpened = this->Sharpen(prepared.mesh, piece.controller ? &distribution.partition : nullptr,
-    distribution.meanEdgeLength, !prepared.pointOrder.empty(), positions, normals, report, fields, error);
+    triangleRing.empty() ? nullptr : triangleRing.data(), distribution.meanEdgeLength, distribution.wholeTriangles,
+    !prepared.pointOrder.empty(), positions, normals, report, fields, error);
   vtkLogEndScope("shock: sharpen the piece");
   if (piece.controller ? ShockParallel::AnyFailed(piece.controller, !sharpened, error) : !sharpened)
   {
     vtkErrorMacro("Geometry sharpening failed: " << error);
     return 0;
+  }
+  if (piece.controller && moreRings > piece.rings)
+  {
+    return 1; // every process stopped before the fit: again with more rings
   }
   if (report.advection.aborted || empty)
   {
@@ -414,9 +494,9 @@ int vtkPolyDataShockSharpenFilter::SharpenPiece(
 }
 
 bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
-  const shock::MeshPartition* partition, double meanEdgeLength, bool localNumbering,
-  std::vector<double>& positions, std::vector<double>& normals, shock::SharpeningReport& report,
-  shock::MeshFlowFields& fields, std::string& error)
+  const shock::MeshPartition* partition, const unsigned char* triangleRing, double meanEdgeLength,
+  double wholeTriangles, bool localNumbering, std::vector<double>& positions, std::vector<double>& normals,
+  shock::SharpeningReport& report, shock::MeshFlowFields& fields, std::string& error)
 {
   shock::SharpeningParameters parameters;
   parameters.advection = ShockFilterInternals::MakeParameters(this);
@@ -425,6 +505,8 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   parameters.curvatureContrast = this->CurvatureContrast;
   parameters.fit.target = static_cast<shock::FitTarget>(this->FitTarget);
   parameters.lengthScale = meanEdgeLength;
+  parameters.triangleRing = triangleRing;
+  parameters.wholeTriangles = static_cast<std::int64_t>(wholeTriangles);
   parameters.fit.screeningWeight = this->ScreeningWeight;
   parameters.fit.solver = static_cast<shock::FitSolver>(this->Solver);
   parameters.fit.iterations = this->SolverIterations;
@@ -436,7 +518,7 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   if (mesh.NumberOfPoints() == 0)
   {
     // An empty piece takes part in the distributed fit's agreement, sums and exchanges.
-    if (partition->anyStopped && partition->anyStopped(false))
+    if (partition->anyStopped && partition->anyStopped(false, -1))
     {
       report.advection.aborted = true;
       return true;
@@ -540,6 +622,7 @@ void vtkPolyDataShockSharpenFilter::ResetMeasurements()
   this->LastSolverResidual = this->LastMaxDisplacement = 0.0;
   this->LastFlippedTriangles = 0;
   this->LastRepeatedTriangles = this->LastDegenerateTriangles = this->LastFeatureEdges = 0;
+  this->LastGhostLevels = this->LastRingAttempts = 0;
 }
 
 std::string vtkPolyDataShockSharpenFilter::ParametersText()
@@ -585,6 +668,8 @@ void vtkPolyDataShockSharpenFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastRepeatedTriangles: " << this->LastRepeatedTriangles << "\n";
   os << indent << "LastDegenerateTriangles: " << this->LastDegenerateTriangles << "\n";
   os << indent << "LastFeatureEdges: " << this->LastFeatureEdges << "\n";
+  os << indent << "LastGhostLevels: " << this->LastGhostLevels << "\n";
+  os << indent << "LastRingAttempts: " << this->LastRingAttempts << "\n";
   os << indent << "NumberOfMeshPreparations: " << this->GetNumberOfMeshPreparations() << "\n";
   os << indent << "NumberOfFitAssemblies: " << this->FitAssemblies << "\n";
 }

@@ -71,8 +71,9 @@
  *
  * Parallel use: a mesh split over MPI processes (e.g. by RedistributeDataSet,
  * D3 or a partitioned .pvtp file; unstructured grids of polygons are read as
- * polydata) gives the serial result. Each piece gets GhostLevels layers of
- * ghost cells (rings built with the mesh's connectivity) and global point ids; normals,
+ * polydata) gives the serial result. Each piece gets layers of ghost cells
+ * (rings built with the mesh's connectivity: as many as its normals' flow
+ * lines need, at most GhostLevels, see GetLastGhostLevels) and global point ids; normals,
  * potential, flow and advection run per piece, normalised by the mean edge
  * length over all pieces; the screened Poisson fit runs across the processes
  * of the Controller: area and centroid summed over the pieces, the same
@@ -114,6 +115,7 @@ namespace ShockPolyDataInternals
 {
 class MeshCache;
 struct PreparedMesh;
+class RingAgreement;
 }
 namespace ShockParallel
 {
@@ -283,6 +285,25 @@ public:
   vtkGetMacro(LastFeatureEdges, vtkIdType);
   ///@}
 
+  /**
+   * The ghost rings each piece had in the last execution (0 when serial).
+   * In parallel a piece starts with the rings its sharpened normals' stencils
+   * need (shock::SharpeningStencilRings, one more for the fit's rows, two
+   * more to spare) and gets more only when a flow line of the normals the fit
+   * reads ran deeper than its rings make exact, up to GhostLevels (then a
+   * warning); see vtkShockAdvectionFilter::SetGhostLevels.
+   */
+  vtkGetMacro(LastGhostLevels, int);
+
+  /**
+   * How many times the last execution advected the normals of its piece: 1
+   * when the starting rings were enough (always in serial), one more each
+   * time every piece got more rings (before the fit, which runs once). A
+   * second execution of the same input (a parameter changed) starts with the
+   * rings the first one agreed on.
+   */
+  vtkGetMacro(LastRingAttempts, int);
+
   ///@{
   /**
    * How many times the mesh was prepared (triangles, connectivity, geometry)
@@ -322,14 +343,38 @@ protected:
     vtkInformationVector* outputVector) override;
   void ResetMeasurements() override;
 
-  /// After the agreement: the piece prepared, distributed, sharpened (Sharpen) and written (BuildOutput).
-  int SharpenPiece(vtkPolyData* input, ShockParallel::SurfacePiece& piece, vtkPolyData* output);
+  /**
+   * After the agreement: the piece prepared, distributed, sharpened (Sharpen)
+   * and written (BuildOutput). A piece whose rings were too few for the
+   * normals the fit reads stops before the fit with every other piece, and
+   * `moreRings` says how many they agreed to get (more than piece.rings);
+   * `tooFew`: some piece needed more than GhostLevels rings.
+   */
+  int SharpenPiece(vtkPolyData* input, ShockParallel::SurfacePiece& piece, vtkPolyData* output, int& moreRings,
+    bool& tooFew);
 
-  /// Run the kernels (a piece of a distributed mesh with `partition`); false with the kernel's `error`.
+  /**
+   * The rings a piece's normals depend on, with the one the fit's rows add
+   * (the triangles around the owned points: ring 1); -1 for the flows that
+   * are recomputed (GhostLevels rings, whatever the traces do).
+   */
+  int RingStencil();
+
+  /**
+   * The rings beyond the stencils a piece starts with: how deep the normals'
+   * flow lines of the measured meshes read (2 to 6 rings on the dragons at
+   * t = 256 to 65536; docs/parallel.md), so that a second advection is rare.
+   */
+  static constexpr int StartingReach = 5;
+
+  /**
+   * Run the kernels (a piece of a distributed mesh with `partition`, and its
+   * triangles' rings counted from the fit's: see SharpenPiece); false with the kernel's `error`.
+   */
   bool Sharpen(const shock::TriangleMesh& mesh, const shock::MeshPartition* partition,
-    double meanEdgeLength, bool localNumbering, std::vector<double>& positions,
-    std::vector<double>& normals, shock::SharpeningReport& report, shock::MeshFlowFields& fields,
-    std::string& error);
+    const unsigned char* triangleRing, double meanEdgeLength, double wholeTriangles, bool localNumbering,
+    std::vector<double>& positions, std::vector<double>& normals, shock::SharpeningReport& report,
+    shock::MeshFlowFields& fields, std::string& error);
 
   /// The prepared mesh of `input` in the length unit `unit` (MeshUnit), kept between
   /// executions (the kernels' cache goes with it), renumbered for locality (a
@@ -361,6 +406,8 @@ protected:
   vtkIdType LastRepeatedTriangles = 0;
   vtkIdType LastDegenerateTriangles = 0;
   vtkIdType LastFeatureEdges = 0;
+  int LastGhostLevels = 0;
+  int LastRingAttempts = 0;
 
 private:
   vtkPolyDataShockSharpenFilter(const vtkPolyDataShockSharpenFilter&) = delete;
@@ -370,6 +417,7 @@ private:
   std::unique_ptr<ShockPolyDataInternals::MeshCache> PreparedMeshes;
   std::unique_ptr<shock::SharpeningCache> KernelCache;
   int KernelCachePreparation = -1; ///< the preparation the kernel cache belongs to
+  std::unique_ptr<ShockPolyDataInternals::RingAgreement> Rings; ///< the rings the last parallel execution agreed on
   int FitAssemblies = 0;
 };
 

@@ -214,8 +214,9 @@ public:
    * read a triangle whose flow those rings cannot make exact
    * (shock::MeshStencilRings), so that its result is the serial one; when
    * GhostLevels rings are still too few it warns. vtkPolyDataShockSharpenFilter
-   * traces its normals in GhostLevels rings. Serial runs (one piece) are not
-   * affected.
+   * does the same for the normals its fit reads (shock::SharpeningStencilRings,
+   * one ring more for the fit; it starts 5 rings beyond the stencil and grows
+   * before the fit). Serial runs (one piece) are not affected.
    */
   vtkSetClampMacro(GhostLevels, int, 0, 64);
   vtkGetMacro(GhostLevels, int);

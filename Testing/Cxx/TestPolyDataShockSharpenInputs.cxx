@@ -513,7 +513,8 @@ TEST(PolyDataShockSharpenFilter, DefaultsClampingAndPrintSelf)
          "ScreeningWeight: 2.5", "Solver: ConjugateGradientTolerance", "SolverIterations: 40",
          "SolverTolerance: 1e-07", "MergeCoincidentPoints: Off", "GenerateSharpenedNormals: On",
          "LastSolverResidual", "LastMaxDisplacement", "FeatureAngle: 42.5", "CurvatureContrast: 3.5", "FitTarget: Shear",
-         "LastRepeatedTriangles", "LastDegenerateTriangles", "LastFeatureEdges" })
+         "LastRepeatedTriangles", "LastDegenerateTriangles", "LastFeatureEdges", "LastGhostLevels: 0",
+         "LastRingAttempts: 0" })
   {
     EXPECT_NE(os.str().find(key), std::string::npos) << key << "\n" << os.str();
   }

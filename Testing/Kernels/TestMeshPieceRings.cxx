@@ -323,3 +323,146 @@ TEST(PieceRings, TheTraceCapIsTheWholeMeshs)
   EXPECT_LT(steps[1], 5 * steps[0]);
 }
 }
+
+// Geometry sharpening on a piece: the sharpened normals of the own triangles
+// (what the filters' distributed fit reads, SharpeningParameters::triangleRing)
+// are the whole mesh's whenever the traces stayed within R - SharpeningStencilRings.
+#include "MeshSharpening.h"
+
+namespace
+{
+struct SharpenCase
+{
+  std::string name;
+  int smoothingPasses;
+  int normalPasses;
+  double contrast;
+  double featureAngle;
+  Tracing tracing;
+};
+
+class SharpenPieceRings : public ::testing::TestWithParam<SharpenCase>
+{
+};
+
+/// An irregular sheet folded into a rounded ridge along x + 0.2 y = 20 (a blurred crease).
+MeshData RoundedRidge()
+{
+  MeshData mesh = shocktest::PlaneGrid(40, 32, 1.0);
+  for (std::int64_t p = 0; p < mesh.NumberOfPoints(); ++p)
+  {
+    const double d = mesh.points[3 * p] + 0.2 * mesh.points[3 * p + 1] - 20.0;
+    mesh.points[3 * p + 2] = 6.0 - 0.7 * std::sqrt(d * d + 4.0);
+  }
+  return shocktest::Noisy(mesh, 0.15, 5u);
+}
+
+TEST_P(SharpenPieceRings, OwnNormalsAreTheWholeMeshsWhenTheTracesStayedWithinTheExactRings)
+{
+  const SharpenCase c = GetParam();
+  const MeshData mesh = RoundedRidge();
+  const std::int64_t nt = mesh.NumberOfTriangles();
+  std::vector<char> own(static_cast<size_t>(nt), 0);
+  for (std::int64_t t = 0; t < nt; ++t)
+  {
+    const auto corners = shocktest::TriangleCorners(mesh, t);
+    const double x = (corners[0][0] + corners[1][0] + corners[2][0]) / 3.0;
+    const double y = (corners[0][1] + corners[1][1] + corners[2][1]) / 3.0;
+    own[t] = std::abs(x + 0.2 * y - 20.0) < 3.0 ? 1 : 0; // a band along the ridge
+  }
+  const TriangleMesh wholeMesh = Build(mesh);
+  SharpeningParameters p;
+  p.advection.time = 4096.0;
+  p.advection.smoothingPasses = c.smoothingPasses;
+  p.advection.tracing = c.tracing;
+  p.advection.numberOfThreads = 1;
+  p.normalSmoothingPasses = c.normalPasses;
+  p.featureAngle = c.featureAngle;
+  p.curvatureContrast = c.contrast;
+  p.contrastRings = 2;
+  p.fit.iterations = 1; // the normals are compared, not the positions
+  // A piece is measured as the whole mesh (as the filters pass the global unit and size).
+  p.lengthScale = wholeMesh.MeanEdgeLength();
+  p.wholeTriangles = nt;
+  std::vector<double> positions(mesh.points.size()), whole(static_cast<size_t>(3 * nt));
+  SharpeningReport wholeReport;
+  ASSERT_TRUE(SharpenMeshGeometry(wholeMesh, p, positions.data(), whole.data(), &wholeReport).Ok());
+  EXPECT_EQ(wholeReport.advection.deepestRing, -1) << "no rings given, no record";
+  if (c.featureAngle < 180.0)
+  {
+    EXPECT_GT(wholeReport.featureEdges, 0) << c.name << ": the feature split must be exercised";
+  }
+  double turned = 0.0; // the largest angle between a sharpened and an input normal, as 1 - cos
+  for (std::int64_t f = 0; f < nt; ++f)
+  {
+    turned = std::max(turned, 1.0 - Dot(Vec3{ whole[3 * f], whole[3 * f + 1], whole[3 * f + 2] },
+                                    Vec3{ wholeMesh.Normal(f)[0], wholeMesh.Normal(f)[1], wholeMesh.Normal(f)[2] }));
+  }
+  EXPECT_GT(turned, 0.01) << c.name << ": the sharpening must turn some normals";
+
+  const int stencil = SharpeningStencilRings(p);
+  EXPECT_EQ(stencil, c.normalPasses + 1 + 2 * c.smoothingPasses + 1 + (c.contrast > 0.0 ? 2 : 0));
+  const std::vector<int> ring = Rings(mesh, own);
+  int exactRuns = 0, flaggedRuns = 0, flaggedAndDifferent = 0, tightRuns = 0;
+  for (int R = 1; R <= stencil + 12; ++R)
+  {
+    const Piece piece = Cut(mesh, ring, R);
+    const TriangleMesh pieceMesh = Build(piece.mesh);
+    SharpeningParameters q = p;
+    q.triangleRing = piece.ring.data();
+    std::vector<double> piecePositions(piece.mesh.points.size());
+    std::vector<double> normals(static_cast<size_t>(3 * pieceMesh.NumberOfTriangles()));
+    SharpeningReport report;
+    ASSERT_TRUE(SharpenMeshGeometry(pieceMesh, q, piecePositions.data(), normals.data(), &report).Ok());
+    ASSERT_GE(report.advection.deepestRing, 0);
+    double difference = 0.0;
+    for (std::int64_t f = 0; f < pieceMesh.NumberOfTriangles(); ++f)
+    {
+      for (int k = 0; k < 3 && piece.ring[f] == 0; ++k)
+      {
+        difference = std::max(difference, std::abs(normals[3 * f + k] - whole[3 * piece.triangles[f] + k]));
+      }
+    }
+    if (report.advection.deepestRing <= R - stencil)
+    {
+      EXPECT_LE(difference, 1e-12) << c.name << ", " << R << " rings, traces read ring "
+                                   << report.advection.deepestRing;
+      ++exactRuns;
+      tightRuns += report.advection.deepestRing == R - stencil ? 1 : 0;
+    }
+    else
+    {
+      ++flaggedRuns;
+      flaggedAndDifferent += difference > 1e-9 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(exactRuns, 0) << c.name;
+  EXPECT_GT(flaggedRuns, 0) << c.name;
+  EXPECT_GT(flaggedAndDifferent, 0) << c.name << ": too few rings must show somewhere";
+  EXPECT_GT(tightRuns, 0) << c.name;
+}
+
+INSTANTIATE_TEST_SUITE_P(MeshKernel, SharpenPieceRings,
+  ::testing::Values(SharpenCase{ "defaults", 1, 0, 16.0, 30.0, Tracing::FaceCrossing },
+    SharpenCase{ "normal smoothing", 1, 2, 16.0, 12.0, Tracing::FaceCrossing },
+    SharpenCase{ "paper potential, no split", 1, 0, 0.0, 180.0, Tracing::FaceCrossing },
+    SharpenCase{ "normal smoothing, paper potential", 1, 2, 0.0, 12.0, Tracing::FaceCrossing },
+    SharpenCase{ "feature split, stepped", 0, 1, 16.0, 12.0, Tracing::Stepped }),
+  [](const ::testing::TestParamInfo<SharpenCase>& info) {
+    std::string name = info.param.name;
+    std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(static_cast<unsigned char>(ch)); }, '_');
+    return name;
+  });
+
+TEST(SharpenPieceRings, RecomputedFlowsHaveNoBound)
+{
+  SharpeningParameters p;
+  p.advection.flowMode = FlowMode::Composed;
+  p.advection.flowUpdates = 3;
+  EXPECT_EQ(SharpeningStencilRings(p), -1);
+  p.advection.flowUpdates = 1;
+  p.normalSmoothingPasses = 3;
+  p.curvatureContrast = 0.0;
+  EXPECT_EQ(SharpeningStencilRings(p), 3 + 1 + 2 * p.advection.smoothingPasses + 1);
+}
+}

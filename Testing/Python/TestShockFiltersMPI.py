@@ -694,6 +694,79 @@ def adaptive_rings_case():
         Delete(reader)
 
 
+def adaptive_sharpen_rings_case():
+    """Surface Shock Sharpen's pieces start with the rings the stencils of the
+    normals the fit reads need and 5 more, and get more (before the fit) only
+    when those normals' flow lines run deeper: a lens tilted across the
+    pieces' cut, the paper's potential (no contrast) and a long time make
+    them grow; the sharpened normals are then serial's, and so are the
+    positions; a Ghost Levels cap below what they need gives a warning; the
+    defaults keep their starting rings (on this smooth lens they change nothing)."""
+    from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
+    from vtkmodules.vtkCommonTransforms import vtkTransform
+    from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    _, sphere = whole_mesh()
+    transform = vtkTransform()
+    transform.RotateY(40)
+    transform.RotateX(40)
+    transform.Scale(1, 1, 0.5)
+    lens = vtkTransformPolyDataFilter()
+    lens.SetTransform(transform)
+    lens.SetInputData(sphere)
+    lens.Update()
+    mesh = lens.GetOutput()
+    cell_ids = numpy_to_vtk(np.arange(mesh.GetNumberOfCells(), dtype=np.int64), deep=1)
+    cell_ids.SetName("CellIds")
+    mesh.GetCellData().AddArray(cell_ids)
+    path = os.path.join(OUTPUT, "lens.vtp")
+    writer = vtkXMLPolyDataWriter()
+    writer.SetInputData(mesh)
+    writer.SetFileName(path)
+    writer.Write()
+    producer = vtkTrivialProducer()
+    producer.SetOutput(mesh)
+    out = os.path.join(OUTPUT, "adaptive_sharpen.pvtp")
+    for name, properties, start, grows in (
+            ("lens, paper potential, t = 2e5", dict(FlowTime=2e5, CurvatureContrast=0.0, GhostLevels=32), 10, True),
+            ("lens, defaults", dict(), 16, False)):
+        label = "adaptive sharpen rings, %s np=%d" % (name, PROCESSES)
+        properties = dict(properties, GenerateSharpenedNormals=1, **CONVERGED)
+        serial = serial_filter("SurfaceShockSharpen", producer, **properties)
+        reader = XMLPolyDataReader(FileName=[path])
+        split = RedistributeDataSet(Input=reader)
+        del messages.errors[:]
+        del messages.warnings[:]
+        sharpen = SurfaceShockSharpen(Input=split, **properties)
+        SaveData(out, proxy=sharpen)
+        sharpen.UpdatePropertyInformation()
+        rings, attempts = sharpen.GetPropertyValue("LastGhostLevels"), sharpen.GetPropertyValue("LastRingAttempts")
+        print("MEASURE %s: %d rings, %d attempts" % (label, rings, attempts), flush=True)
+        check(not messages.errors and not messages.warnings,
+              "%s: no error or warning (%s %s)" % (label, messages.errors, messages.warnings))
+        pieces = read_pieces(out)
+        # The normals before the fit do not depend on the order of the fit's sums
+        # (at much longer times they do on the order of the cells, also in serial).
+        compare_cells(label, pieces, serial, "ShockNormals", 1e-11)
+        compare(label, pieces, serial, positions, 1e-11, "position")
+        if grows:
+            moved = np.abs(positions(serial) - vtk_to_numpy(mesh.GetPoints().GetData())).max()
+            check(moved > 1e-2 * DIAGONAL, "%s: the sharpening moves points (%.3g)" % (label, moved))
+            check(start < rings <= 32 and attempts >= 2,
+                  "%s: the rings grew from %d to %d (%d attempts), at most Ghost Levels" % (label, start, rings, attempts))
+            check_starts_as_agreed(label, sharpen, out, "LastRingAttempts", rings, "rings")
+        else:
+            check(rings == start and attempts == 1, "%s: %d rings in %d attempt(s), expected %d in 1"
+                  % (label, rings, attempts, start))
+        Delete(sharpen)
+        if grows:
+            check_capped_warns(label, SurfaceShockSharpen(Input=split, **dict(properties, GhostLevels=start)), out,
+                               start, "rings")
+        Delete(split)
+        Delete(reader)
+
+
 def compare_cells(label, mesh, serial, name, tolerance):
     """Cell by cell through CellIds: each cell once, the cell array `name` equal to serial within tolerance."""
     ids = vtk_to_numpy(mesh.GetCellData().GetArray("CellIds"))
@@ -873,6 +946,7 @@ def surface_cases():
     replicated_case(whole_path, references["sharpen"])
     volume_refused_case()
     adaptive_rings_case()
+    adaptive_sharpen_rings_case()
 
 
 cases = [

@@ -83,7 +83,7 @@ EXPECTED_NAMES["SurfaceShockSharpen"] = (COMMON_NAMES - {"InputArray"}) | {
     "NormalSmoothingPasses", "ScreeningWeight", "Solver", "SolverIterations", "SolverTolerance",
     "MergeCoincidentPoints", "GenerateSharpenedNormals", "LastFitSetupSeconds",
     "LastFitSolveSeconds", "LastSolverIterations", "LastSolverResidual", "LastFlippedTriangles",
-    "LastMaxDisplacement"}
+    "LastMaxDisplacement", "LastGhostLevels", "LastRingAttempts"}
 # The image filter alone offers the PDE baseline.
 EXPECTED_NAMES["ImageShockAdvection"] = EXPECTED_NAMES["ImageShockAdvection"] | {
     "Method", "Domain", "GradientScreening", "HierarchyLevels", "CourantNumber", "MaximumIterations",
@@ -196,7 +196,7 @@ if SOURCE_DIR:
     check(set(definitions) == set(LABELS), "source XML: one flat definition per filter, %s" % sorted(definitions))
     # Deliberately different texts (what is sharpened, what is measured).
     OWN_TEXT = {"FlowTime", "Sampling", "GenerateFlowArrays", "LastSetupSeconds", "LastFlowSeconds",
-                "LastAdvectionSeconds", "LastTraceSteps", "GhostLevels", "LastGhostLevels"}
+                "LastAdvectionSeconds", "LastTraceSteps", "GhostLevels", "LastGhostLevels", "LastRingAttempts"}
 
     # Deliberately different defaults: the sharpen filter's flow time (256, the
     # advection filters' 64; docs/sharpening.md, "Choosing the flow time").

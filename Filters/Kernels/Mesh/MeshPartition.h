@@ -33,8 +33,10 @@ struct MeshPartition
   std::function<void(double* values)> exchangePoints;
   /// Whether any piece stops before the fit (collective): every piece calls it
   /// once, after its advection, with whether it stopped (aborted or failed), so
-  /// that no piece waits in the fit's sums for one that has left.
-  std::function<bool(bool stopped)> anyStopped;
+  /// that no piece waits in the fit's sums for one that has left, and with the
+  /// deepest ghost ring its own triangles' traces read (AdvectionReport::deepestRing,
+  /// -1 when not recorded), so that the pieces can stop to grow their rings first.
+  std::function<bool(bool stopped, int deepestRing)> anyStopped;
 };
 
 } // namespace shock

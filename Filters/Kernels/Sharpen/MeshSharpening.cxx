@@ -246,24 +246,33 @@ void PotentialOnOriginalPoints(const TriangleMesh& mesh, const FeatureSplitMesh&
   fields.potential.swap(potential);
 }
 
+/// The face normals as the advection's signal (values and length unit not set).
+MeshSignal NormalsSignal(const SharpeningParameters& parameters)
+{
+  MeshSignal signal;
+  signal.location = MeshLocation::Triangles;
+  signal.components = 3;
+  signal.valueScale = 2.0; // unit normals: components span [-1, 1]
+  signal.sampleAtTimeZero = true;
+  signal.potentialContrast = parameters.curvatureContrast;
+  signal.contrastRings = parameters.contrastRings;
+  signal.wholeTriangles = parameters.wholeTriangles;
+  return signal;
+}
+
 /**
  * Shock-filter advection of the (smoothed) face normals `input` into `target`
  * (renormalised), on the mesh split along its feature edges when it has any.
  */
 Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& parameters,
-  const double* input, const FeatureSplitMesh& split, ValueVector& target,
+  const double* input, const unsigned char* triangleRing, const FeatureSplitMesh& split, ValueVector& target,
   SharpeningReport& r, MeshFlowFields* fields, const ProgressFunction& progress, int threads)
 {
   const TriangleMesh& advected = split.featureEdges > 0 ? split.mesh : mesh;
-  MeshSignal signal;
-  signal.location = MeshLocation::Triangles;
-  signal.components = 3;
+  MeshSignal signal = NormalsSignal(parameters);
   signal.values = input;
-  signal.valueScale = 2.0; // unit normals: components span [-1, 1]
-  signal.sampleAtTimeZero = true;
   signal.lengthScale = parameters.lengthScale > 0.0 ? parameters.lengthScale : mesh.MeanEdgeLength();
-  signal.potentialContrast = parameters.curvatureContrast;
-  signal.contrastRings = parameters.contrastRings;
+  signal.triangleRing = triangleRing; // the split keeps the triangles and their order
   target.resize(static_cast<size_t>(3 * mesh.NumberOfTriangles())); // written in full by the advection
   const Status status =
     AdvectMeshSignal(advected, signal, target.data(), parameters.advection, &r.advection, fields, progress);
@@ -289,19 +298,19 @@ Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& param
 
 /// SharpenMeshGeometry on a mesh without repeated or degenerate triangles.
 Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& parameters,
-  double* positions, ValueVector& target, SharpeningReport& r, MeshFlowFields* fields,
-  const ProgressFunction& progress, SharpeningCache& cache)
+  const unsigned char* triangleRing, double* positions, ValueVector& target, SharpeningReport& r,
+  MeshFlowFields* fields, const ProgressFunction& progress, SharpeningCache& cache)
 {
   const int threads = ThreadsForWork(parameters.advection.numberOfThreads, mesh.NumberOfTriangles());
   Status status = SharpenedNormalsInput(mesh, parameters, threads, cache, r);
   if (status.Ok())
   {
-    status = AdvectNormals(
-      mesh, parameters, InputNormals(mesh, cache), cache.split, target, r, fields, progress, threads);
+    status = AdvectNormals(mesh, parameters, InputNormals(mesh, cache), triangleRing, cache.split, target, r,
+      fields, progress, threads);
   }
   const MeshPartition* partition = parameters.fit.partition;
   if (partition && partition->anyStopped &&
-    partition->anyStopped(!status.Ok() || r.advection.aborted) && status.Ok())
+    partition->anyStopped(!status.Ok() || r.advection.aborted, r.advection.deepestRing) && status.Ok())
   {
     r.advection.aborted = true; // another piece stopped: this one stops with it
   }
@@ -367,6 +376,12 @@ Status CheckSharpeningParameters(const SharpeningParameters& parameters)
 }
 } // namespace
 
+int SharpeningStencilRings(const SharpeningParameters& parameters)
+{
+  const int advection = MeshStencilRings(NormalsSignal(parameters), parameters.advection);
+  return advection < 0 ? -1 : std::max(0, parameters.normalSmoothingPasses) + advection;
+}
+
 Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters& parameters,
   double* positions, double* normals, SharpeningReport* report, MeshFlowFields* fields,
   const ProgressFunction& progress, SharpeningCache* cache)
@@ -412,9 +427,24 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
   r.repeatedTriangles = kept.repeatedTriangles;
   r.degenerateTriangles = kept.degenerateTriangles;
   const TriangleMesh& clean = kept.removed ? kept.reduced : mesh;
+  // A kept triangle is in the lowest ring of the triangles it stands for.
+  std::vector<unsigned char> cleanRing;
+  if (parameters.triangleRing && kept.removed)
+  {
+    cleanRing.assign(static_cast<size_t>(clean.NumberOfTriangles()), std::numeric_limits<unsigned char>::max());
+    for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+    {
+      const std::int64_t g = kept.source[static_cast<size_t>(f)];
+      if (g >= 0)
+      {
+        cleanRing[static_cast<size_t>(g)] = std::min(cleanRing[static_cast<size_t>(g)], parameters.triangleRing[f]);
+      }
+    }
+  }
   ValueVector target;
   MeshFlowFields cleanFields;
-  status = SharpenCleanMesh(clean, parameters, positions, target, r,
+  status = SharpenCleanMesh(clean, parameters, kept.removed && parameters.triangleRing ? cleanRing.data() : parameters.triangleRing,
+    positions, target, r,
     fields ? (kept.removed ? &cleanFields : fields) : nullptr, progress, kept);
   if (!status.Ok() || r.advection.aborted)
   {

@@ -62,6 +62,16 @@ struct SharpeningParameters
    */
   double curvatureContrast = 16.0;
   int contrastRings = 6; ///< rings of the contrast's minimum (>= 1)
+  /**
+   * A piece of a distributed mesh: each triangle's ghost ring (0: the
+   * triangles whose sharpened normals must be the whole mesh's), or null.
+   * The run then reports in SharpeningReport::advection.deepestRing the
+   * deepest ring the traces of the ring-0 triangles read (see
+   * SharpeningStencilRings).
+   */
+  const unsigned char* triangleRing = nullptr;
+  /// The triangles of the whole mesh a piece is cut from, for the traces' step cap (MeshSignal::wholeTriangles; 0: this mesh's).
+  std::int64_t wholeTriangles = 0;
 };
 
 /// What a sharpening run did.
@@ -133,6 +143,19 @@ struct SharpeningCache
  * @return an error for invalid parameters or a failed solve; when aborted
  *         (report->advection.aborted), positions hold the input positions.
  */
+/**
+ * How many ghost rings around a triangle its sharpened normal depends on: one
+ * per normal smoothing pass (each reads a triangle's edge neighbours), then
+ * the advection's stencil of a triangle signal with the curvature contrast
+ * (MeshStencilRings). The feature split reads no further: whether a point is
+ * split, and how, depends on the normals of its own triangles, which the
+ * advection's first step (the normals' average to the points) reads already.
+ * On a piece with R rings, the sharpened normal of every ring-0 triangle is
+ * the whole mesh's when SharpeningReport::advection.deepestRing <= R - this.
+ * -1 when the flow is recomputed from advected values (no such bound).
+ */
+int SharpeningStencilRings(const SharpeningParameters& parameters);
+
 Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters& parameters,
   double* positions, double* normals = nullptr, SharpeningReport* report = nullptr,
   MeshFlowFields* fields = nullptr, const ProgressFunction& progress = ProgressFunction(),
