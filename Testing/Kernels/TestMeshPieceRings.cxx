@@ -128,6 +128,46 @@ Piece Cut(const MeshData& mesh, const std::vector<int>& ring, int R)
   return piece;
 }
 
+/**
+ * The runs of one case over R: a run whose traces stayed within R - stencil
+ * must give the whole mesh's results; the others are counted, and some must
+ * differ. Both sides of the bound must be seen, and the bound met with
+ * equality (the most the check allows is exercised).
+ */
+struct RingRuns
+{
+  int exact = 0, flagged = 0, flaggedAndDifferent = 0, tight = 0;
+
+  void Add(const std::string& name, int R, int stencil, int deepest, double difference)
+  {
+    if (deepest <= R - stencil)
+    {
+      EXPECT_LE(difference, 1e-12) << name << ", " << R << " rings, traces read ring " << deepest;
+      ++this->exact;
+      this->tight += deepest == R - stencil ? 1 : 0;
+    }
+    else
+    {
+      ++this->flagged;
+      this->flaggedAndDifferent += difference > 1e-9 ? 1 : 0;
+    }
+  }
+
+  void Check(const std::string& name) const
+  {
+    EXPECT_GT(this->exact, 0) << name;
+    EXPECT_GT(this->flagged, 0) << name;
+    EXPECT_GT(this->flaggedAndDifferent, 0) << name << ": too few rings must show somewhere";
+    EXPECT_GT(this->tight, 0) << name;
+  }
+};
+
+std::string CaseName(std::string name)
+{
+  std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(static_cast<unsigned char>(ch)); }, '_');
+  return name;
+}
+
 struct Case
 {
   std::string name;
@@ -195,7 +235,7 @@ TEST_P(PieceRings, OwnResultsAreTheWholeMeshsWhenTheTracesStayedWithinTheExactRi
   const int stencil = MeshStencilRings(signal, p);
   EXPECT_EQ(stencil, (cells ? 1 : 0) + 2 * c.smoothingPasses + 1 + (c.contrast > 0.0 ? 2 : 0));
   const std::vector<int> ring = Rings(mesh, own);
-  int exactRuns = 0, flaggedRuns = 0, flaggedAndDifferent = 0, tightRuns = 0;
+  RingRuns runs;
   for (int R = 1; R <= stencil + 12; ++R)
   {
     const Piece piece = Cut(mesh, ring, R);
@@ -232,24 +272,9 @@ TEST_P(PieceRings, OwnResultsAreTheWholeMeshsWhenTheTracesStayedWithinTheExactRi
         difference = std::max(difference, std::abs(result[q] - whole[piece.whole[q]]));
       }
     }
-    if (report.deepestRing <= R - stencil)
-    {
-      EXPECT_LE(difference, 1e-12) << c.name << ", " << R << " rings, traces read ring " << report.deepestRing;
-      ++exactRuns;
-      tightRuns += report.deepestRing == R - stencil ? 1 : 0;
-    }
-    else
-    {
-      ++flaggedRuns;
-      flaggedAndDifferent += difference > 1e-9 ? 1 : 0;
-    }
+    runs.Add(c.name, R, stencil, report.deepestRing, difference);
   }
-  // Both sides of the bound were seen, and the bound is met with equality
-  // (the most the check allows is exercised).
-  EXPECT_GT(exactRuns, 0) << c.name;
-  EXPECT_GT(flaggedRuns, 0) << c.name;
-  EXPECT_GT(flaggedAndDifferent, 0) << c.name << ": too few rings must show somewhere";
-  EXPECT_GT(tightRuns, 0) << c.name;
+  runs.Check(c.name);
 }
 
 INSTANTIATE_TEST_SUITE_P(MeshKernel, PieceRings,
@@ -258,11 +283,7 @@ INSTANTIATE_TEST_SUITE_P(MeshKernel, PieceRings,
     Case{ "points, 2 passes, stepped", MeshLocation::Points, 2, 0.0, Tracing::Stepped },
     Case{ "points, contrast", MeshLocation::Points, 1, 1.5, Tracing::FaceCrossing },
     Case{ "cells", MeshLocation::Triangles, 1, 0.0, Tracing::FaceCrossing }),
-  [](const ::testing::TestParamInfo<Case>& info) {
-    std::string name = info.param.name;
-    std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(static_cast<unsigned char>(ch)); }, '_');
-    return name;
-  });
+  [](const ::testing::TestParamInfo<Case>& info) { return CaseName(info.param.name); });
 
 TEST(PieceRings, NoRingsNoRecord)
 {
@@ -403,7 +424,7 @@ TEST_P(SharpenPieceRings, OwnNormalsAreTheWholeMeshsWhenTheTracesStayedWithinThe
   const int stencil = SharpeningStencilRings(p);
   EXPECT_EQ(stencil, c.normalPasses + 1 + 2 * c.smoothingPasses + 1 + (c.contrast > 0.0 ? 2 : 0));
   const std::vector<int> ring = Rings(mesh, own);
-  int exactRuns = 0, flaggedRuns = 0, flaggedAndDifferent = 0, tightRuns = 0;
+  RingRuns runs;
   for (int R = 1; R <= stencil + 12; ++R)
   {
     const Piece piece = Cut(mesh, ring, R);
@@ -423,23 +444,9 @@ TEST_P(SharpenPieceRings, OwnNormalsAreTheWholeMeshsWhenTheTracesStayedWithinThe
         difference = std::max(difference, std::abs(normals[3 * f + k] - whole[3 * piece.triangles[f] + k]));
       }
     }
-    if (report.advection.deepestRing <= R - stencil)
-    {
-      EXPECT_LE(difference, 1e-12) << c.name << ", " << R << " rings, traces read ring "
-                                   << report.advection.deepestRing;
-      ++exactRuns;
-      tightRuns += report.advection.deepestRing == R - stencil ? 1 : 0;
-    }
-    else
-    {
-      ++flaggedRuns;
-      flaggedAndDifferent += difference > 1e-9 ? 1 : 0;
-    }
+    runs.Add(c.name, R, stencil, report.advection.deepestRing, difference);
   }
-  EXPECT_GT(exactRuns, 0) << c.name;
-  EXPECT_GT(flaggedRuns, 0) << c.name;
-  EXPECT_GT(flaggedAndDifferent, 0) << c.name << ": too few rings must show somewhere";
-  EXPECT_GT(tightRuns, 0) << c.name;
+  runs.Check(c.name);
 }
 
 INSTANTIATE_TEST_SUITE_P(MeshKernel, SharpenPieceRings,
@@ -448,11 +455,7 @@ INSTANTIATE_TEST_SUITE_P(MeshKernel, SharpenPieceRings,
     SharpenCase{ "paper potential, no split", 1, 0, 0.0, 180.0, Tracing::FaceCrossing },
     SharpenCase{ "normal smoothing, paper potential", 1, 2, 0.0, 12.0, Tracing::FaceCrossing },
     SharpenCase{ "feature split, stepped", 0, 1, 16.0, 12.0, Tracing::Stepped }),
-  [](const ::testing::TestParamInfo<SharpenCase>& info) {
-    std::string name = info.param.name;
-    std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(static_cast<unsigned char>(ch)); }, '_');
-    return name;
-  });
+  [](const ::testing::TestParamInfo<SharpenCase>& info) { return CaseName(info.param.name); });
 
 TEST(SharpenPieceRings, RecomputedFlowsHaveNoBound)
 {

@@ -619,14 +619,31 @@ def surface_split_case(how, whole_path, split_path, references):
         Delete(proxy)
 
 
+def written_with_cell_ids(mesh, name):
+    """`mesh` with a cell array 'CellIds' (added in place), written to OUTPUT/name
+    for the parallel run; returns the path and a producer of it for the serial one."""
+    from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    cell_ids = numpy_to_vtk(np.arange(mesh.GetNumberOfCells(), dtype=np.int64), deep=1)
+    cell_ids.SetName("CellIds")
+    mesh.GetCellData().AddArray(cell_ids)
+    path = os.path.join(OUTPUT, name)
+    writer = vtkXMLPolyDataWriter()
+    writer.SetInputData(mesh)
+    writer.SetFileName(path)
+    writer.Write()
+    producer = vtkTrivialProducer()
+    producer.SetOutput(mesh)
+    return path, producer
+
+
 def adaptive_rings_case():
     """Surface Shock Advection's pieces start with few rings and get more only
     when the flow lines of their own points read too deep: a wide blur and a
     long time (long flow lines) make them grow; the result is serial's; a
     Ghost Levels cap below what they need gives a warning."""
-    from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
     from vtkmodules.vtkFiltersCore import vtkPointDataToCellData
-    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
     from vtkmodules.util.numpy_support import numpy_to_vtk
     _, mesh = whole_mesh()
     points = vtk_to_numpy(mesh.GetPoints().GetData()).astype(float)
@@ -638,16 +655,7 @@ def adaptive_rings_case():
     to_cells.PassPointDataOn()
     to_cells.Update()
     mesh = to_cells.GetOutput()
-    cell_ids = numpy_to_vtk(np.arange(mesh.GetNumberOfCells(), dtype=np.int64), deep=1)
-    cell_ids.SetName("CellIds")
-    mesh.GetCellData().AddArray(cell_ids)
-    path = os.path.join(OUTPUT, "wide.vtp")
-    writer = vtkXMLPolyDataWriter()
-    writer.SetInputData(mesh)
-    writer.SetFileName(path)
-    writer.Write()
-    producer = vtkTrivialProducer()
-    producer.SetOutput(mesh)
+    path, producer = written_with_cell_ids(mesh, "wide.vtp")
     out = os.path.join(OUTPUT, "adaptive.pvtp")
     for name, array, properties, start in (
             ("wide blur, t = 65536", ["POINTS", "Heat"], dict(FlowTime=65536), 5),
@@ -702,11 +710,8 @@ def adaptive_sharpen_rings_case():
     them grow; the sharpened normals are then serial's, and so are the
     positions; a Ghost Levels cap below what they need gives a warning; the
     defaults keep their starting rings (on this smooth lens they change nothing)."""
-    from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
     from vtkmodules.vtkCommonTransforms import vtkTransform
     from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
-    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
-    from vtkmodules.util.numpy_support import numpy_to_vtk
     _, sphere = whole_mesh()
     transform = vtkTransform()
     transform.RotateY(40)
@@ -717,16 +722,7 @@ def adaptive_sharpen_rings_case():
     lens.SetInputData(sphere)
     lens.Update()
     mesh = lens.GetOutput()
-    cell_ids = numpy_to_vtk(np.arange(mesh.GetNumberOfCells(), dtype=np.int64), deep=1)
-    cell_ids.SetName("CellIds")
-    mesh.GetCellData().AddArray(cell_ids)
-    path = os.path.join(OUTPUT, "lens.vtp")
-    writer = vtkXMLPolyDataWriter()
-    writer.SetInputData(mesh)
-    writer.SetFileName(path)
-    writer.Write()
-    producer = vtkTrivialProducer()
-    producer.SetOutput(mesh)
+    path, producer = written_with_cell_ids(mesh, "lens.vtp")
     out = os.path.join(OUTPUT, "adaptive_sharpen.pvtp")
     for name, properties, start, grows in (
             ("lens, paper potential, t = 2e5", dict(FlowTime=2e5, CurvatureContrast=0.0, GhostLevels=32), 10, True),
