@@ -38,6 +38,9 @@ process 0 prints a MEASURE line with what each process did and checks:
   same error (naming the mismatch), and no process outputs filtered values.
 - iterations mismatch: SolverIterations 25 and 30 on the bad process
   (sharpen): every process fails with the same error about the iterations.
+- flow mode mismatch: Composed with 4 updates (no ring stencil) on the bad
+  process, Fixed on the others (both surface filters): every process fails
+  with the same error naming FlowMode.
 - image Domain Gradients on pieces: vtkRTAnalyticSource -> the image filter
   with Domain Gradients, the source cutting its pieces: every process fails
   with the same one-line error (the solve needs the whole image), empty output.
@@ -581,6 +584,27 @@ def iterations_case(bad):
     return local, judge
 
 
+def flow_mode_case(kind, bad):
+    """The bad process recomputes the flow (Composed, 4 updates: no ring stencil, Ghost
+    Levels rings), the others do not: the ring agreement before the parameter check
+    must still be made by every process, then all stop with the same message."""
+    label = "FlowMode mismatch %s bad=%d np=%d" % (kind, bad, PROCESSES)
+
+    def configure(algorithm):
+        if RANK == bad:
+            algorithm.SetFlowModeToComposed()
+            algorithm.SetNumberOfFlowUpdates(4)
+
+    def local():
+        return run(kind, piece_mesh(), label, configure=configure)[0]
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        check_agreed_failure(label, records, lambda t: re.search(r"FlowMode|parameter", t, re.I), "FlowMode")
+
+    return local, judge
+
+
 def gradient_domain_case():
     label = "image Domain Gradients on pieces np=%d" % PROCESSES
 
@@ -706,6 +730,8 @@ def all_cases():
     # Those that may hang today last: a hang ends the whole run.
     for bad in bad_ranks():
         cases.append(("iterations.bad%d" % bad, iterations_case(bad)))
+        for kind in ("advection", "sharpen"):
+            cases.append(("flow_mode.%s.bad%d" % (kind, bad), flow_mode_case(kind, bad)))
     cases.append(("abort", abort_case()))
     cases.append(("image_abort", image_abort_case()))
     return cases
