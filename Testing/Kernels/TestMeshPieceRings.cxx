@@ -469,3 +469,61 @@ TEST(SharpenPieceRings, RecomputedFlowsHaveNoBound)
   EXPECT_EQ(SharpeningStencilRings(p), 3 + 1 + 2 * p.advection.smoothingPasses + 1);
 }
 }
+
+namespace
+{
+TEST(SharpenPieceRings, ARepeatedTriangleKeepsItsRing)
+{
+  // A piece with a repeated triangle: the repeat is removed before the
+  // sharpening (SharpFeatures), and the kept triangle keeps the lowest ring of
+  // the two, so the depth is still recorded and the own normals are those of
+  // the piece without the repeat.
+  const MeshData mesh = RoundedRidge();
+  std::vector<char> own(static_cast<size_t>(mesh.NumberOfTriangles()), 0);
+  for (std::int64_t t = 0; t < mesh.NumberOfTriangles(); ++t)
+  {
+    const auto c = shocktest::TriangleCorners(mesh, t);
+    own[t] = std::abs((c[0][0] + c[1][0] + c[2][0]) / 3.0 - 20.0) < 3.0 ? 1 : 0;
+  }
+  const Piece piece = Cut(mesh, Rings(mesh, own), 14);
+  SharpeningParameters p;
+  p.advection.time = 1024.0;
+  p.advection.numberOfThreads = 1;
+  p.fit.iterations = 1;
+  p.lengthScale = Build(mesh).MeanEdgeLength();
+  p.triangleRing = piece.ring.data();
+  const TriangleMesh plain = Build(piece.mesh);
+  std::vector<double> positions(piece.mesh.points.size()), normals(static_cast<size_t>(3 * plain.NumberOfTriangles()));
+  SharpeningReport report;
+  ASSERT_TRUE(SharpenMeshGeometry(plain, p, positions.data(), normals.data(), &report).Ok());
+
+  // An own triangle's copy put first (so it is the one kept, and every later
+  // triangle moves by one in the mesh without the repeat), given a deep ring.
+  std::int64_t first = 0;
+  while (piece.ring[static_cast<size_t>(first)] != 0)
+  {
+    ++first;
+  }
+  MeshData repeated = piece.mesh;
+  repeated.triangles.insert(repeated.triangles.begin(), piece.mesh.triangles.begin() + 3 * first,
+    piece.mesh.triangles.begin() + 3 * first + 3);
+  std::vector<unsigned char> rings = piece.ring;
+  rings.insert(rings.begin(), 9);
+  SharpeningParameters q = p;
+  q.triangleRing = rings.data();
+  const TriangleMesh withRepeat = Build(repeated);
+  std::vector<double> normalsWithRepeat(static_cast<size_t>(3 * withRepeat.NumberOfTriangles()));
+  SharpeningReport reportWithRepeat;
+  ASSERT_TRUE(SharpenMeshGeometry(withRepeat, q, positions.data(), normalsWithRepeat.data(), &reportWithRepeat).Ok());
+  EXPECT_EQ(reportWithRepeat.repeatedTriangles, 1);
+  EXPECT_EQ(reportWithRepeat.advection.deepestRing, report.advection.deepestRing);
+  EXPECT_GE(report.advection.deepestRing, 0);
+  for (std::int64_t f = 0; f < plain.NumberOfTriangles(); ++f)
+  {
+    for (int k = 0; k < 3 && piece.ring[static_cast<size_t>(f)] == 0; ++k)
+    {
+      EXPECT_NEAR(normalsWithRepeat[3 * (f + 1) + k], normals[3 * f + k], 1e-12) << "triangle " << f;
+    }
+  }
+}
+}

@@ -441,10 +441,10 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
       }
     }
   }
+  const unsigned char* rings = cleanRing.empty() ? parameters.triangleRing : cleanRing.data();
   ValueVector target;
   MeshFlowFields cleanFields;
-  status = SharpenCleanMesh(clean, parameters, kept.removed && parameters.triangleRing ? cleanRing.data() : parameters.triangleRing,
-    positions, target, r,
+  status = SharpenCleanMesh(clean, parameters, rings, positions, target, r,
     fields ? (kept.removed ? &cleanFields : fields) : nullptr, progress, kept);
   if (!status.Ok() || r.advection.aborted)
   {
