@@ -361,9 +361,10 @@ protected:
   int RingStencil();
 
   /**
-   * The rings beyond the stencils a piece starts with: how deep the normals'
-   * flow lines of the measured meshes read (2 to 6 rings on the dragons at
-   * t = 256 to 65536; docs/parallel.md), so that a second advection is rare.
+   * The rings beyond the stencils a piece starts with: about how deep the
+   * normals' flow lines read on typical scans, so that a second advection is
+   * rare (the measurements are in docs/parallel.md, "Surface Shock Sharpen's
+   * rings"). Unit: rings of cells.
    */
   static constexpr int StartingReach = 5;
 
