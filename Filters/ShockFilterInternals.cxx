@@ -92,7 +92,7 @@ vtk::GetAPIType<ArrayT> RoundAndClampFor(ArrayT* array, double v)
 
 /// A new array of the prototype's type, name, components, component names and
 /// number of tuples (values not set).
-vtkSmartPointer<vtkDataArray> NewArrayLike(vtkDataArray* prototype)
+vtkSmartPointer<vtkDataArray> NewArrayLike(vtkDataArray* prototype, vtkIdType tuples = -1)
 {
   vtkSmartPointer<vtkDataArray> out = vtk::TakeSmartPointer(prototype->NewInstance());
   out->SetName(prototype->GetName());
@@ -104,7 +104,7 @@ vtkSmartPointer<vtkDataArray> NewArrayLike(vtkDataArray* prototype)
       out->SetComponentName(c, name);
     }
   }
-  out->SetNumberOfTuples(prototype->GetNumberOfTuples());
+  out->SetNumberOfTuples(tuples >= 0 ? tuples : prototype->GetNumberOfTuples());
   return out;
 }
 
@@ -277,10 +277,10 @@ KernelSignal SignalForKernel(vtkDataArray* array, int threads)
   return signal;
 }
 
-KernelOutput OutputForKernel(vtkDataArray* prototype)
+KernelOutput OutputForKernel(vtkDataArray* prototype, vtkIdType tuples)
 {
   KernelOutput output;
-  output.array = NewArrayLike(prototype);
+  output.array = NewArrayLike(prototype, tuples);
   MakeWriter maker;
   if (!vtkArrayDispatch::Dispatch::Execute(output.array.Get(), maker, output.writer))
   {

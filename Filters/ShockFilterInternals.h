@@ -77,7 +77,8 @@ struct KernelOutput
   vtkSmartPointer<vtkDataArray> array;
   shock::SampleWriter writer;
 };
-KernelOutput OutputForKernel(vtkDataArray* prototype);
+/// `tuples`: the new array's tuple count (-1: the prototype's).
+KernelOutput OutputForKernel(vtkDataArray* prototype, vtkIdType tuples = -1);
 
 /**
  * Replace `original` by `replacement` in `attributes`, keeping its attribute

@@ -112,26 +112,29 @@ void CopyBox(const char* from, const Box& fromBox, char* to, const Box& toBox, c
   }
 }
 
-/// Every process's piece as a sample extent (an empty piece: an empty box). Collective.
-std::vector<Box> GatherPieces(vtkMultiProcessController* controller, bool has, const int extent[6])
+/// Every process's held extent and piece as sample extents (an empty piece: empty boxes). Collective.
+void GatherPieces(vtkMultiProcessController* controller, bool has, const int held[6], const int own[6],
+  std::vector<Box>& helds, std::vector<Box>& owns)
 {
   const int processes = controller->GetNumberOfProcesses();
-  vtkIdType mine[6];
+  vtkIdType mine[12];
   for (int k = 0; k < 6; ++k)
   {
-    mine[k] = has ? extent[k] : (k % 2 == 0 ? 1 : 0);
+    mine[k] = has ? held[k] : (k % 2 == 0 ? 1 : 0);
+    mine[6 + k] = has ? own[k] : (k % 2 == 0 ? 1 : 0);
   }
-  std::vector<vtkIdType> all(static_cast<size_t>(6 * processes));
-  controller->AllGather(mine, all.data(), 6);
-  std::vector<Box> pieces(static_cast<size_t>(processes));
-  for (int r = 0; r < processes; ++r)
+  std::vector<vtkIdType> all(static_cast<size_t>(12 * processes));
+  controller->AllGather(mine, all.data(), 12);
+  helds.assign(static_cast<size_t>(processes), Box{});
+  owns.assign(static_cast<size_t>(processes), Box{});
+  for (size_t r = 0; r < static_cast<size_t>(processes); ++r)
   {
-    for (int k = 0; k < 6; ++k)
+    for (size_t k = 0; k < 6; ++k)
     {
-      pieces[static_cast<size_t>(r)][static_cast<size_t>(k)] = static_cast<int>(all[static_cast<size_t>(6 * r + k)]);
+      helds[r][k] = static_cast<int>(all[12 * r + k]);
+      owns[r][k] = static_cast<int>(all[12 * r + 6 + k]);
     }
   }
-  return pieces;
 }
 
 /**
@@ -160,17 +163,17 @@ Box WholeBox(const std::vector<Box>& pieces)
 
 /**
  * Every piece's grown extent: `layers` more on the axes the whole image spans,
- * unless the pieces do not cover it (then no halo for that piece: the same
- * decision on every process, from the same extents).
+ * unless the held extents do not cover it (then no halo for that piece: the
+ * same decision on every process, from the same extents).
  */
-std::vector<Box> HaloBoxes(const std::vector<Box>& pieces, int layers)
+std::vector<Box> HaloBoxes(const std::vector<Box>& owns, const std::vector<Box>& helds, int layers)
 {
-  const Box whole = WholeBox(pieces);
-  std::vector<Box> halos(pieces.size());
-  for (size_t r = 0; r < pieces.size(); ++r)
+  const Box whole = WholeBox(helds);
+  std::vector<Box> halos(owns.size());
+  for (size_t r = 0; r < owns.size(); ++r)
   {
     Box& halo = halos[r];
-    halo = pieces[r];
+    halo = owns[r];
     if (Empty(halo))
     {
       continue;
@@ -183,9 +186,9 @@ std::vector<Box> HaloBoxes(const std::vector<Box>& pieces, int layers)
         halo[2 * a + 1] = std::min(whole[2 * a + 1], halo[2 * a + 1] + layers);
       }
     }
-    if (!Covered(halo, pieces))
+    if (!Covered(halo, helds))
     {
-      halo = pieces[r];
+      halo = owns[r];
     }
   }
   return halos;
@@ -193,22 +196,25 @@ std::vector<Box> HaloBoxes(const std::vector<Box>& pieces, int layers)
 
 /**
  * Point to point, in one global order of (sender, receiver) pairs (no
- * deadlock): each process sends the part of its piece in a receiver's halo
- * that the receiver's own piece lacks (all of it when not contained), and
- * copies what it receives into `grownBytes` (its halo box's samples).
+ * deadlock): each process sends the part of its held samples in a receiver's
+ * halo that the receiver does not hold itself (all of it when not contained),
+ * and copies what it holds and what it receives into `grownBytes` (its halo
+ * box's samples). Where held extents overlap, a sample may arrive from two
+ * processes: the same value.
  */
-void ExchangeHalos(vtkMultiProcessController* controller, const std::vector<Box>& pieces,
-  const std::vector<Box>& halos, const char* ownBytes, char* grownBytes, size_t tupleBytes)
+void ExchangeHalos(vtkMultiProcessController* controller, const std::vector<Box>& helds,
+  const std::vector<Box>& halos, const char* heldBytes, char* grownBytes, size_t tupleBytes)
 {
   const int me = controller->GetLocalProcessId();
   const int processes = controller->GetNumberOfProcesses();
   auto part = [&](int sender, int receiver) {
-    const Box shared = Intersect(pieces[static_cast<size_t>(sender)], halos[static_cast<size_t>(receiver)]);
-    const Box inside = Intersect(shared, pieces[static_cast<size_t>(receiver)]);
+    const Box shared = Intersect(helds[static_cast<size_t>(sender)], halos[static_cast<size_t>(receiver)]);
+    const Box inside = Intersect(shared, helds[static_cast<size_t>(receiver)]);
     return sender == receiver || Empty(shared) || inside == shared ? Box{ 1, 0, 1, 0, 1, 0 } : shared;
   };
-  const Box& own = pieces[static_cast<size_t>(me)];
+  const Box& mine = helds[static_cast<size_t>(me)];
   const Box& target = halos[static_cast<size_t>(me)];
+  CopyBox(heldBytes, mine, grownBytes, target, Intersect(mine, target), tupleBytes);
   std::vector<char> buffer;
   for (int a = 0; a < processes; ++a)
   {
@@ -220,14 +226,14 @@ void ExchangeHalos(vtkMultiProcessController* controller, const std::vector<Box>
       }
       const Box box = part(a, b);
       const vtkIdType count = Samples(box);
-      if (count == 0 || Empty(pieces[static_cast<size_t>(a)]) || Empty(pieces[static_cast<size_t>(b)]))
+      if (count == 0 || Empty(helds[static_cast<size_t>(a)]) || Empty(helds[static_cast<size_t>(b)]))
       {
         continue;
       }
       buffer.resize(static_cast<size_t>(count) * tupleBytes);
       if (a == me)
       {
-        CopyBox(ownBytes, own, buffer.data(), box, box, tupleBytes);
+        CopyBox(heldBytes, mine, buffer.data(), box, box, tupleBytes);
         controller->Send(buffer.data(), static_cast<vtkIdType>(buffer.size()), b, HaloTag);
       }
       else
@@ -240,14 +246,15 @@ void ExchangeHalos(vtkMultiProcessController* controller, const std::vector<Box>
 }
 }
 
-vtkSmartPointer<vtkDataArray> GrowImageSamples(
-  vtkMultiProcessController* controller, vtkDataArray* array, const int extent[6], int layers, int grown[6])
+vtkSmartPointer<vtkDataArray> GrowImageSamples(vtkMultiProcessController* controller, vtkDataArray* array,
+  const int held[6], const int own[6], int layers, int grown[6])
 {
   const int me = controller->GetLocalProcessId();
   const bool has = array && array->GetNumberOfTuples() > 0;
-  const std::vector<Box> pieces = GatherPieces(controller, has, extent);
-  const std::vector<Box> halos = HaloBoxes(pieces, layers);
-  const Box& own = pieces[static_cast<size_t>(me)];
+  std::vector<Box> helds;
+  std::vector<Box> owns;
+  GatherPieces(controller, has, held, own, helds, owns);
+  const std::vector<Box> halos = HaloBoxes(owns, helds, layers);
   const Box& target = halos[static_cast<size_t>(me)];
   std::copy(target.begin(), target.end(), grown);
   if (!has)
@@ -268,25 +275,28 @@ vtkSmartPointer<vtkDataArray> GrowImageSamples(
   result->SetNumberOfComponents(components);
   result->CopyComponentNames(array);
   result->SetNumberOfTuples(Samples(target));
-  char* grownBytes = static_cast<char*>(result->GetVoidPointer(0));
-  const char* ownBytes = static_cast<const char*>(source->GetVoidPointer(0));
-  CopyBox(ownBytes, own, grownBytes, target, own, tupleBytes);
-  ExchangeHalos(controller, pieces, halos, ownBytes, grownBytes, tupleBytes);
+  ExchangeHalos(controller, helds, halos, static_cast<const char*>(source->GetVoidPointer(0)),
+    static_cast<char*>(result->GetVoidPointer(0)), tupleBytes);
   return result;
 }
 
 vtkSmartPointer<vtkImageData> ImageWithHalo(vtkMultiProcessController* controller, vtkImageData* input,
-  vtkDataArray* array, bool cellData, bool hidden, int layers)
+  const int* own, vtkDataArray* array, bool cellData, bool hidden, int layers)
 {
-  // The piece's samples as a sample extent (cells: one fewer on the axes it spans).
-  int extent[6];
-  input->GetExtent(extent);
+  // The samples held and the piece's as sample extents (cells: one fewer on
+  // the axes the input spans).
+  int held[6];
+  int piece[6];
+  input->GetExtent(held);
+  std::copy(own ? own : held, (own ? own : held) + 6, piece);
   for (int a = 0; a < 3 && cellData; ++a)
   {
-    extent[2 * a + 1] -= extent[2 * a + 1] > extent[2 * a] ? 1 : 0;
+    const int less = held[2 * a + 1] > held[2 * a] ? 1 : 0;
+    held[2 * a + 1] -= less;
+    piece[2 * a + 1] -= less;
   }
   int grown[6];
-  vtkSmartPointer<vtkDataArray> grownArray = GrowImageSamples(controller, array, extent, layers, grown);
+  vtkSmartPointer<vtkDataArray> grownArray = GrowImageSamples(controller, array, held, piece, layers, grown);
   // Blanked samples: their marks travel with the halo when any piece has some
   // (decided together: the exchange is collective).
   vtkSmartPointer<vtkDataArray> grownGhosts;
@@ -304,7 +314,7 @@ vtkSmartPointer<vtkImageData> ImageWithHalo(vtkMultiProcessController* controlle
       ghosts = none;
     }
     int grownAgain[6];
-    grownGhosts = GrowImageSamples(controller, array ? ghosts : nullptr, extent, layers, grownAgain);
+    grownGhosts = GrowImageSamples(controller, array ? ghosts : nullptr, held, piece, layers, grownAgain);
   }
   if (input->GetNumberOfPoints() == 0 || !grownArray)
   {

@@ -13,6 +13,7 @@
 #include "vtkCompositeDataSet.h"
 #include "vtkDoubleArray.h"
 #include "vtkExtentTranslator.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationIntegerRequestKey.h"
@@ -429,6 +430,80 @@ void PieceExtent(vtkInformation* info, const int extent[6], int ghost, int piece
   std::copy(extent, extent + 6, whole);
   translator->PieceToExtentThreadSafe(info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
     UpdatePieces(info), ghost, whole, piece, mode, 0);
+}
+
+vtkDataArray* PieceOfImage(vtkImageData* input, const int piece[6], vtkDataArray* filtered, vtkImageData* output)
+{
+  const int* extent = input->GetExtent();
+  // Sample boxes of points and cells: first index, count, and the input's count per axis.
+  struct Box
+  {
+    vtkIdType first[3], count[3], dims[3];
+  } points{}, cells{};
+  for (int a = 0; a < 3; ++a)
+  {
+    const bool spans = extent[2 * a + 1] > extent[2 * a];
+    points.first[a] = piece[2 * a] - extent[2 * a];
+    points.count[a] = piece[2 * a + 1] - piece[2 * a] + 1;
+    points.dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
+    cells.first[a] = spans ? points.first[a] : 0;
+    cells.count[a] = spans ? std::max<vtkIdType>(points.count[a] - 1, 0) : 1;
+    cells.dims[a] = spans ? points.dims[a] - 1 : 1;
+  }
+  output->Initialize();
+  output->CopyStructure(input);
+  output->SetExtent(const_cast<int*>(piece));
+  output->GetFieldData()->ShallowCopy(input->GetFieldData());
+  vtkDataArray* placeholder = nullptr;
+  for (int which = 0; which < 2; ++which)
+  {
+    const Box& box = which == 0 ? points : cells;
+    vtkDataSetAttributes* from = which == 0 ? static_cast<vtkDataSetAttributes*>(input->GetPointData())
+                                            : static_cast<vtkDataSetAttributes*>(input->GetCellData());
+    vtkDataSetAttributes* to = which == 0 ? static_cast<vtkDataSetAttributes*>(output->GetPointData())
+                                          : static_cast<vtkDataSetAttributes*>(output->GetCellData());
+    for (int k = 0; k < from->GetNumberOfArrays(); ++k)
+    {
+      vtkAbstractArray* array = from->GetAbstractArray(k);
+      if (!array)
+      {
+        continue;
+      }
+      vtkSmartPointer<vtkAbstractArray> kept = array;
+      if (array == filtered || array->GetNumberOfTuples() == box.dims[0] * box.dims[1] * box.dims[2])
+      {
+        kept = vtk::TakeSmartPointer(array->NewInstance());
+        kept->SetName(array->GetName());
+        kept->SetNumberOfComponents(array->GetNumberOfComponents());
+        kept->CopyComponentNames(array);
+        if (array == filtered)
+        {
+          placeholder = vtkDataArray::SafeDownCast(kept);
+        }
+        else
+        {
+          kept->SetNumberOfTuples(box.count[0] * box.count[1] * box.count[2]);
+          vtkIdType to0 = 0;
+          for (vtkIdType z = 0; z < box.count[2]; ++z)
+          {
+            for (vtkIdType y = 0; y < box.count[1]; ++y)
+            {
+              const vtkIdType first = box.first[0] + box.dims[0] * (box.first[1] + y + box.dims[1] * (box.first[2] + z));
+              kept->InsertTuples(to0, box.count[0], first, array);
+              to0 += box.count[0];
+            }
+          }
+        }
+      }
+      const int index = to->AddArray(kept);
+      const int role = from->IsArrayAnAttribute(k);
+      if (role >= 0)
+      {
+        to->SetActiveAttribute(index, role);
+      }
+    }
+  }
+  return placeholder;
 }
 
 shock::SampleWriter KeepHiddenValues(const shock::SampleWriter& writer, vtkImageData* image, vtkDataArray* array,

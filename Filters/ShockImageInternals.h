@@ -110,6 +110,17 @@ bool CropByRows(vtkImageData* image, const int target[6]);
 
 /// The extent of one piece of `extent` with `ghost` layers, split as the source splits it.
 void PieceExtent(vtkInformation* info, const int extent[6], int ghost, int piece[6]);
+
+/**
+ * `output` becomes the piece `piece` (a point extent within `input`'s): the
+ * input's structure there and every point and cell array with one tuple per
+ * sample cropped to it (the others shared, as vtkImageData::Crop leaves them),
+ * names, attribute roles and order kept, the field data shared; but
+ * `filtered` is not copied: in its place an empty array of its type, name,
+ * components and role, returned, which the filter's results then replace
+ * (SampleTarget::replaced).
+ */
+vtkDataArray* PieceOfImage(vtkImageData* input, const int piece[6], vtkDataArray* filtered, vtkImageData* output);
 }
 
 #endif

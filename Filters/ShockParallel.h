@@ -49,27 +49,30 @@ vtkUnsignedCharArray* PointGhosts(vtkDataSet* data);
 
 /**
  * The halo exchange of an image piece (ShockImageHalo.cxx, collective):
- * `array` holds the samples of `extent` (a sample extent: points, or cells);
- * the result holds those of `grown`, `extent` with `layers` more samples on
- * every axis the pieces together span, clamped to the box around all pieces
- * (the same on every process, whatever each pipeline says of the whole
- * extent), the samples outside `extent` received point to point from the
- * processes whose pieces hold them. When the pieces do not cover a process's
- * grown extent, that process keeps its own (the same decision everywhere). An
- * empty piece (null `array`) takes part and gets nullptr.
+ * `array` holds the samples of `held` (a sample extent: points, or cells),
+ * which contains the process's piece `own`; the result holds those of
+ * `grown`, `own` with `layers` more samples on every axis the pieces together
+ * span, clamped to the box around all the held extents (the same on every
+ * process, whatever each pipeline says of the whole extent). The samples
+ * outside `held` are received point to point from the processes whose held
+ * extents have them (held extents may overlap: a piece read with part of its
+ * halo). When the held extents do not cover a process's grown extent, that
+ * process keeps its own piece (the same decision everywhere). An empty piece
+ * (null `array`) takes part and gets nullptr.
  */
-vtkSmartPointer<vtkDataArray> GrowImageSamples(
-  vtkMultiProcessController* controller, vtkDataArray* array, const int extent[6], int layers, int grown[6]);
+vtkSmartPointer<vtkDataArray> GrowImageSamples(vtkMultiProcessController* controller, vtkDataArray* array,
+  const int held[6], const int own[6], int layers, int grown[6]);
 
 /**
- * The image piece `input` with a halo of `layers` samples of `array` around
- * it (GrowImageSamples), and of the blanking marks when any process's piece
- * has some (`hidden`: this one's has), as an image of its own holding only
- * that array (as its scalars) and those marks; nullptr for an empty piece.
+ * The image piece `own` (a point extent within `input`'s; null: `input`'s
+ * whole extent) with a halo of `layers` samples of `array` around it
+ * (GrowImageSamples), and of the blanking marks when any process's piece has
+ * some (`hidden`: this one's has), as an image of its own holding only that
+ * array (as its scalars) and those marks; nullptr for an empty piece.
  * Collective: every process takes part, empty pieces too (null `array`).
  */
 vtkSmartPointer<vtkImageData> ImageWithHalo(vtkMultiProcessController* controller, vtkImageData* input,
-  vtkDataArray* array, bool cellData, bool hidden, int layers);
+  const int* own, vtkDataArray* array, bool cellData, bool hidden, int layers);
 
 /// Whether the filter's upstream produces composite data (the pipeline then runs it block by block).
 bool UpstreamIsComposite(vtkAlgorithm* filter);

@@ -86,12 +86,12 @@ std::array<std::uintptr_t, 3> ImageStamp(vtkImageData* input, vtkDataArray* arra
  * whole image's boundary (`whole`, the whole extent; null: the sides whose
  * halo has fewer than `layers` samples are taken to end there). There the
  * piece's grid ends where the whole image's does: exact however far the
- * traces went. 0 when no side needed any.
+ * traces went. 0 when no side needed any. `piece`: the piece's point extent.
  */
-int HaloNeeded(vtkImageData* withHalo, vtkImageData* piece, bool cellData, int layers, const int* whole,
+int HaloNeeded(vtkImageData* withHalo, const int piece[6], bool cellData, int layers, const int* whole,
   const std::array<std::int64_t, 6>& reach, int stencil)
 {
-  const std::array<std::int64_t, 6> own = SamplesOfExtent(withHalo, piece->GetExtent(), cellData);
+  const std::array<std::int64_t, 6> own = SamplesOfExtent(withHalo, piece, cellData);
   const shock::GridShape grid = SampleGrid(withHalo, cellData);
   const int* grown = withHalo->GetExtent();
   std::int64_t needed = 0;
@@ -111,6 +111,61 @@ int HaloNeeded(vtkImageData* withHalo, vtkImageData* piece, bool cellData, int l
     }
   }
   return static_cast<int>(std::min<std::int64_t>(needed, 1 << 20));
+}
+
+/// The piece's point extent with `layers` more on each axis the whole extent spans, within it.
+void GrowWithin(const int piece[6], const int whole[6], int layers, int grown[6])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const bool spans = whole[2 * a + 1] > whole[2 * a];
+    grown[2 * a] = spans ? std::max(whole[2 * a], piece[2 * a] - layers) : piece[2 * a];
+    grown[2 * a + 1] = spans ? std::min(whole[2 * a + 1], piece[2 * a + 1] + layers) : piece[2 * a + 1];
+  }
+}
+
+/**
+ * Whether the algorithm that produces the filter's input cuts any extent it is
+ * asked for (vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT: image readers, the Wavelet),
+ * looking through ParaView's vtkPVPostFilter, which ParaView puts after every
+ * source and hands requests and data through unchanged.
+ */
+bool SourceCutsExtents(vtkAlgorithm* filter)
+{
+  if (filter->GetNumberOfInputConnections(0) != 1)
+  {
+    return false;
+  }
+  int port = 0;
+  vtkAlgorithm* upstream = filter->GetInputAlgorithm(0, 0, port);
+  while (upstream && upstream->IsA("vtkPVPostFilter") && upstream->GetNumberOfInputPorts() == 1 &&
+    upstream->GetNumberOfInputConnections(0) == 1)
+  {
+    upstream = upstream->GetInputAlgorithm(0, 0, port);
+  }
+  vtkInformation* info = upstream ? upstream->GetOutputInformation(port) : nullptr;
+  return info && info->Has(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT()) &&
+    info->Get(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT()) != 0;
+}
+
+/// Whether `outer` contains `inner` (point extents; an empty `inner` is contained).
+bool Contains(const int outer[6], const int inner[6])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (inner[2 * a] > inner[2 * a + 1])
+    {
+      return true;
+    }
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (inner[2 * a] < outer[2 * a] || inner[2 * a + 1] > outer[2 * a + 1])
+    {
+      return false;
+    }
+  }
+  return true;
 }
 } // namespace
 
@@ -223,11 +278,16 @@ int vtkImageShockAdvectionFilter::FilterSamples(
   // The kernel reads the array in place when it is float or double, and writes
   // its results straight into a new array of the input's type: of the target's
   // samples (a box of the grid's, for a piece with its halo).
-  ShockFilterInternals::KernelOutput filtered = ShockFilterInternals::OutputForKernel(target.replaced);
   std::array<std::int64_t, 6> written{ { 0, -1, 0, -1, 0, -1 } };
+  vtkIdType tuples = -1;
   if (target.extent)
   {
     written = SamplesOfExtent(input, target.extent, cellData);
+    tuples = (written[1] - written[0] + 1) * (written[3] - written[2] + 1) * (written[5] - written[4] + 1);
+  }
+  ShockFilterInternals::KernelOutput filtered = ShockFilterInternals::OutputForKernel(target.replaced, tuples);
+  if (target.extent)
+  {
     filtered.writer = BoxWriter(filtered.writer, grid, written, array->GetNumberOfComponents());
   }
   // Blanked samples (vtkGhostType HIDDENPOINT, or HIDDENCELL for cell data)
@@ -315,42 +375,97 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
   const bool hidden = array && AnyHidden(input, array, cellData);
   int whole[6];
-  const bool knowsWhole = inputVector[0]->GetInformationObject(0)->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  const bool knowsWhole = inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
   if (knowsWhole)
   {
-    inputVector[0]->GetInformationObject(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  }
+  // The piece this process owns: the one the source read with its halo
+  // (RequestUpdateExtent), or else the input as it came.
+  int own[6];
+  int asked[6];
+  const bool fromSource = !empty &&
+    this->PieceFromSource(inInfo, outputVector->GetInformationObject(0), own, asked) &&
+    Contains(input->GetExtent(), own);
+  if (!fromSource)
+  {
+    input->GetExtent(own);
   }
   // The pieces start with the halo the flow's stencil needs and two samples
   // more, and get more only when the flow lines of their own samples run
   // further (ShockParallel::MoreLayers), up to GhostLevels.
   const int stencil = this->HaloStencil();
   int layers = this->StartingHalo(input, array, controller, stencil);
+  // A halo the sources read already is used whole (the same on every process).
+  int held = empty ? std::numeric_limits<int>::max() : 0;
+  if (fromSource && knowsWhole)
+  {
+    held = this->GhostLevels;
+    for (int a = 0; a < 3; ++a)
+    {
+      const int* extent = input->GetExtent();
+      if (whole[2 * a + 1] > whole[2 * a] && own[2 * a] > whole[2 * a])
+      {
+        held = std::min(held, own[2 * a] - extent[2 * a]);
+      }
+      if (whole[2 * a + 1] > whole[2 * a] && own[2 * a + 1] < whole[2 * a + 1])
+      {
+        held = std::min(held, extent[2 * a + 1] - own[2 * a + 1]);
+      }
+    }
+  }
+  int heldEverywhere = held;
+  controller->AllReduce(&held, &heldEverywhere, 1, vtkCommunicator::MIN_OP);
+  if (stencil >= 0 && heldEverywhere != std::numeric_limits<int>::max())
+  {
+    layers = std::max(layers, std::min(heldEverywhere, this->GhostLevels));
+  }
   for (;;)
   {
-    vtkSmartPointer<vtkImageData> withHalo;
+    // Read in place when every piece came from its source with this halo
+    // (collective: otherwise the halo is exchanged, on every process).
+    int needs[6];
+    GrowWithin(own, knowsWhole ? whole : input->GetExtent(), layers, needs);
+    const bool holds = empty || (fromSource && knowsWhole && Contains(input->GetExtent(), needs));
+    const bool inPlace = ShockParallel::Count(controller, !holds) == 0;
+    vtkSmartPointer<vtkImageData> withHalo = input;
+    if (!inPlace)
     {
       vtkLogScopeF(TRACE, "shock: image halo exchange");
-      withHalo = ShockParallel::ImageWithHalo(controller, input, array, cellData, hidden, layers);
+      withHalo = ShockParallel::ImageWithHalo(controller, input, own, array, cellData, hidden, layers);
     }
     this->LastGhostLevels = layers;
+    this->LastHaloFromSource = inPlace && fromSource;
     ++this->LastHaloAttempts;
-    output->ShallowCopy(input); // an empty piece of a parallel run is normal
+    // The output is the piece (an empty piece of a parallel run is normal).
+    vtkDataArray* replaced = array;
+    if (fromSource && !std::equal(own, own + 6, input->GetExtent()))
+    {
+      replaced = PieceOfImage(input, own, array, output);
+    }
+    else
+    {
+      output->ShallowCopy(input);
+    }
     bool done = true;
     int needed = -1;
-    if (withHalo)
+    if (withHalo && !empty)
     {
-      vtkDataArray* grownArray = (cellData ? static_cast<vtkDataSetAttributes*>(withHalo->GetCellData())
-                                            : static_cast<vtkDataSetAttributes*>(withHalo->GetPointData()))
-                                   ->GetScalars();
+      vtkDataArray* grownArray = inPlace
+        ? array
+        : (cellData ? static_cast<vtkDataSetAttributes*>(withHalo->GetCellData())
+                    : static_cast<vtkDataSetAttributes*>(withHalo->GetPointData()))
+            ->GetScalars();
       // The kernel traces the piece's own samples only (the halo feeds their
       // flow and traces) and writes them straight into the piece's new array.
       std::array<std::int64_t, 6> reach{};
-      ShockImageInternals::SampleTarget target{ output, array, input->GetExtent() };
+      ShockImageInternals::SampleTarget target{ output, replaced, own };
       target.wholeExtent = knowsWhole ? whole : nullptr;
       target.haloReach = &reach;
       done = this->FilterSamples(withHalo, grownArray, association, target) != 0;
       needed = done && stencil >= 0
-        ? HaloNeeded(withHalo, input, cellData, layers, knowsWhole ? whole : nullptr, reach, stencil)
+        ? HaloNeeded(withHalo, own, cellData, layers, knowsWhole ? whole : nullptr, reach, stencil)
         : -1;
       vtkLogF(TRACE, "shock: the own flow lines need a halo of %d of %d samples", needed, layers);
     }
@@ -554,6 +669,7 @@ void vtkImageShockAdvectionFilter::ResetMeasurements()
   this->LastReachedTime = 0.0;
   this->LastGhostLevels = 0;
   this->LastHaloAttempts = 0;
+  this->LastHaloFromSource = false;
 }
 
 // --- Parallel execution: ghost samples in, cropped output out ------------------
@@ -582,7 +698,20 @@ int vtkImageShockAdvectionFilter::RequestUpdateExtent(
   bool unknown = false;
   if (UpdatePieces(outInfo) > 1 && this->PieceController(outputVector, unknown))
   {
-    return 1; // a piece of a distributed image: the halo comes from the other processes
+    // A piece of a distributed image. A source that cuts any extent reads the
+    // piece with its halo, as one piece with no ghost levels (so no ghost marks
+    // either), and the filter reads it in place; otherwise the piece comes as
+    // the source cuts it and its halo from the other processes.
+    int own[6];
+    int grown[6];
+    if (this->PieceFromSource(inInfo, outInfo, own, grown))
+    {
+      inInfo->Set(SDDP::UPDATE_EXTENT(), grown, 6);
+      inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
+      inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
+      inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    }
+    return 1;
   }
   if (UpdatePieces(outInfo) > 1)
   {
@@ -607,6 +736,33 @@ int vtkImageShockAdvectionFilter::RequestUpdateExtent(
     }
   }
   return 1;
+}
+
+bool vtkImageShockAdvectionFilter::PieceFromSource(
+  vtkInformation* inInfo, vtkInformation* outInfo, int own[6], int grown[6])
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  if (!inInfo || !outInfo || !inInfo->Has(SDDP::WHOLE_EXTENT()) || UpdatePieces(outInfo) < 2 ||
+    UpdateGhostLevels(outInfo) != 0 || this->Domain == GRADIENTS || ShockParallel::UpstreamIsComposite(this) ||
+    !SourceCutsExtents(this))
+  {
+    return false; // ghost layers asked downstream: the source marks them, as before
+  }
+  int whole[6];
+  inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+  PieceExtent(outInfo, whole, 0, own);
+  for (int a = 0; a < 3; ++a)
+  {
+    if (own[2 * a] > own[2 * a + 1])
+    {
+      return false; // no samples for this process: the source cuts the (empty) piece
+    }
+  }
+  const int stencil = this->HaloStencil();
+  const int layers =
+    stencil < 0 ? this->GhostLevels : std::min(this->GhostLevels, std::max(stencil + 2, this->AgreedHalo));
+  GrowWithin(own, whole, layers, grown);
+  return true;
 }
 
 void vtkImageShockAdvectionFilter::CropToUpdateExtent(vtkInformationVector* outputVector)
@@ -681,4 +837,5 @@ void vtkImageShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastReachedTime: " << this->LastReachedTime << "\n";
   os << indent << "LastGhostLevels: " << this->LastGhostLevels << "\n";
   os << indent << "LastHaloAttempts: " << this->LastHaloAttempts << "\n";
+  os << indent << "LastHaloFromSource: " << (this->LastHaloFromSource ? "true" : "false") << "\n";
 }

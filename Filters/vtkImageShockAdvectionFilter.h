@@ -29,8 +29,9 @@
  * between cell centres; zero on the boundary).
  *
  * In parallel (one piece per process, as in pvbatch or pvserver with MPI,
- * the filter's Controller set) each piece gets a halo of samples from the
- * processes that hold them, is filtered with it (only its own samples are
+ * the filter's Controller set) each piece gets a halo of samples: read with
+ * the piece when the source cuts any extent (GetLastHaloFromSource), else
+ * from the processes that hold them. It is filtered with it (only its own samples are
  * traced) and keeps its own extent, so that the pieces tile the image; every
  * piece is normalised by the data range over all pieces (ParallelValueScale)
  * and measures lengths in the whole image's mean edge. With Method ADVECTION
@@ -219,6 +220,18 @@ public:
   /// Parallel runs: how many times the last execution filtered the pieces (1 + the halo's growths; 0 serial).
   vtkGetMacro(LastHaloAttempts, int);
 
+  /**
+   * Parallel runs: whether the last result was made from pieces the source
+   * read with their halo (true), or from pieces whose halo came from the other
+   * processes (false). A source that cuts any extent (an image reader, the
+   * Wavelet; vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT) is asked for the piece with
+   * its halo, and the filter reads it where it is: no copy of the piece and no
+   * exchange. When downstream asks for ghost levels, when the source cannot
+   * cut extents, or when the flow lines need a wider halo than was read, the
+   * halo is exchanged.
+   */
+  vtkGetMacro(LastHaloFromSource, bool);
+
   ///@{
   /// The filtered image (output port 0, or the given port).
   vtkImageData* GetOutput();
@@ -233,7 +246,8 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
-  /// A piece of a distributed image asks for what is asked of it (the halo comes from the
+  /// A piece of a distributed image asks a source that cuts any extent for the piece with
+  /// its halo (PieceFromSource), else for what is asked of it (the halo comes from the
   /// other processes); a piece without a controller, its extent grown by GhostLevels (and
   /// as many ghost levels); a sub-extent of one piece, the whole extent (cropped after:
   /// the samples equal the whole image's result).
@@ -264,9 +278,10 @@ protected:
 
   /**
    * A piece of a distributed image (collective on `controller`): every process
-   * checks its piece and they agree, the piece gets GhostLevels samples of halo
-   * from the processes that hold them (ShockParallel::GrowImageSamples),
-   * is filtered with it, and the output is the piece with the filtered rows.
+   * checks its piece and they agree; the piece is filtered with its halo, read
+   * in place when every process's source read it (PieceFromSource), else
+   * received from the processes that hold it (ShockParallel::GrowImageSamples);
+   * the output is the piece with the filtered rows.
    */
   int FilterPieceWithHalo(vtkMultiProcessController* controller, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector);
@@ -275,6 +290,14 @@ protected:
 
   /// The flow's stencil in halo samples (shock::GridStencilLayers); -1 when the halo stays GhostLevels.
   int HaloStencil();
+  /**
+   * Whether a piece of a distributed image is asked of its source with its
+   * halo (see GetLastHaloFromSource): then `own` is the piece this process
+   * owns (the source's cut of the whole extent, no ghost levels) and `grown`
+   * the extent asked for, the piece with the starting halo.
+   */
+  bool PieceFromSource(vtkInformation* inInfo, vtkInformation* outInfo, int own[6], int grown[6]);
+
   /// The halo the pieces start with (collective): the stencil and two more, or what the last
   /// execution of this input agreed on, at most GhostLevels.
   int StartingHalo(vtkImageData* input, vtkDataArray* array, vtkMultiProcessController* controller, int stencil);
@@ -289,6 +312,7 @@ protected:
   double LastReachedTime = 0.0;
   int LastGhostLevels = 0;
   int LastHaloAttempts = 0;
+  bool LastHaloFromSource = false;
   int AgreedHalo = 0;                               ///< the halo the last parallel execution agreed on
   std::array<std::uintptr_t, 3> AgreedInputStamp{}; ///< of this input (object, size, array; compared only)
 

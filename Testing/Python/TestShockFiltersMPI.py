@@ -134,6 +134,29 @@ def wavelet_inputs(extent, expression, cells):
     return last, keep, proxies
 
 
+def file_input(last, name):
+    """The serial input `last` written to a .vti, and a reader of it as the
+    parallel run's input: a source that cuts any extent, so that each process
+    reads its piece with its halo (Last Halo From Source)."""
+    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+    last.Update()
+    path = os.path.join(OUTPUT, name + "_input.vti")
+    writer = vtkXMLImageDataWriter()
+    writer.SetInputData(last.GetOutputDataObject(0))
+    writer.SetFileName(path)
+    writer.Write()
+    return [XMLImageDataReader(FileName=[path])]
+
+
+def check_halo_from_source(label, filtered, expected):
+    """Last Halo From Source of `filtered` (executed) is `expected` on more than one process."""
+    filtered.UpdatePropertyInformation()
+    got = filtered.GetPropertyValue("LastHaloFromSource")
+    want = 1 if expected and PROCESSES > 1 else 0
+    check(got == want, "%s: Last Halo From Source %d (expected %d: %s)"
+          % (label, got, want, "the source read the pieces with their halo" if want else "the halo was exchanged"))
+
+
 def check_starts_as_agreed(label, filtered, path, attempts_property, agreed, unit):
     """A parameter changes, the input does not: executed again (saved to
     `path`), `filtered` starts with the ghost layers the last execution agreed on."""
@@ -215,14 +238,21 @@ def boundary_distance(extent, pieces, cells):
 
 
 def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=None, cells=False, blanked=False,
-               **properties):
+               from_file=False, **properties):
     """Filter in parallel and serially (both with `properties` besides); equality
     outside `band` samples of the piece boundaries, and at most `bound` of the
-    samples differing, in the filtered array and in the flow arrays if asked for."""
+    samples differing, in the filtered array and in the flow arrays if asked for.
+    The parallel input is the Wavelet source (with a Calculator and a Point Data
+    to Cell Data as asked: their pieces get their halo from the other
+    processes) or, `from_file`, a reader of the serial input written to a file."""
     name = "Step" if expression else "RTData"
     association = "CELLS" if cells else "POINTS"
     # Serial reference, and the proxies of the parallel run.
     last, keep, proxies = wavelet_inputs(extent, expression, cells)
+    if from_file:
+        for proxy in proxies[::-1]:
+            Delete(proxy)
+        proxies = file_input(last, label)
     if blanked:
         from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
         last.Update()
@@ -239,6 +269,7 @@ def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=N
                                    GhostLevels=ghost_levels, **properties)
     path = os.path.join(OUTPUT, "image_%s.pvti" % label)
     SaveData(path, proxy=filtered)
+    check_halo_from_source(label, filtered, from_file or not (expression or cells or blanked))
     if blanked:
         # ParaView 5.11's Programmable Filter runs in this script's namespace and
         # imports numpy's names into it (min, max, ...): the builtins back.
@@ -264,6 +295,16 @@ def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=N
             check(min(o for o, s in zip(overlap, spans) if s) <= 0,
                   "%s: pieces %s and %s overlap by more than a layer" % (label, pieces[a], pieces[b]))
     data = image.GetCellData() if cells else image.GetPointData()
+    # The arrays the filter does not change reach the pieces' output as in serial.
+    for attributes, reference in ((image.GetPointData(), serial.GetPointData()),
+                                  (image.GetCellData(), serial.GetCellData())):
+        for k in range(reference.GetNumberOfArrays()):
+            other = reference.GetArrayName(k)
+            if other in (name, "ShockPotential", "ShockFlow", "vtkGhostType", "vtkValidPointMask"):
+                continue
+            got = attributes.GetArray(other)
+            check(got is not None and np.array_equal(vtk_to_numpy(got), vtk_to_numpy(reference.GetArray(other))),
+                  "%s: the unchanged array %s is the serial one" % (label, other))
     parallel = compare_image_array(label, image, serial, name, cells, extent, pieces, flow_time, ghost_levels,
                                    band, bound)
     if parallel is None:
@@ -323,13 +364,22 @@ def image_adaptive_case():
     # step cross the cut, downwards: a halo that grows for its lower side alone.
     one_sided = "tanh((coordsY-4)/10)"
     start = 6  # 2 x SmoothingPasses + 2, and two more
-    for name, expression, flow_time, cells in (("step, t = 65536", diagonal, 65536, False),
-                                               ("step, cell data", diagonal, 65536, True),
-                                               ("one-sided step", one_sided, 65536, False),
-                                               ("step, t = 64", diagonal, 64, False)):
+    for name, expression, flow_time, cells, from_file in (
+            ("step, t = 65536", diagonal, 65536, False, False),
+            ("step, cell data", diagonal, 65536, True, False),
+            ("one-sided step", one_sided, 65536, False, False),
+            ("step, t = 64", diagonal, 64, False, False),
+            ("step read from a file", diagonal, 65536, False, True),
+            ("step, cell data read from a file", diagonal, 65536, True, True),
+            ("one-sided step read from a file", one_sided, 65536, False, True),
+            ("step, t = 64 read from a file", diagonal, 64, False, True)):
         label = "adaptive halo, %s np=%d" % (name, PROCESSES)
         association = "CELLS" if cells else "POINTS"
         last, keep, proxies = wavelet_inputs(extent, expression, cells)
+        if from_file:
+            for proxy in proxies[::-1]:
+                Delete(proxy)
+            proxies = file_input(last, "adaptive")
         serial = serial_filter("ImageShockAdvection", last, InputArray=[association, "Step"], FlowTime=flow_time)
         del messages.errors[:]
         del messages.warnings[:]
@@ -352,7 +402,10 @@ def image_adaptive_case():
                                        flow_time, layers, -1, 0.0)
 
         compare_saved("")
-        if name == "one-sided step" and PROCESSES != 2:
+        one_sided_step = name.startswith("one-sided step")
+        # Read from a file, the pieces come with the starting halo; a wider one is exchanged.
+        check_halo_from_source(label, filtered, from_file and attempts == 1)
+        if one_sided_step and PROCESSES != 2:
             Delete(filtered)  # 3 pieces: the cuts are far from the steps (equal to serial above is the check)
         elif flow_time > 64:
             check(start < layers <= 16 and attempts >= 2,
@@ -360,13 +413,15 @@ def image_adaptive_case():
                   % (label, start, layers, attempts))
             check_starts_as_agreed(label, filtered, path, "LastHaloAttempts", layers, "samples")
             compare_saved(", again")
+            # Executed again, a reader is asked for the agreed halo at once.
+            check_halo_from_source(label + ", again", filtered, from_file)
         else:
             check(attempts == 1 and start <= layers < 16,
                   "%s: short flow lines keep a halo of %d samples, fewer than Ghost Levels (%d attempts)"
                   % (label, layers, attempts))
-        if name != "one-sided step" or PROCESSES == 2:
+        if not one_sided_step or PROCESSES == 2:
             Delete(filtered)
-        if flow_time > 64 and (name != "one-sided step" or PROCESSES == 2):
+        if flow_time > 64 and (not one_sided_step or PROCESSES == 2):
             # At most `start` samples: too few, and a warning says so.
             del messages.warnings[:]
             check_capped_warns(label, ImageShockAdvection(Input=proxies[-1], InputArray=[association, "Step"],
@@ -963,6 +1018,14 @@ cases = [
     lambda: image_case("wavelet3d_cells_flow_arrays", [0, 47, 0, 39, 0, 35], 64, 16, -1, 0.0, cells=True,
                        GenerateFlowArrays=1),
     lambda: image_case("wavelet3d_pde", [0, 47, 0, 39, 0, 35], 16, 16, 16, 0.005, Method="PDE"),
+    # The same read from a file: each process reads its piece with its halo.
+    lambda: image_case("step2d_t4096_file", [-128, 127, -128, 127, 0, 0], 4096, 16, -1, 0.0,
+                       expression="tanh((coordsY-12+0.1*coordsX)/6)", from_file=True),
+    lambda: image_case("wavelet2d_cells_file", [0, 255, 0, 255, 0, 0], 64, 16, -1, 0.0, cells=True, from_file=True),
+    lambda: image_case("wavelet3d_cells_flow_arrays_file", [0, 47, 0, 39, 0, 35], 64, 16, -1, 0.0, cells=True,
+                       GenerateFlowArrays=1, from_file=True),
+    lambda: image_case("wavelet3d_pde_file", [0, 47, 0, 39, 0, 35], 16, 16, 16, 0.005, Method="PDE",
+                       from_file=True),
     image_adaptive_case,
     unsplit_image_case,
     surface_cases,
