@@ -135,17 +135,31 @@ def wavelet_inputs(extent, expression, cells):
 
 
 def file_input(last, name):
-    """The serial input `last` written to a .vti, and a reader of it as the
-    parallel run's input: a source that cuts any extent, so that each process
-    reads its piece with its halo (Last Halo From Source)."""
-    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+    """The serial input `last` written to a .vti with two more arrays the
+    filter does not change (the points' coordinates, 3 components, and the
+    cells' numbers): a VTK reader of it (the serial reference's input) and a
+    reader proxy (the parallel run's input, a source that cuts any extent, so
+    that each process reads its piece with its halo: Last Halo From Source)."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter
     last.Update()
+    image = last.GetOutputDataObject(0).NewInstance()
+    image.ShallowCopy(last.GetOutputDataObject(0))
+    coordinates = numpy_to_vtk(np.array([image.GetPoint(i) for i in range(image.GetNumberOfPoints())],
+                                        dtype=np.float32), deep=1)
+    coordinates.SetName("Coordinates")
+    image.GetPointData().AddArray(coordinates)
+    numbers = numpy_to_vtk(np.arange(image.GetNumberOfCells(), dtype=np.int32), deep=1)
+    numbers.SetName("CellNumber")
+    image.GetCellData().AddArray(numbers)
     path = os.path.join(OUTPUT, name + "_input.vti")
     writer = vtkXMLImageDataWriter()
-    writer.SetInputData(last.GetOutputDataObject(0))
+    writer.SetInputData(image)
     writer.SetFileName(path)
     writer.Write()
-    return [XMLImageDataReader(FileName=[path])]
+    reader = vtkXMLImageDataReader()
+    reader.SetFileName(path)
+    return reader, [XMLImageDataReader(FileName=[path])]
 
 
 def check_halo_from_source(label, filtered, expected):
@@ -252,7 +266,8 @@ def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=N
     if from_file:
         for proxy in proxies[::-1]:
             Delete(proxy)
-        proxies = file_input(last, label)
+        last, proxies = file_input(last, label)
+        keep.append(last)
     if blanked:
         from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
         last.Update()
@@ -305,6 +320,16 @@ def image_case(label, extent, flow_time, ghost_levels, band, bound, expression=N
             got = attributes.GetArray(other)
             check(got is not None and np.array_equal(vtk_to_numpy(got), vtk_to_numpy(reference.GetArray(other))),
                   "%s: the unchanged array %s is the serial one" % (label, other))
+    if from_file:
+        check(image.GetPointData().GetArray("Coordinates") is not None
+              and image.GetCellData().GetArray("CellNumber") is not None,
+              "%s: the arrays the filter does not change are in the output" % label)
+    for attributes, reference in ((image.GetPointData(), serial.GetPointData()),
+                                  (image.GetCellData(), serial.GetCellData())):
+        active, expected = attributes.GetScalars(), reference.GetScalars()
+        check((active and active.GetName()) == (expected and expected.GetName()),
+              "%s: the active scalars are the serial output's (%s, serial %s)"
+              % (label, active and active.GetName(), expected and expected.GetName()))
     parallel = compare_image_array(label, image, serial, name, cells, extent, pieces, flow_time, ghost_levels,
                                    band, bound)
     if parallel is None:
@@ -379,7 +404,8 @@ def image_adaptive_case():
         if from_file:
             for proxy in proxies[::-1]:
                 Delete(proxy)
-            proxies = file_input(last, "adaptive")
+            last, proxies = file_input(last, "adaptive")
+            keep.append(last)
         serial = serial_filter("ImageShockAdvection", last, InputArray=[association, "Step"], FlowTime=flow_time)
         del messages.errors[:]
         del messages.warnings[:]
