@@ -488,6 +488,61 @@ def unsplit_image_case():
           "unsplit reader: equals the serial result")
 
 
+def shared_series_case():
+    """A reader of a two-step file series that also feeds a Calculator (which
+    asks for the plain pieces) and the filter (which asks for its pieces with
+    their halo): updated in turn at each time step, every result equals the
+    serial one of that step, read with its halo from the reader."""
+    from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter
+    extent = [0, 95, 0, 79, 0, 0]
+    paths, serials = [], []
+    for step, expression in enumerate(("tanh((coordsY-40+0.2*coordsX)/5)", "tanh((coordsX-50+0.3*coordsY)/4)")):
+        source, keep = wavelet(extent, expression)
+        path = os.path.join(OUTPUT, "series_%d.vti" % step)
+        writer = vtkXMLImageDataWriter()
+        writer.SetInputConnection(source.GetOutputPort())
+        writer.SetFileName(path)
+        writer.Write()
+        reader = vtkXMLImageDataReader()
+        reader.SetFileName(path)
+        serials.append(serial_filter("ImageShockAdvection", reader, InputArray=["POINTS", "Step"], FlowTime=4096))
+        paths.append(path)
+    series = XMLImageDataReader(FileName=paths)
+    other = Calculator(Input=series, Function="2*Step", ResultArrayName="Twice")
+    filtered = ImageShockAdvection(Input=series, InputArray=["POINTS", "Step"], FlowTime=4096)
+
+    def save(path, proxy, time):
+        writer = CreateWriter(path, proxy)  # SaveData writes the time of the view, and there is none
+        writer.UpdatePipeline(time=time)
+        Delete(writer)
+
+    for round_ in range(2):
+        for step in range(2):
+            label = "shared series, step %d, round %d" % (step, round_)
+            out_other = os.path.join(OUTPUT, "series_other.pvti")
+            save(out_other, other, float(step))
+            out = os.path.join(OUTPUT, "series_filtered.pvti")
+            save(out, filtered, float(step))
+            # Read with its halo, unless the flow lines of this step needed a
+            # wider one (exchanged); from then on the wider one is read.
+            filtered.UpdatePropertyInformation()
+            attempts = filtered.GetPropertyValue("LastHaloAttempts")
+            check_halo_from_source(label, filtered, attempts == 1)
+            check(round_ == 0 or attempts == 1, "%s: the agreed halo is read at once (%d attempts)" % (label, attempts))
+            reader = vtkXMLPImageDataReader()
+            reader.SetFileName(out)
+            reader.Update()
+            compare_image_array(label, reader.GetOutput(), serials[step], "Step", False, extent, piece_extents(out),
+                                4096, 16, -1, 0.0)
+            reader.SetFileName(out_other)
+            reader.Update()
+            twice = reader.GetOutput().GetPointData().GetArray("Twice")
+            check(twice is not None and reader.GetOutput().GetNumberOfPoints() == 96 * 80,
+                  "%s: the Calculator on the same reader still gets the plain pieces" % label)
+    for proxy in (filtered, other, series):
+        Delete(proxy)
+
+
 # --- Surfaces: split by RedistributeDataSet and by a partitioned .pvtp file -------
 #
 # One whole mesh (a sphere with the point array "Heat", the active scalars, and
@@ -1054,6 +1109,7 @@ cases = [
                        from_file=True),
     image_adaptive_case,
     unsplit_image_case,
+    shared_series_case,
     surface_cases,
 ]
 for case in cases:
