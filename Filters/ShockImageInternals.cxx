@@ -336,6 +336,30 @@ int UpdateGhostLevels(vtkInformation* info)
     : 0;
 }
 
+namespace
+{
+/// The samples of a sub-extent within an image's: first index, count, and the image's count per axis.
+struct SampleBox
+{
+  vtkIdType first[3], count[3], dims[3];
+};
+
+/// The point and cell sample boxes of the point extent `piece` within `extent`.
+void SampleBoxes(const int extent[6], const int piece[6], SampleBox& points, SampleBox& cells)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const bool spans = extent[2 * a + 1] > extent[2 * a];
+    points.first[a] = piece[2 * a] - extent[2 * a];
+    points.count[a] = piece[2 * a + 1] - piece[2 * a] + 1;
+    points.dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
+    cells.first[a] = spans ? points.first[a] : 0;
+    cells.count[a] = spans ? std::max<vtkIdType>(points.count[a] - 1, 0) : 1;
+    cells.dims[a] = spans ? points.dims[a] - 1 : 1;
+  }
+}
+}
+
 /**
  * Crop `image` to `target` (within its extent) as vtkImageData::Crop does, but
  * a row at a time: each point and cell array is copied with memcpy instead of
@@ -357,21 +381,9 @@ bool CropByRows(vtkImageData* image, const int target[6])
       return false;
     }
   }
-  // Sample boxes of points and cells: first index, count, and the input's count per axis.
-  struct Box
-  {
-    vtkIdType first[3], count[3], dims[3];
-  } points{}, cells{};
-  for (int a = 0; a < 3; ++a)
-  {
-    const bool spans = extent[2 * a + 1] > extent[2 * a];
-    points.first[a] = crop[2 * a] - extent[2 * a];
-    points.count[a] = crop[2 * a + 1] - crop[2 * a] + 1;
-    points.dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
-    cells.first[a] = spans ? points.first[a] : 0;
-    cells.count[a] = spans ? points.count[a] - 1 : 1;
-    cells.dims[a] = spans ? points.dims[a] - 1 : 1;
-  }
+  SampleBox points;
+  SampleBox cells;
+  SampleBoxes(extent, crop, points, cells);
   vtkDataSetAttributes* attributes[2] = { image->GetPointData(), image->GetCellData() };
   for (vtkDataSetAttributes* data : attributes)
   {
@@ -386,7 +398,7 @@ bool CropByRows(vtkImageData* image, const int target[6])
   }
   for (int which = 0; which < 2; ++which)
   {
-    const Box& box = which == 0 ? points : cells;
+    const SampleBox& box = which == 0 ? points : cells;
     vtkDataSetAttributes* data = attributes[which];
     for (int k = 0; k < data->GetNumberOfArrays(); ++k)
     {
@@ -434,22 +446,9 @@ void PieceExtent(vtkInformation* info, const int extent[6], int ghost, int piece
 
 vtkDataArray* PieceOfImage(vtkImageData* input, const int piece[6], vtkDataArray* filtered, vtkImageData* output)
 {
-  const int* extent = input->GetExtent();
-  // Sample boxes of points and cells: first index, count, and the input's count per axis.
-  struct Box
-  {
-    vtkIdType first[3], count[3], dims[3];
-  } points{}, cells{};
-  for (int a = 0; a < 3; ++a)
-  {
-    const bool spans = extent[2 * a + 1] > extent[2 * a];
-    points.first[a] = piece[2 * a] - extent[2 * a];
-    points.count[a] = piece[2 * a + 1] - piece[2 * a] + 1;
-    points.dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
-    cells.first[a] = spans ? points.first[a] : 0;
-    cells.count[a] = spans ? std::max<vtkIdType>(points.count[a] - 1, 0) : 1;
-    cells.dims[a] = spans ? points.dims[a] - 1 : 1;
-  }
+  SampleBox points;
+  SampleBox cells;
+  SampleBoxes(input->GetExtent(), piece, points, cells);
   output->Initialize();
   output->CopyStructure(input);
   output->SetExtent(const_cast<int*>(piece));
@@ -457,7 +456,7 @@ vtkDataArray* PieceOfImage(vtkImageData* input, const int piece[6], vtkDataArray
   vtkDataArray* placeholder = nullptr;
   for (int which = 0; which < 2; ++which)
   {
-    const Box& box = which == 0 ? points : cells;
+    const SampleBox& box = which == 0 ? points : cells;
     vtkDataSetAttributes* from = which == 0 ? static_cast<vtkDataSetAttributes*>(input->GetPointData())
                                             : static_cast<vtkDataSetAttributes*>(input->GetCellData());
     vtkDataSetAttributes* to = which == 0 ? static_cast<vtkDataSetAttributes*>(output->GetPointData())
