@@ -444,6 +444,58 @@ void PieceExtent(vtkInformation* info, const int extent[6], int ghost, int piece
     UpdatePieces(info), ghost, whole, piece, mode, 0);
 }
 
+namespace
+{
+/// A new array like `array` (type, name, components, information, lookup table) with `tuples` tuples.
+vtkSmartPointer<vtkAbstractArray> NewLike(vtkAbstractArray* array, vtkIdType tuples)
+{
+  vtkSmartPointer<vtkAbstractArray> copy = vtk::TakeSmartPointer(array->NewInstance());
+  copy->SetName(array->GetName());
+  copy->SetNumberOfComponents(array->GetNumberOfComponents());
+  copy->CopyComponentNames(array);
+  if (array->HasInformation())
+  {
+    copy->CopyInformation(array->GetInformation(), /*deep=*/1);
+  }
+  vtkDataArray* numbers = vtkDataArray::SafeDownCast(array);
+  if (numbers && numbers->GetLookupTable())
+  {
+    vtkDataArray::SafeDownCast(copy)->SetLookupTable(numbers->GetLookupTable());
+  }
+  copy->SetNumberOfTuples(tuples);
+  return copy;
+}
+
+/// The tuples of `array` (one per sample of the image) in the box `box`, row by row.
+vtkSmartPointer<vtkAbstractArray> CroppedTuples(vtkAbstractArray* array, const SampleBox& box)
+{
+  vtkSmartPointer<vtkAbstractArray> kept = NewLike(array, box.count[0] * box.count[1] * box.count[2]);
+  vtkDataArray* from = vtkDataArray::SafeDownCast(array);
+  const bool raw = from && from->HasStandardMemoryLayout();
+  const size_t tupleBytes = static_cast<size_t>(array->GetDataTypeSize()) * array->GetNumberOfComponents();
+  vtkIdType to0 = 0;
+  for (vtkIdType z = 0; z < box.count[2]; ++z)
+  {
+    for (vtkIdType y = 0; y < box.count[1]; ++y)
+    {
+      const vtkIdType first = box.first[0] + box.dims[0] * (box.first[1] + y + box.dims[1] * (box.first[2] + z));
+      if (raw)
+      {
+        std::memcpy(static_cast<char*>(kept->GetVoidPointer(0)) + static_cast<size_t>(to0) * tupleBytes,
+          static_cast<const char*>(array->GetVoidPointer(0)) + static_cast<size_t>(first) * tupleBytes,
+          static_cast<size_t>(box.count[0]) * tupleBytes);
+      }
+      else
+      {
+        kept->InsertTuples(to0, box.count[0], first, array);
+      }
+      to0 += box.count[0];
+    }
+  }
+  return kept;
+}
+}
+
 vtkDataArray* PieceOfImage(vtkImageData* input, const int piece[6], vtkDataArray* filtered, vtkImageData* output)
 {
   SampleBox points;
@@ -468,31 +520,15 @@ vtkDataArray* PieceOfImage(vtkImageData* input, const int piece[6], vtkDataArray
       {
         continue;
       }
-      vtkSmartPointer<vtkAbstractArray> kept = array;
-      if (array == filtered || array->GetNumberOfTuples() == box.dims[0] * box.dims[1] * box.dims[2])
+      vtkSmartPointer<vtkAbstractArray> kept = array; // not one tuple per sample: shared, as vtkImageData::Crop leaves it
+      if (array == filtered)
       {
-        kept = vtk::TakeSmartPointer(array->NewInstance());
-        kept->SetName(array->GetName());
-        kept->SetNumberOfComponents(array->GetNumberOfComponents());
-        kept->CopyComponentNames(array);
-        if (array == filtered)
-        {
-          placeholder = vtkDataArray::SafeDownCast(kept);
-        }
-        else
-        {
-          kept->SetNumberOfTuples(box.count[0] * box.count[1] * box.count[2]);
-          vtkIdType to0 = 0;
-          for (vtkIdType z = 0; z < box.count[2]; ++z)
-          {
-            for (vtkIdType y = 0; y < box.count[1]; ++y)
-            {
-              const vtkIdType first = box.first[0] + box.dims[0] * (box.first[1] + y + box.dims[1] * (box.first[2] + z));
-              kept->InsertTuples(to0, box.count[0], first, array);
-              to0 += box.count[0];
-            }
-          }
-        }
+        kept = NewLike(array, 0);
+        placeholder = vtkDataArray::SafeDownCast(kept);
+      }
+      else if (array->GetNumberOfTuples() == box.dims[0] * box.dims[1] * box.dims[2])
+      {
+        kept = CroppedTuples(array, box);
       }
       const int index = to->AddArray(kept);
       const int role = from->IsArrayAnAttribute(k);
@@ -503,6 +539,27 @@ vtkDataArray* PieceOfImage(vtkImageData* input, const int piece[6], vtkDataArray
     }
   }
   return placeholder;
+}
+
+void KeepPieceValues(vtkImageData* input, const int piece[6], vtkDataArray* array, bool cellData,
+  vtkImageData* output, vtkDataArray* placeholder)
+{
+  vtkDataSetAttributes* to = cellData ? static_cast<vtkDataSetAttributes*>(output->GetCellData())
+                                      : static_cast<vtkDataSetAttributes*>(output->GetPointData());
+  bool present = false;
+  for (int k = 0; k < to->GetNumberOfArrays(); ++k)
+  {
+    present = present || to->GetAbstractArray(k) == placeholder;
+  }
+  if (!present)
+  {
+    return; // the results took its place
+  }
+  SampleBox points;
+  SampleBox cells;
+  SampleBoxes(input->GetExtent(), piece, points, cells);
+  vtkSmartPointer<vtkAbstractArray> own = CroppedTuples(array, cellData ? cells : points);
+  ShockFilterInternals::ReplaceArray(to, placeholder, vtkDataArray::SafeDownCast(own));
 }
 
 shock::SampleWriter KeepHiddenValues(const shock::SampleWriter& writer, vtkImageData* image, vtkDataArray* array,

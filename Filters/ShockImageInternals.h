@@ -121,6 +121,15 @@ void PieceExtent(vtkInformation* info, const int extent[6], int ghost, int piece
  * (SampleTarget::replaced).
  */
 vtkDataArray* PieceOfImage(vtkImageData* input, const int piece[6], vtkDataArray* filtered, vtkImageData* output);
+
+/**
+ * When `placeholder` (PieceOfImage's) is still in `output` (an abort or a
+ * failure before the results): put the piece's own values of `array` (of
+ * `input`, cropped to `piece`) in its place, so that the output never holds
+ * an empty array.
+ */
+void KeepPieceValues(vtkImageData* input, const int piece[6], vtkDataArray* array, bool cellData,
+  vtkImageData* output, vtkDataArray* placeholder);
 }
 
 #endif

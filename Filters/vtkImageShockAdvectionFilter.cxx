@@ -148,6 +148,51 @@ bool SourceCutsExtents(vtkAlgorithm* filter)
     info->Get(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT()) != 0;
 }
 
+/// Bytes per sample of every point array (one tuple per point) and cell array (one per cell) of `image`.
+double BytesPerSample(vtkImageData* image)
+{
+  double bytes = 0.0;
+  for (int which = 0; which < 2; ++which)
+  {
+    vtkDataSetAttributes* data = which == 0 ? static_cast<vtkDataSetAttributes*>(image->GetPointData())
+                                            : static_cast<vtkDataSetAttributes*>(image->GetCellData());
+    const vtkIdType tuples = which == 0 ? image->GetNumberOfPoints() : image->GetNumberOfCells();
+    for (int k = 0; k < data->GetNumberOfArrays(); ++k)
+    {
+      vtkAbstractArray* array = data->GetAbstractArray(k);
+      if (array && array->GetNumberOfTuples() == tuples)
+      {
+        bytes += static_cast<double>(array->GetDataTypeSize()) * array->GetNumberOfComponents();
+      }
+    }
+  }
+  return bytes;
+}
+
+/**
+ * Bytes per sample of the array `filter` would filter on `image` (the one
+ * named by its selection, else the active point scalars, else the active cell
+ * scalars), found without messages; 0 when there is none.
+ */
+double SelectedBytesPerSample(vtkAlgorithm* filter, vtkImageData* image)
+{
+  vtkInformation* selection = filter->GetInputArrayInformation(0);
+  vtkAbstractArray* array = nullptr;
+  if (selection->Has(vtkDataObject::FIELD_NAME()) && *selection->Get(vtkDataObject::FIELD_NAME()))
+  {
+    const char* name = selection->Get(vtkDataObject::FIELD_NAME());
+    const bool cells = selection->Has(vtkDataObject::FIELD_ASSOCIATION()) &&
+      selection->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+    array = cells ? image->GetCellData()->GetAbstractArray(name) : image->GetPointData()->GetAbstractArray(name);
+  }
+  else
+  {
+    array = image->GetPointData()->GetScalars() ? image->GetPointData()->GetScalars()
+                                                : image->GetCellData()->GetScalars();
+  }
+  return array ? static_cast<double>(array->GetDataTypeSize()) * array->GetNumberOfComponents() : 0.0;
+}
+
 /// Whether `outer` contains `inner` (point extents; an empty `inner` is contained).
 bool Contains(const int outer[6], const int inner[6])
 {
@@ -384,10 +429,8 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
   // The piece this process owns: the one the source read with its halo
   // (RequestUpdateExtent), or else the input as it came.
   int own[6];
-  int asked[6];
-  const bool fromSource = !empty &&
-    this->PieceFromSource(inInfo, outputVector->GetInformationObject(0), own, asked) &&
-    Contains(input->GetExtent(), own);
+  std::copy(this->AskedPiece, this->AskedPiece + 6, own);
+  const bool fromSource = !empty && this->AskedPieceFromSource && Contains(input->GetExtent(), own);
   if (!fromSource)
   {
     input->GetExtent(own);
@@ -464,6 +507,11 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
       target.wholeExtent = knowsWhole ? whole : nullptr;
       target.haloReach = &reach;
       done = this->FilterSamples(withHalo, grownArray, association, target) != 0;
+      if (replaced != array)
+      {
+        // Aborted or failed before its results: the piece keeps its own values.
+        KeepPieceValues(input, own, array, cellData, output, replaced);
+      }
       needed = done && stencil >= 0
         ? HaloNeeded(withHalo, own, cellData, layers, knowsWhole ? whole : nullptr, reach, stencil)
         : -1;
@@ -691,6 +739,7 @@ int vtkImageShockAdvectionFilter::RequestUpdateExtent(
   {
     return 1;
   }
+  this->AskedPieceFromSource = false;
   if (ShockParallel::UpstreamIsComposite(this))
   {
     return 1; // composite input: each block as it comes (no ghost layers, no crop)
@@ -702,9 +751,9 @@ int vtkImageShockAdvectionFilter::RequestUpdateExtent(
     // piece with its halo, as one piece with no ghost levels (so no ghost marks
     // either), and the filter reads it in place; otherwise the piece comes as
     // the source cuts it and its halo from the other processes.
-    int own[6];
     int grown[6];
-    if (this->PieceFromSource(inInfo, outInfo, own, grown))
+    this->AskedPieceFromSource = this->PieceFromSource(inInfo, outInfo, this->AskedPiece, grown);
+    if (this->AskedPieceFromSource)
     {
       inInfo->Set(SDDP::UPDATE_EXTENT(), grown, 6);
       inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
@@ -750,18 +799,70 @@ bool vtkImageShockAdvectionFilter::PieceFromSource(
   }
   int whole[6];
   inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
-  PieceExtent(outInfo, whole, 0, own);
-  for (int a = 0; a < 3; ++a)
+  // The pieces of what is asked of this filter, cut as the pipeline cuts a
+  // source's (vtkExtentTranslator, the request's split mode).
+  int asked[6];
+  std::copy(whole, whole + 6, asked);
+  if (outInfo->Has(SDDP::UPDATE_EXTENT()))
   {
-    if (own[2 * a] > own[2 * a + 1])
-    {
-      return false; // no samples for this process: the source cuts the (empty) piece
-    }
+    outInfo->Get(SDDP::UPDATE_EXTENT(), asked);
   }
+  // Every process must take the same way (a reader may read collectively),
+  // and every piece needs samples on each axis the image spans (one point
+  // thick, a piece has no cells there): else all exchange, as before.
+  const int mode = outInfo->Has(vtkExtentTranslator::UPDATE_SPLIT_MODE())
+    ? outInfo->Get(vtkExtentTranslator::UPDATE_SPLIT_MODE())
+    : vtkExtentTranslator::BLOCK_MODE;
+  vtkNew<vtkExtentTranslator> translator;
+  // Memory: a piece read with its halo holds every array over the halo, and
+  // its output copies the arrays the filter does not change; exchanged, it
+  // copies only the filtered array with its halo. Read with the halo when that
+  // holds fewer bytes on every piece: the other arrays' bytes per sample times
+  // the grown samples below the filtered array's times the piece's (the
+  // arrays as the input last came: ParaView executes a source before its
+  // filters; unknown before the input's first execution, when the halo is
+  // exchanged).
+  vtkImageData* last = vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT()));
+  const double filtered = last ? SelectedBytesPerSample(this, last) : 0.0;
+  if (filtered <= 0.0)
+  {
+    return false;
+  }
+  const double others = BytesPerSample(last) - filtered;
   const int stencil = this->HaloStencil();
   const int layers =
     stencil < 0 ? this->GhostLevels : std::min(this->GhostLevels, std::max(stencil + 2, this->AgreedHalo));
-  GrowWithin(own, whole, layers, grown);
+  const int pieces = UpdatePieces(outInfo);
+  const int me = outInfo->Get(SDDP::UPDATE_PIECE_NUMBER());
+  for (int p = 0; p < pieces; ++p)
+  {
+    int piece[6];
+    int halo[6];
+    if (!translator->PieceToExtentThreadSafe(p, pieces, 0, asked, piece, mode, 0))
+    {
+      return false;
+    }
+    GrowWithin(piece, whole, layers, halo);
+    double samples[2] = { 1.0, 1.0 };
+    for (int a = 0; a < 3; ++a)
+    {
+      if (piece[2 * a] > piece[2 * a + 1] || (whole[2 * a + 1] > whole[2 * a] && piece[2 * a] == piece[2 * a + 1]))
+      {
+        return false;
+      }
+      samples[0] *= piece[2 * a + 1] - piece[2 * a] + 1;
+      samples[1] *= halo[2 * a + 1] - halo[2 * a] + 1;
+    }
+    if (!(others * samples[1] < filtered * samples[0]))
+    {
+      return false;
+    }
+    if (p == me)
+    {
+      std::copy(piece, piece + 6, own);
+      std::copy(halo, halo + 6, grown);
+    }
+  }
   return true;
 }
 

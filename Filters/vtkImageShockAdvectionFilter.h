@@ -293,8 +293,11 @@ protected:
   /**
    * Whether a piece of a distributed image is asked of its source with its
    * halo (see GetLastHaloFromSource): then `own` is the piece this process
-   * owns (the source's cut of the whole extent, no ghost levels) and `grown`
-   * the extent asked for, the piece with the starting halo.
+   * owns (the pipeline's cut of the extent asked of the filter, no ghost
+   * levels) and `grown` the extent asked for, the piece with the starting
+   * halo. Not when a piece would have no samples on an axis the image spans
+   * (the same answer on every process), nor when it would hold more bytes
+   * than the exchange (other arrays besides the filtered one).
    */
   bool PieceFromSource(vtkInformation* inInfo, vtkInformation* outInfo, int own[6], int grown[6]);
 
@@ -313,6 +316,8 @@ protected:
   int LastGhostLevels = 0;
   int LastHaloAttempts = 0;
   bool LastHaloFromSource = false;
+  bool AskedPieceFromSource = false; ///< RequestUpdateExtent asked the source for AskedPiece with its halo
+  int AskedPiece[6] = { 0, -1, 0, -1, 0, -1 };
   int AgreedHalo = 0;                               ///< the halo the last parallel execution agreed on
   std::array<std::uintptr_t, 3> AgreedInputStamp{}; ///< of this input (object, size, array; compared only)
 

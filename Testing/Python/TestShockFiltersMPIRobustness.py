@@ -47,6 +47,10 @@ process 0 prints a MEASURE line with what each process did and checks:
 - image abort on process 0: the same during Image Shock Advection of a
   diagonal step whose pieces would grow their halo: every process returns
   after one attempt (the abort is agreed with the halo's reduction).
+- image abort with pieces read with their halo: vtkRTAnalyticSource feeds
+  the filter directly (each piece read with its halo), process 0 aborts at
+  its first progress report: every process returns, and process 0's output
+  holds its piece's own values (not an empty array).
 - abort on process 0: a ProgressEvent observer on process 0 only sets
   AbortExecute during a sharpening of a 200 x 200 sphere: every process
   returns from UpdatePiece and reaches the Barrier after it.
@@ -714,6 +718,53 @@ def image_abort_case():
     return local, judge
 
 
+def image_abort_from_source_case():
+    label = "image abort, piece read with its halo, np=%d" % PROCESSES
+
+    def local():
+        # The source feeds the filter directly: each piece is read with its
+        # halo (the source's arrays are known from a first execution), and
+        # rank 0 aborts at its first progress report: its output keeps the
+        # piece's own values, never an empty array.
+        source = vtkRTAnalyticSource()
+        source.SetWholeExtent(0, 63, 0, 47, 0, 31)
+        source.UpdatePiece(RANK, PROCESSES, 0)
+        algorithm = vtkImageShockAdvectionFilter()
+        algorithm.SetController(controller)
+        algorithm.SetNumberOfThreads(1)
+        algorithm.SetFlowTime(64)
+        algorithm.SetInputConnection(source.GetOutputPort())
+        requested, abort = abort_at_first_progress()
+        if RANK == 0:
+            algorithm.AddObserver("ProgressEvent", abort)
+        messages.take()
+        rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
+        controller.Barrier()
+        output = algorithm.GetOutput()
+        values = output.GetPointData().GetScalars()
+        reference = vtkRTAnalyticSource()
+        reference.SetWholeExtent(0, 63, 0, 47, 0, 31)
+        reference.UpdateExtent(output.GetExtent())
+        expected = reference.GetOutput().GetPointData().GetScalars()
+        same = (values is not None and values.GetNumberOfTuples() == output.GetNumberOfPoints() > 0
+                and np.array_equal(vtk_to_numpy(values), vtk_to_numpy(expected)))
+        return {"rank": RANK, "rc": rc, "returned": True, "abort_at": requested[0] if requested else None,
+                "from_source": algorithm.GetLastHaloFromSource(), "tuples": values.GetNumberOfTuples() if values else -1,
+                "points": output.GetNumberOfPoints(), "unfiltered": bool(same), "errors": messages.take()}
+
+    def judge(records):
+        print("MEASURE %-40s read with the halo %s; tuples %s of points %s; abort at progress %s" % (
+            label, [r["from_source"] for r in records], [r["tuples"] for r in records],
+            [r["points"] for r in records], records[0].get("abort_at")), flush=True)
+        check(all(r.get("returned") for r in records), "%s: every process returned and reached the Barrier" % label)
+        check(records[0].get("abort_at") is not None, "%s: no progress report on rank 0 to abort at" % label)
+        check(all(r["from_source"] for r in records), "%s: every piece was read with its halo" % label)
+        check(records[0]["unfiltered"], "%s: the aborted piece keeps its own values (%d tuples for %d points)"
+              % (label, records[0]["tuples"], records[0]["points"]))
+
+    return local, judge
+
+
 def all_cases():
     """(name, case) pairs; a name is dotted (e.g. bad_cell_id.sharpen.line.bad1)."""
     cases = [("replicated", replicated_case()), ("source_pieces", source_pieces_case()),
@@ -734,6 +785,7 @@ def all_cases():
             cases.append(("flow_mode.%s.bad%d" % (kind, bad), flow_mode_case(kind, bad)))
     cases.append(("abort", abort_case()))
     cases.append(("image_abort", image_abort_case()))
+    cases.append(("image_abort_from_source", image_abort_from_source_case()))
     return cases
 
 
