@@ -227,8 +227,10 @@ public:
    * Wavelet; vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT) is asked for the piece with
    * its halo, and the filter reads it where it is: no copy of the piece and no
    * exchange. When downstream asks for ghost levels, when the source cannot
-   * cut extents, or when the flow lines need a wider halo than was read, the
-   * halo is exchanged.
+   * cut extents, when a piece would be empty or one point thick, when the
+   * other arrays hold more bytes than the filtered one (as the input last
+   * came; unknown before its first execution), or when the flow lines need a
+   * wider halo than was read, the halo is exchanged. Process 0's, in ParaView.
    */
   vtkGetMacro(LastHaloFromSource, bool);
 
