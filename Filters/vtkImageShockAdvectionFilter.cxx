@@ -735,11 +735,11 @@ int vtkImageShockAdvectionFilter::RequestUpdateExtent(
   using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  this->AskedPieceFromSource = false;
   if (!inInfo || !outInfo)
   {
     return 1;
   }
-  this->AskedPieceFromSource = false;
   if (ShockParallel::UpstreamIsComposite(this))
   {
     return 1; // composite input: each block as it comes (no ghost layers, no crop)
