@@ -674,6 +674,18 @@ def abort_case():
     return local, judge
 
 
+def update_aborting_on_rank0(algorithm):
+    """Update `algorithm`'s piece on every process, process 0 aborting at its
+    first progress report, then a Barrier: (return code, progress aborted at)."""
+    requested, abort = abort_at_first_progress()
+    if RANK == 0:
+        algorithm.AddObserver("ProgressEvent", abort)
+    messages.take()
+    rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
+    controller.Barrier()
+    return rc, requested[0] if requested else None
+
+
 def image_abort_case():
     label = "image abort on rank 0 np=%d" % PROCESSES
 
@@ -695,13 +707,8 @@ def image_abort_case():
         algorithm.SetFlowTime(65536)
         algorithm.SetInputArrayToProcess(0, 0, 0, 0, "Step")
         algorithm.SetInputConnection(step.GetOutputPort())
-        requested, abort = abort_at_first_progress()
-        if RANK == 0:
-            algorithm.AddObserver("ProgressEvent", abort)
-        messages.take()
-        rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
-        controller.Barrier()
-        return {"rank": RANK, "rc": rc, "returned": True, "abort_at": requested[0] if requested else None,
+        rc, abort_at = update_aborting_on_rank0(algorithm)
+        return {"rank": RANK, "rc": rc, "returned": True, "abort_at": abort_at,
                 "attempts": algorithm.GetLastHaloAttempts(), "halo": algorithm.GetLastGhostLevels(),
                 "errors": messages.take()}
 
@@ -734,12 +741,7 @@ def image_abort_from_source_case():
         algorithm.SetNumberOfThreads(1)
         algorithm.SetFlowTime(64)
         algorithm.SetInputConnection(source.GetOutputPort())
-        requested, abort = abort_at_first_progress()
-        if RANK == 0:
-            algorithm.AddObserver("ProgressEvent", abort)
-        messages.take()
-        rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
-        controller.Barrier()
+        rc, abort_at = update_aborting_on_rank0(algorithm)
         output = algorithm.GetOutput()
         values = output.GetPointData().GetScalars()
         reference = vtkRTAnalyticSource()
@@ -748,7 +750,7 @@ def image_abort_from_source_case():
         expected = reference.GetOutput().GetPointData().GetScalars()
         same = (values is not None and values.GetNumberOfTuples() == output.GetNumberOfPoints() > 0
                 and np.array_equal(vtk_to_numpy(values), vtk_to_numpy(expected)))
-        return {"rank": RANK, "rc": rc, "returned": True, "abort_at": requested[0] if requested else None,
+        return {"rank": RANK, "rc": rc, "returned": True, "abort_at": abort_at,
                 "from_source": algorithm.GetLastHaloFromSource(), "tuples": values.GetNumberOfTuples() if values else -1,
                 "points": output.GetNumberOfPoints(), "unfiltered": bool(same), "errors": messages.take()}
 
