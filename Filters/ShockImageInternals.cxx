@@ -446,17 +446,17 @@ void PieceExtent(vtkInformation* info, const int extent[6], int ghost, int piece
 
 namespace
 {
-/// A new array like `array` (type, name, components, information, lookup table) with `tuples` tuples.
+/**
+ * A new array like `array` (type, name, components, lookup table) with
+ * `tuples` tuples. Not its information: that caches the value ranges of
+ * the whole array.
+ */
 vtkSmartPointer<vtkAbstractArray> NewLike(vtkAbstractArray* array, vtkIdType tuples)
 {
   vtkSmartPointer<vtkAbstractArray> copy = vtk::TakeSmartPointer(array->NewInstance());
   copy->SetName(array->GetName());
   copy->SetNumberOfComponents(array->GetNumberOfComponents());
   copy->CopyComponentNames(array);
-  if (array->HasInformation())
-  {
-    copy->CopyInformation(array->GetInformation(), /*deep=*/1);
-  }
   vtkDataArray* numbers = vtkDataArray::SafeDownCast(array);
   if (numbers && numbers->GetLookupTable())
   {
@@ -492,6 +492,7 @@ vtkSmartPointer<vtkAbstractArray> CroppedTuples(vtkAbstractArray* array, const S
       to0 += box.count[0];
     }
   }
+  kept->Modified();
   return kept;
 }
 }
