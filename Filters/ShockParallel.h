@@ -255,6 +255,8 @@ public:
   std::int64_t ReceivedPoints() const { return this->Received; }
   /// Points this process sends per exchange.
   std::int64_t SentPoints() const { return this->Sent; }
+  /// Per local point (`count` of them): 1 when Exchange sends its values to another process.
+  std::vector<char> SentMask(std::int64_t count) const;
 
 private:
   vtkMultiProcessController* Controller = nullptr;

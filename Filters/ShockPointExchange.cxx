@@ -188,6 +188,19 @@ void PointExchange::Setup(vtkMultiProcessController* controller, const vtkIdType
   this->Received = std::accumulate(receiveCounts.begin(), receiveCounts.end(), std::int64_t(0));
 }
 
+std::vector<char> PointExchange::SentMask(std::int64_t count) const
+{
+  std::vector<char> mask(static_cast<size_t>(count), 0);
+  for (const auto& points : this->SendPoints)
+  {
+    for (vtkIdType p : points)
+    {
+      mask[static_cast<size_t>(p)] = 1;
+    }
+  }
+  return mask;
+}
+
 void PointExchange::Exchange(double* values)
 {
   vtkMultiProcessController* controller = this->Controller;

@@ -126,6 +126,7 @@ void Distribute(vtkMultiProcessController* controller, vtkPolyData* piece,
     globalIds[static_cast<size_t>(p)] = static_cast<vtkIdType>(ids->GetTuple1(inputPoint(p)));
   }
   out.exchange.Setup(controller, globalIds.data(), partition.ownedPoints, needed);
+  partition.sharedPoints = out.exchange.SentMask(np);
   // What a piece costs: its ghost layers, and the traffic of one CG iteration
   // (one exchange of 3 doubles per point, two global sums of 3 and 6 doubles).
   std::int64_t ownedPoints = 0;

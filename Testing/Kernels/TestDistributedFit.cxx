@@ -13,6 +13,8 @@
 #include <condition_variable>
 #include <map>
 #include <mutex>
+#include <set>
+#include <tuple>
 #include <thread>
 #include <vector>
 
@@ -104,6 +106,39 @@ Piece Cut(const MeshData& whole, const std::vector<int>& owner, int me)
   return piece;
 }
 
+/**
+ * Each piece's sharedPoints, written from the pieces' global ids alone: the
+ * points a piece owns that another piece holds without owning them.
+ */
+void MarkSharedPoints(std::vector<Piece>& pieces)
+{
+  std::set<std::int64_t> readElsewhere;
+  for (const Piece& piece : pieces)
+  {
+    for (size_t i = 0; i < piece.global.size(); ++i)
+    {
+      if (!piece.partition.ownedPoints[i])
+      {
+        readElsewhere.insert(piece.global[i]);
+      }
+    }
+  }
+  size_t marked = 0, owned = 0;
+  for (Piece& piece : pieces)
+  {
+    piece.partition.sharedPoints.assign(piece.global.size(), 0);
+    for (size_t i = 0; i < piece.global.size(); ++i)
+    {
+      piece.partition.sharedPoints[i] = piece.partition.ownedPoints[i] && readElsewhere.count(piece.global[i]);
+      marked += piece.partition.sharedPoints[i];
+      owned += piece.partition.ownedPoints[i];
+    }
+  }
+  // Every point read elsewhere has one owner; most owned points are read by no other piece.
+  EXPECT_EQ(marked, readElsewhere.size());
+  EXPECT_LT(2 * marked, owned);
+}
+
 TriangleMesh Build(const MeshData& m)
 {
   TriangleMesh mesh;
@@ -137,12 +172,17 @@ TEST(DistributedFit, PiecesGiveTheSerialFit)
     const double angle = std::atan2(c[1], c[0]) + 3.14159265358979;
     owner.push_back(std::min(pieces - 1, static_cast<int>(angle / (2 * 3.14159265358979) * pieces)));
   }
-  for (FitSolver solver : { FitSolver::ConjugateGradient, FitSolver::ConjugateGradientTolerance })
+  // The pieces' points that others read known (as the filter's exchange knows them) or not, on 1 and 2 threads a piece.
+  for (const auto& [solver, sharedKnown, threadsPerPiece] :
+    { std::make_tuple(FitSolver::ConjugateGradient, true, 1), std::make_tuple(FitSolver::ConjugateGradient, false, 1),
+      std::make_tuple(FitSolver::ConjugateGradient, true, 2),
+      std::make_tuple(FitSolver::ConjugateGradientTolerance, true, 1),
+      std::make_tuple(FitSolver::ConjugateGradientTolerance, false, 2) })
   {
     FitParameters parameters;
     parameters.solver = solver;
     parameters.tolerance = 1e-12;
-    parameters.numberOfThreads = 1;
+    parameters.numberOfThreads = threadsPerPiece;
     std::vector<double> serial(whole.points.size());
     ASSERT_TRUE(FitPositionsToNormals(Build(whole), Targets(whole).data(), serial.data(), parameters).Ok());
 
@@ -154,6 +194,10 @@ TEST(DistributedFit, PiecesGiveTheSerialFit)
     for (int p = 0; p < pieces; ++p)
     {
       cut.push_back(Cut(whole, owner, p));
+    }
+    if (sharedKnown)
+    {
+      MarkSharedPoints(cut);
     }
     std::vector<std::thread> threads;
     for (int p = 0; p < pieces; ++p)
@@ -223,7 +267,8 @@ TEST(DistributedFit, PiecesGiveTheSerialFit)
     EXPECT_EQ(owned, whole.NumberOfPoints()); // each point owned once
     EXPECT_GT(moved, 1e-3);                   // the fit moved the points
     // Fixed iterations: the serial result up to the order of the sums; converged: equal.
-    EXPECT_LT(largest, solver == FitSolver::ConjugateGradient ? 1e-9 : 1e-11) << static_cast<int>(solver);
+    EXPECT_LT(largest, solver == FitSolver::ConjugateGradient ? 1e-9 : 1e-11)
+      << static_cast<int>(solver) << " shared points known " << sharedKnown << ", threads " << threadsPerPiece;
   }
 }
 

@@ -75,15 +75,22 @@ inline void UpdateRow(const std::vector<double>& diag, const DirectionUpdate& u,
   }
 }
 
-/// UpdateRow on rows [begin, end), x included: one tight loop over contiguous rows.
+/**
+ * UpdateRow on rows [begin, end), x included: one tight loop over contiguous
+ * rows; with `only`, the rows i with only[i] != 0 alone.
+ */
 void UpdateRows(const std::vector<double>& diag, const DirectionUpdate& u, std::int64_t begin,
-  std::int64_t end, Vectors& v, Coordinates& x)
+  std::int64_t end, const char* only, Vectors& v, Coordinates& x)
 {
   double* xs = x.data();
   double* ps = v.p.data();
   const double* rs = v.r.data();
   for (std::int64_t i = begin; i < end; ++i)
   {
+    if (only && !only[i])
+    {
+      continue;
+    }
     for (int k = 0; k < 3; ++k)
     {
       const size_t e = static_cast<size_t>(3 * i + k);
@@ -179,11 +186,14 @@ struct RowRanges
 /**
  * q = A p and the sums p.q, block by block as BlockSums does; with `update`,
  * the rows are first updated (DirectionUpdate), each once and before any row
- * reads its direction (RowRanges), in the same pass. Not for a piece: its
- * halo needs the owners' updated directions before any product.
+ * reads its direction (RowRanges), in the same pass. On a piece, `updated`
+ * names the rows this pass updates (the others are updated before it, or are
+ * the halo, which the exchange before it wrote) and `owned` the rows whose
+ * products and sums are the piece's (null: every row).
  */
 std::array<double, 3> UpdateAndMultiply(const RowMatrix& A, const std::vector<double>& diag,
-  const RowRanges& ranges, const DirectionUpdate* update, Vectors& v, Coordinates& x)
+  const RowRanges& ranges, const DirectionUpdate* update, const char* updated, const char* owned,
+  Vectors& v, Coordinates& x)
 {
   const std::int64_t n = A.rows();
   std::vector<std::array<double, 3>> partial(static_cast<size_t>(ranges.blocks));
@@ -201,27 +211,32 @@ std::array<double, 3> UpdateAndMultiply(const RowMatrix& A, const std::vector<do
     for (int t = thread; t < ranges.teams && update; t += team)
     {
       const std::int64_t headEnd = ranges.headEnd[static_cast<size_t>(t)];
-      UpdateRows(diag, *update, ranges.Begin(t, n), headEnd, v, x);
-      UpdateRows(diag, *update, std::max(headEnd, ranges.tailBegin[static_cast<size_t>(t)]), ranges.End(t, n), v, x);
+      UpdateRows(diag, *update, ranges.Begin(t, n), headEnd, updated, v, x);
+      UpdateRows(
+        diag, *update, std::max(headEnd, ranges.tailBegin[static_cast<size_t>(t)]), ranges.End(t, n), updated, v, x);
     }
 #pragma omp barrier
     for (int t = thread; t < ranges.teams; t += team)
     {
       const std::int64_t headEnd = ranges.headEnd[static_cast<size_t>(t)];
       const std::int64_t middleEnd = std::max(headEnd, ranges.tailBegin[static_cast<size_t>(t)]);
-      std::int64_t updated = update ? headEnd : middleEnd; // the middle rows before this one are updated
+      std::int64_t done = update ? headEnd : middleEnd; // the middle rows before this one are updated
       for (std::int64_t b = ranges.firstBlock[static_cast<size_t>(t)];
            b < ranges.firstBlock[static_cast<size_t>(t) + 1]; ++b)
       {
         const std::int64_t reach = std::min(middleEnd, ranges.blockReach[static_cast<size_t>(b)]);
-        if (updated < reach)
+        if (done < reach)
         {
-          UpdateRows(diag, *update, updated, reach, v, x);
-          updated = reach;
+          UpdateRows(diag, *update, done, reach, updated, v, x);
+          done = reach;
         }
         std::array<double, 3> sums{};
         for (std::int64_t i = b * SumBlock; i < std::min(n, (b + 1) * SumBlock); ++i)
         {
+          if (owned && !owned[i])
+          {
+            continue;
+          }
           double ap[3];
           MultiplyRow(A, i, [&](std::int64_t j, int k) { return v.p(j, k); }, ap);
           for (int k = 0; k < 3; ++k)
@@ -246,32 +261,65 @@ std::array<double, 3> UpdateAndMultiply(const RowMatrix& A, const std::vector<do
 }
 
 /**
- * On a piece: the update (when given) of every row (x of the owned ones only),
- * the owners' p to the halo, then q = A p and the sums p.q over all pieces.
+ * Which rows of a piece the conjugate gradients update where: `shared`, the
+ * owned rows other pieces read, are updated before each exchange, so that it
+ * sends their new directions; `inPass`, the other owned rows, in the pass of
+ * the products, as in a serial solve. Rows the piece does not own are never
+ * updated: the halo among them takes its owners' directions in the exchange,
+ * and no owned row reads the others.
+ */
+struct PieceRows
+{
+  std::vector<std::int64_t> shared;
+  std::vector<char> inPass;
+
+  /// Nothing without a partition (a serial solve).
+  explicit PieceRows(const MeshPartition* partition)
+  {
+    if (!partition)
+    {
+      return;
+    }
+    const std::vector<char>& owned = partition->ownedPoints;
+    const bool known = partition->sharedPoints.size() == owned.size();
+    this->inPass.assign(owned.size(), 0);
+    for (size_t i = 0; i < owned.size(); ++i)
+    {
+      if (owned[i] && (!known || partition->sharedPoints[i]))
+      {
+        this->shared.push_back(static_cast<std::int64_t>(i));
+      }
+      else if (owned[i])
+      {
+        this->inPass[i] = 1;
+      }
+    }
+  }
+};
+
+/**
+ * On a piece: the update (when given) of the rows other pieces read, the
+ * owners' p to the halo, then the update of the other owned rows fused with
+ * q = A p on the owned rows and the sums p.q over all pieces.
  */
 std::array<double, 3> UpdateAndMultiplyPiece(const RowMatrix& A, const std::vector<double>& diag,
-  int threads, const MeshPartition* partition, const DirectionUpdate* update, Vectors& v,
-  Coordinates& x)
+  const RowRanges& ranges, int threads, const MeshPartition* partition, const PieceRows& rows,
+  const DirectionUpdate* update, Vectors& v, Coordinates& x)
 {
   if (update)
   {
+    const std::int64_t count = static_cast<std::int64_t>(rows.shared.size());
 #pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::int64_t i = 0; i < A.rows(); ++i)
+    for (std::int64_t s = 0; s < count; ++s)
     {
-      UpdateRow(diag, *update, i, partition->ownedPoints[static_cast<size_t>(i)] != 0, v, x);
+      UpdateRow(diag, *update, rows.shared[static_cast<size_t>(s)], true, v, x);
     }
   }
   partition->exchangePoints(v.p.data());
-  return BlockSums<3>(A.rows(), threads, Owned(partition), partition,
-    [&](std::int64_t i, std::array<double, 3>& s) {
-      double ap[3];
-      MultiplyRow(A, i, [&](std::int64_t j, int k) { return v.p(j, k); }, ap);
-      for (int k = 0; k < 3; ++k)
-      {
-        v.q(i, k) = ap[k];
-        s[k] += v.p(i, k) * ap[k];
-      }
-    });
+  std::array<double, 3> total =
+    UpdateAndMultiply(A, diag, ranges, update, rows.inPass.data(), partition->ownedPoints.data(), v, x);
+  partition->globalSum(total.data(), 3);
+  return total;
 }
 
 /// The vectors r, p, q of n rows: zeroed on a piece, else left to be first touched in parallel.
@@ -362,7 +410,9 @@ void LastStepOfX(
  * three coordinates side by side: each pass over the matrix serves the three
  * columns and every vector operation is parallel. Two passes over the rows
  * per iteration: the step of x and the direction's update fused with the
- * product (and its sums), then the step of r (and its sums). A column stops when its
+ * product (and its sums), then the step of r (and its sums); on a piece, the
+ * rows other pieces read are updated before the exchange that precedes the
+ * product (PieceRows). A column stops when its
  * residual is below tolerance x ||b|| (tolerance 0 runs all the iterations);
  * returns the number of iterations done.
  */
@@ -382,15 +432,16 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
     active[k] = start[k] >= threshold[k];
     rz[k] = start[k + 3];
   }
-  const RowRanges ranges(A, partition ? 1 : threads);
+  const RowRanges ranges(A, threads);
+  const PieceRows rows(partition);
   DirectionUpdate u;
   int iteration = 0;
   while (iteration < maxIterations && (active[0] || active[1] || active[2]))
   {
     // The first direction is z itself; later ones are z + ratio p, after x's step along p.
     const DirectionUpdate* update = iteration > 0 ? &u : nullptr;
-    const auto pq = partition ? UpdateAndMultiplyPiece(A, diag, threads, partition, update, v, x)
-                              : UpdateAndMultiply(A, diag, ranges, update, v, x);
+    const auto pq = partition ? UpdateAndMultiplyPiece(A, diag, ranges, threads, partition, rows, update, v, x)
+                              : UpdateAndMultiply(A, diag, ranges, update, nullptr, nullptr, v, x);
     for (int k = 0; k < 3; ++k)
     {
       // p.Ap > 0 unless p = 0, i.e. the column is solved exactly.

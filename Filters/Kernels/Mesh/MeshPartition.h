@@ -25,6 +25,11 @@ struct MeshPartition
   std::vector<char> ownedPoints;
   /// Per triangle of the piece: 1 when this piece owns it (its area and centroid).
   std::vector<char> ownedTriangles;
+  /// Per point of the piece: 1 when this piece owns it and another piece reads
+  /// its values (exchangePoints sends them). The fit's solver updates these
+  /// points' directions before each exchange and the others in the pass of its
+  /// products. Empty when not known: every owned point counts as read elsewhere.
+  std::vector<char> sharedPoints;
   /// Replace values[0..count) by their sums over all pieces (collective).
   std::function<void(double* values, int count)> globalSum;
   /// values holds 3 doubles per point of the piece: overwrite those of the points
