@@ -15,14 +15,17 @@
 #include "vtkCubeSource.h"
 #include "vtkCylinderSource.h"
 #include "vtkDataArray.h"
+#include "vtkFeatureEdges.h"
 #include "vtkFloatArray.h"
 #include "vtkGenericCell.h"
 #include "vtkLinearSubdivisionFilter.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkParametricFunctionSource.h"
 #include "vtkParametricTorus.h"
 #include "vtkSphereSource.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
 #include "vtkSmartPointer.h"
@@ -263,6 +266,88 @@ TEST(SharpenTrust, ABoxBlurredByWindowedSincComesBackAtDefaults)
     std::cout << "t = " << time << ": normal error " << before.first << " -> " << after.first
               << " degrees, RMS distance " << before.second << " -> " << after.second << "\n";
     met = met || (after.first <= 0.7 * before.first && after.second <= before.second);
+  }
+  EXPECT_TRUE(met);
+}
+
+TEST(SharpenTrust, ABoxBlurredByAGaussianOfItsPositionsComesBackAtDefaults)
+{
+  // The same box blurred by a Gaussian of its point positions (sigma 1.5 mean
+  // edge lengths, as the evaluation's gauss1): its creases turn over two or
+  // three edges, each still sharper than the default feature angle, with the
+  // faces beside them bent. The defaults bring the normals back at some flow
+  // time (error <= 0.7 x the blurred input's) without moving the points
+  // materially further from the original (RMS <= 1.05 x: the Gaussian also
+  // slid the points along the faces, which no normal brings back; the
+  // evaluation's parts in docs/sharpening.md end at 0.96-0.97 x).
+  vtkNew<vtkCubeSource> cube;
+  const Mesh box = Prepared(cube, 4);
+  vtkPoints* points = box->GetPoints();
+  const vtkIdType n = points->GetNumberOfPoints();
+  double edge = 0.0;
+  vtkIdType edges = 0;
+  for (vtkIdType c = 0; c < box->GetNumberOfCells(); ++c)
+  {
+    vtkIdType size;
+    const vtkIdType* ids;
+    box->GetCellPoints(c, size, ids);
+    for (vtkIdType k = 0; k < size; ++k, ++edges)
+    {
+      double a[3], b[3];
+      points->GetPoint(ids[k], a);
+      points->GetPoint(ids[(k + 1) % size], b);
+      edge += std::sqrt(vtkMath::Distance2BetweenPoints(a, b));
+    }
+  }
+  const double sigma = 1.5 * edge / static_cast<double>(edges);
+  vtkNew<vtkPoints> moved;
+  moved->SetNumberOfPoints(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3], sum[3] = { 0.0, 0.0, 0.0 }, weights = 0.0;
+    points->GetPoint(i, p);
+    for (vtkIdType j = 0; j < n; ++j)
+    {
+      double q[3];
+      points->GetPoint(j, q);
+      const double d2 = vtkMath::Distance2BetweenPoints(p, q);
+      if (d2 <= 9.0 * sigma * sigma)
+      {
+        const double w = std::exp(-0.5 * d2 / (sigma * sigma));
+        for (int k = 0; k < 3; ++k)
+        {
+          sum[k] += w * q[k];
+        }
+        weights += w;
+      }
+    }
+    moved->SetPoint(i, sum[0] / weights, sum[1] / weights, sum[2] / weights);
+  }
+  vtkNew<vtkPolyData> blurred;
+  blurred->CopyStructure(box);
+  blurred->SetPoints(moved);
+  // The blurred creases still have edges sharper than the default feature angle.
+  vtkNew<vtkFeatureEdges> sharp;
+  sharp->SetInputData(blurred);
+  sharp->BoundaryEdgesOff();
+  sharp->NonManifoldEdgesOff();
+  sharp->ManifoldEdgesOff();
+  sharp->FeatureEdgesOn();
+  sharp->SetFeatureAngle(30.0);
+  sharp->Update();
+  ASSERT_GT(sharp->GetOutput()->GetNumberOfLines(), 0);
+  const auto before = Errors(blurred, box);
+  ASSERT_GT(before.first, 1.0); // degrees: the blur rounds the creases
+  bool met = false;
+  for (double time : { 256.0, 1024.0, 4096.0 })
+  {
+    vtkNew<Filter> sharpen;
+    sharpen->SetInputData(blurred);
+    sharpen->SetFlowTime(time);
+    const auto after = Errors(Output(sharpen), box);
+    std::cout << "t = " << time << ": normal error " << before.first << " -> " << after.first
+              << " degrees, RMS distance " << before.second << " -> " << after.second << "\n";
+    met = met || (after.first <= 0.7 * before.first && after.second <= 1.05 * before.second);
   }
   EXPECT_TRUE(met);
 }

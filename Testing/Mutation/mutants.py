@@ -358,6 +358,10 @@ MUTANTS = [
          replacement="        for (std::int64_t k = std::max(i, j - 1); k < j; ++k)",
          bug="coincident points are searched only next to each other in the Morton order"),
     # --- screened Poisson fit ----------------------------------------------------
+    dict(id="sharpen-flow-on-split-mesh", file=K + "Sharpen/MeshSharpening.cxx",
+         original="  signal.flowMesh = &mesh;",
+         replacement="  signal.flowMesh = nullptr;",
+         bug="the normals' flow computed on the mesh split at its feature edges: a blurred crease still sharper than the feature angle is not sharpened"),
     dict(id="fit-lumped-mass", file=K + "Fit/FitSystem.cxx",
          original="row[slot] += mass + system.beta * area * Dot(gp, Load(mesh.HatGradient(f, c)));",
          replacement="row[slot] += (c == corner ? 2.0 * mass : 0.0) + system.beta * area * Dot(gp, Load(mesh.HatGradient(f, c)));",

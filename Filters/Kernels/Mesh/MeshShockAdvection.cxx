@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace shock
 {
@@ -266,8 +267,9 @@ MeshSteps StartSteps(MeshRun& run, bool advect)
  * The flow updates, each followed by its advection pass (none when `advect`
  * is false); sets report.aborted when the progress callback or a pass aborts.
  */
-void RunUpdates(const MeshRun& run, MeshSteps& steps, bool advect, double* output,
-  AdvectionReport& report, MeshFlowFields* fields, const ProgressFunction& progress)
+void RunUpdates(const MeshRun& run, MeshSteps& steps, const MeshRun* flowRun, const MeshSteps& flowSteps,
+  bool advect, double* output, AdvectionReport& report, MeshFlowFields* fields,
+  const ProgressFunction& progress)
 {
   const AdvectionParameters& p = run.p;
   const TriangleMesh& mesh = run.mesh;
@@ -283,8 +285,9 @@ void RunUpdates(const MeshRun& run, MeshSteps& steps, bool advect, double* outpu
     const auto flowStart = Clock::now();
     // The first update of every mode starts from the input, whose per-point values are at hand.
     const double* current = fixed ? run.signal.values : steps.current.data();
-    std::vector<double> potential =
-      UpdateFlow(run, current, k == 0 ? &steps.inputPoints : nullptr, flow, velocity);
+    std::vector<double> potential = flowRun
+      ? UpdateFlow(*flowRun, current, k == 0 ? &flowSteps.inputPoints : nullptr, flow, velocity)
+      : UpdateFlow(run, current, k == 0 ? &steps.inputPoints : nullptr, flow, velocity);
     report.flowSeconds += SecondsSince(flowStart);
     if (fields && k == updates - 1)
     {
@@ -342,7 +345,23 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
 
   const bool advect = p.time > 0.0 || signal.sampleAtTimeZero; // t = 0: the input, exactly
   MeshSteps steps = StartSteps(run, advect);
-  RunUpdates(run, steps, advect, output, report, fields, progress);
+  // The flow on another mesh with the same triangles (signal.flowMesh): its own
+  // validity, range and per-point values of the input.
+  std::unique_ptr<MeshRun> flowRun;
+  MeshSteps flowSteps;
+  if (signal.flowMesh && signal.flowMesh != &mesh)
+  {
+    flowRun.reset(new MeshRun{ *signal.flowMesh, signal, p, signal.components, run.threads });
+    if (Prepare(*flowRun))
+    {
+      flowSteps = StartSteps(*flowRun, false);
+    }
+    else
+    {
+      flowRun.reset(); // nothing carries flow there: the mesh's own flow
+    }
+  }
+  RunUpdates(run, steps, flowRun.get(), flowSteps, advect, output, report, fields, progress);
   if (report.aborted || !advect)
   {
     KeepTheInput(run, output);

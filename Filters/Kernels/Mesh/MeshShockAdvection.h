@@ -102,6 +102,15 @@ struct MeshSignal
    * serial run, not of the piece.
    */
   std::int64_t wholeTriangles = 0;
+  /**
+   * A mesh with the same triangles, in the same order, to compute the flow on
+   * (null: this mesh). Surface Shock Sharpen traces and samples the normals on
+   * the mesh split along its feature edges, and computes their potential and
+   * flow on the connected mesh, where a crease that is still sharper than the
+   * feature angle is part of the potential's peak. Fixed flow only; the
+   * potential in MeshFlowFields is then per point of this mesh.
+   */
+  const TriangleMesh* flowMesh = nullptr;
 };
 
 /**

@@ -226,26 +226,6 @@ Status SharpenedNormalsInput(const TriangleMesh& mesh, const SharpeningParameter
   return {};
 }
 
-/// The potential per original point of a split mesh: the mean over its copies, weighted by their triangles.
-void PotentialOnOriginalPoints(const TriangleMesh& mesh, const FeatureSplitMesh& split, MeshFlowFields& fields)
-{
-  std::vector<double> potential(static_cast<size_t>(mesh.NumberOfPoints()), 0.0);
-  std::vector<double> weight(potential.size(), 0.0);
-  const CompressedLists& around = split.mesh.PointTriangles();
-  for (std::int64_t q = 0; q < split.mesh.NumberOfPoints(); ++q)
-  {
-    const size_t p = static_cast<size_t>(split.original[static_cast<size_t>(q)]);
-    const double count = static_cast<double>(around.End(q) - around.Begin(q));
-    potential[p] += count * fields.potential[static_cast<size_t>(q)];
-    weight[p] += count;
-  }
-  for (size_t p = 0; p < potential.size(); ++p)
-  {
-    potential[p] = weight[p] > 0.0 ? potential[p] / weight[p] : 0.0;
-  }
-  fields.potential.swap(potential);
-}
-
 /// The face normals as the advection's signal (values and length unit not set).
 MeshSignal NormalsSignal(const SharpeningParameters& parameters)
 {
@@ -262,7 +242,14 @@ MeshSignal NormalsSignal(const SharpeningParameters& parameters)
 
 /**
  * Shock-filter advection of the (smoothed) face normals `input` into `target`
- * (renormalised), on the mesh split along its feature edges when it has any.
+ * (renormalised). With feature edges, the normals are traced and sampled on
+ * the mesh split along them (no trace crosses a sharp crease, no sampled
+ * normal averages across one), and their potential and flow are computed on
+ * the connected mesh, whose point normals do average across the creases: a
+ * crease still sharper than the feature angle with bent faces beside it (a
+ * Gaussian blur) is the peak the bent faces' normals flow away from, so its
+ * faces take the flat sides' normals, where on the split mesh each side of
+ * the crease would carry only its own small bend.
  */
 Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& parameters,
   const double* input, const unsigned char* triangleRing, const FeatureSplitMesh& split, ValueVector& target,
@@ -273,6 +260,7 @@ Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& param
   signal.values = input;
   signal.lengthScale = parameters.lengthScale > 0.0 ? parameters.lengthScale : mesh.MeanEdgeLength();
   signal.triangleRing = triangleRing; // the split keeps the triangles and their order
+  signal.flowMesh = &mesh;             // the flow of the connected mesh (this mesh's when not split)
   target.resize(static_cast<size_t>(3 * mesh.NumberOfTriangles())); // written in full by the advection
   const Status status =
     AdvectMeshSignal(advected, signal, target.data(), parameters.advection, &r.advection, fields, progress);
@@ -288,10 +276,6 @@ Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& param
     {
       std::copy(mesh.Normal(f), mesh.Normal(f) + 3, n); // cancelled average: keep the input normal
     }
-  }
-  if (fields && split.featureEdges > 0)
-  {
-    PotentialOnOriginalPoints(mesh, split, *fields);
   }
   return {};
 }
