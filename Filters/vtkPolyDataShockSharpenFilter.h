@@ -27,9 +27,8 @@
  * FlowTime (of the base class) defaults to 256 here, not 64: a crease rounded
  * over 4 rows of triangles is sharp again from t = 128, over 6 rows from 512,
  * over 8 rows from 1024 (the time grows about like the fourth power of the
- * width); a crease that still turns by more than FeatureAngle from one triangle
- * to the next is kept as it is at any t (raise FeatureAngle). Smooth shapes do
- * not move more at longer times (docs/sharpening.md, "Choosing the flow time").
+ * width). Smooth shapes do not move more at longer times (docs/sharpening.md,
+ * "Choosing the flow time").
  *
  * Parameters specific to this filter: FeatureAngle, CurvatureContrast, FitTarget,
  * NormalSmoothingPasses (pre-mollification of noisy normals), ScreeningWeight
@@ -150,9 +149,11 @@ public:
   /**
    * Creases whose face normals differ by more than this angle (degrees) across
    * an edge are already sharp and are kept: the normals are neither averaged
-   * nor advected across them (as vtkPolyDataNormals splits at its FeatureAngle).
-   * A blurred crease turns by small angles from edge to edge and is still
-   * sharpened. Measured on the normals after NormalSmoothingPasses. Range
+   * nor traced across them (as vtkPolyDataNormals splits at its FeatureAngle).
+   * The potential that moves the normals is still computed across them, so a
+   * blurred crease is sharpened, whether it turns by small angles from edge to
+   * edge or is still sharper than this angle with bent faces beside it (a
+   * Gaussian blur). Measured on the normals after NormalSmoothingPasses. Range
    * [0, 180], default 30; 180 (no feature edge) reproduces the paper.
    */
   vtkSetClampMacro(FeatureAngle, double, 0.0, 180.0);
