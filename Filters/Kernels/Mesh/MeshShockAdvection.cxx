@@ -328,7 +328,9 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
     ThreadsForWork(p.numberOfThreads, std::max(mesh.NumberOfPoints(), mesh.NumberOfTriangles())) };
   if (fields)
   {
-    fields->potential.assign(static_cast<size_t>(run.Points()), 0.0);
+    // Per point of the mesh the flow is computed on.
+    const std::int64_t flowPoints = signal.flowMesh ? signal.flowMesh->NumberOfPoints() : run.Points();
+    fields->potential.assign(static_cast<size_t>(flowPoints), 0.0);
     fields->flow.assign(static_cast<size_t>(3 * run.Triangles()), 0.0);
   }
   const auto setupStart = Clock::now();
