@@ -395,11 +395,12 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
     return 0;
   }
   // Checks first, then every process agrees (before the exchange, a collective step).
-  const bool ok = this->BeginExecution();
+  std::string notStarted;
+  const bool ok = this->BeginExecution(&notStarted);
   const bool empty = input->GetNumberOfPoints() == 0;
   int association = -1;
   vtkDataArray* array = ok && !empty ? this->GetArrayToFilter(inputVector, association) : nullptr;
-  std::string error = !ok ? "the execution could not start" : (!empty && !array ? "no array to filter (see the message above)" : "");
+  std::string error = !ok ? notStarted : (!empty && !array ? "no array to filter (see the message above)" : "");
   std::string selection;
   if (array)
   {

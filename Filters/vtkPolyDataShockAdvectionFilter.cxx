@@ -109,7 +109,8 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   bool unknown = false;
   vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);
-  const bool started = output && this->BeginExecution();
+  std::string notStarted = "the filter has no output";
+  const bool started = output && this->BeginExecution(&notStarted);
   if (!started && !controller)
   {
     return 0; // in parallel the other processes learn of it in the agreement below
@@ -123,7 +124,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   auto findArray = [&](vtkPolyData* surface) -> std::string {
     if (!started)
     {
-      return "the filter's parameters are invalid (see the message above)";
+      return notStarted;
     }
     array = surface->GetNumberOfPoints() > 0 ? this->GetArrayToFilter(inputVector, association) : nullptr;
     if (array)

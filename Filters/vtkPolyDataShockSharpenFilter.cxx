@@ -284,7 +284,8 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   bool unknown = false;
   vtkMultiProcessController* controller = this->PieceController(outputVector, unknown);
-  const bool started = output && this->BeginExecution();
+  std::string notStarted = "the filter has no output";
+  const bool started = output && this->BeginExecution(&notStarted);
   if (!started && !controller)
   {
     return 0; // in parallel the other processes learn of it in the agreement below
@@ -294,10 +295,10 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   // (collective; at least one: the fit's rows need the one-rings of their points).
   // The ghost rings carry the positions, and the active normals (recomputed for the output) only.
   ShockParallel::CarriedArrays carried{ false, {}, {} };
-  auto wholeOrPieces = [&unknown, &carried, started](vtkPolyData* surface) -> std::string {
+  auto wholeOrPieces = [&unknown, &carried, &notStarted, started](vtkPolyData* surface) -> std::string {
     if (!started)
     {
-      return "the filter's parameters are invalid (see the message above)";
+      return notStarted;
     }
     for (auto* normals : { surface->GetPointData()->GetNormals(), surface->GetCellData()->GetNormals() })
     {

@@ -18,6 +18,7 @@
 #include "vtkMultiProcessController.h"
 #include "ShockParallel.h"
 #include "vtkSmartPointer.h"
+#include "vtkShockCompositeDataPipeline.h"
 
 #include <algorithm>
 #include <cmath>
@@ -46,11 +47,41 @@ void vtkShockAdvectionFilter::ResetMeasurements()
   this->LastTraceSteps = 0;
 }
 
-bool vtkShockAdvectionFilter::BeginExecution()
+bool vtkShockAdvectionFilter::BeginExecution(std::string* reason)
 {
   this->SetProgressText(nullptr);
   this->ResetMeasurements();
-  return this->ValidateParameters();
+  if (this->InputFailed)
+  {
+    if (reason)
+    {
+      *reason = "its input failed to update (see the error of the filter before this one on that process)";
+    }
+    return false;
+  }
+  if (!this->ValidateParameters())
+  {
+    if (reason)
+    {
+      *reason = "the filter's parameters are invalid (see the message above)";
+    }
+    return false;
+  }
+  return true;
+}
+
+vtkExecutive* vtkShockAdvectionFilter::CreateDefaultExecutive()
+{
+  return vtkShockCompositeDataPipeline::New();
+}
+
+bool vtkShockAdvectionFilter::ExecutesAfterInputFailure(bool updated)
+{
+  bool unknown = false;
+  vtkExecutive* executive = this->GetExecutive();
+  this->InputFailed = !updated && executive &&
+    this->PieceController(executive->GetOutputInformation(), unknown) != nullptr;
+  return this->InputFailed;
 }
 
 vtkTypeBool vtkShockAdvectionFilter::ProcessRequest(
@@ -67,6 +98,7 @@ vtkTypeBool vtkShockAdvectionFilter::ProcessRequest(
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
   {
     this->SetProgressText(nullptr); // the phases were this execution's
+    this->InputFailed = false;      // this execution's (the executive says it anew for the next)
   }
   if (!result && request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
   {
@@ -257,7 +289,8 @@ double vtkShockAdvectionFilter::GlobalValueScale(
     ? vtkDataSet::GetData(inputVector[0], 0)
     : nullptr;
   double range[2] = { 0.0, 0.0 };
-  const bool has = input && input->GetNumberOfPoints() > 0 && this->LocalValueRange(inputVector, range);
+  const bool has =
+    !this->InputFailed && input && input->GetNumberOfPoints() > 0 && this->LocalValueRange(inputVector, range);
   return ShockParallel::GlobalRangeWidth(controller, has, range);
 }
 

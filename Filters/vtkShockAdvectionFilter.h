@@ -42,6 +42,7 @@ class vtkAbstractArray;
 class vtkMultiProcessController;
 
 class vtkCompositeDataSet;
+class vtkExecutive;
 
 class VTKFILTERSSHOCK_EXPORT vtkShockAdvectionFilter : public vtkPassInputTypeAlgorithm
 {
@@ -260,6 +261,17 @@ public:
   static const char* PotentialArrayName() { return "ShockPotential"; }
   static const char* FlowArrayName() { return "ShockFlow"; }
 
+  /**
+   * For the filters' executive (vtkShockCompositeDataPipeline): whether the
+   * input `updated` for the data request being processed. Returns true when
+   * the filter must execute although its input failed, because it runs in
+   * parallel (its output asks for one of its Controller's pieces) and the
+   * other processes wait for it in a collective step: RequestData then stops
+   * every process with the same one-line error. False otherwise: the filter
+   * does not execute after a failed input, as any VTK filter.
+   */
+  bool ExecutesAfterInputFailure(bool updated);
+
 protected:
   vtkShockAdvectionFilter();
   ~vtkShockAdvectionFilter() override;
@@ -270,8 +282,17 @@ protected:
   /// Zero the Last* measurements (subclasses add theirs) so a failed run reports nothing stale.
   virtual void ResetMeasurements();
 
-  /// Start of RequestData: ResetMeasurements, then ValidateParameters.
-  bool BeginExecution();
+  /**
+   * Start of RequestData: ResetMeasurements, then ValidateParameters. False
+   * when the execution cannot start: its parameters are invalid (reported),
+   * or its input failed to update (ExecutesAfterInputFailure; reported by the
+   * filter that failed). `reason`, when given, receives why, for the other
+   * processes of a parallel execution.
+   */
+  bool BeginExecution(std::string* reason = nullptr);
+
+  /// Creates a vtkShockCompositeDataPipeline.
+  vtkExecutive* CreateDefaultExecutive() override;
 
   /// Notes a composite input before the pipeline hands its blocks to RequestData.
   vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
@@ -361,6 +382,8 @@ protected:
   /// Mean edge length over all pieces for the current execution (0: the mesh's own).
   double ParallelLengthScale = 0.0;
   vtkMultiProcessController* Controller = nullptr;
+  /// The input failed to update for this parallel execution (ExecutesAfterInputFailure).
+  bool InputFailed = false;
   /// The composite input last seen (the pipeline then hands RequestData its blocks one by one).
   vtkWeakPointer<vtkCompositeDataSet> CompositeInput;
 

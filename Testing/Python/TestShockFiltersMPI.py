@@ -15,9 +15,11 @@ bounds and records the fractions printed here ("MEASURE" lines).
   fraction of samples that differ at all must stay below a bound.
 - Surface Shock Advection: a sphere with a blurred scalar, split into pieces,
   with and without Ghost Cells Generator; per-point agreement.
-- Surface Shock Sharpen: refused on pieces (error message, empty output);
-  accepted on a mesh aggregated onto one process, where it matches the serial
-  result.
+- Surface Shock Sharpen: the same pieces against the serial result (the
+  bound: docs/parallel.md); a mesh every process holds whole is sharpened once.
+- A filter before Surface Shock Sharpen fails on the processes other than 0
+  (Loop Subdivision of a Box, whose faces are all on process 0): one error
+  naming process 1 and the failed input, an empty output, no hang.
 
 Prints one line per failure and ends with "N passed, M failed"; the exit code
 is 1 on any failure (mpirun then stops the other processes). An exception in
@@ -1090,6 +1092,30 @@ def volume_refused_case():
         Delete(proxy)
 
 
+def failed_upstream_case():
+    """A filter before Surface Shock Sharpen fails on the other processes (Box
+    puts its faces on process 0 only, and Loop Subdivision refuses the empty
+    pieces): every process stops with the same error naming the first
+    process whose input failed; none waits for the others for ever (the
+    test's timeout)."""
+    del messages.errors[:]
+    box = Box()
+    triangles = Triangulate(Input=box)
+    subdivided = LoopSubdivision(Input=triangles, NumberofSubdivisions=4)
+    sharpened = SurfaceShockSharpen(Input=subdivided)
+    sharpened.UpdatePipeline()
+    ours = [e for e in messages.errors if "returned failure for request" not in e and "ShockSharpen" in e]
+    check(len(ours) == 1 and "Process 1 of %d" % PROCESSES in ours[0] and "input failed to update" in ours[0],
+          "failed upstream: one error naming process 1 and the failed input (%s)" % messages.errors)
+    check(sharpened.GetDataInformation().GetNumberOfPoints() == 0,
+          "failed upstream: the output is empty (%d points)" % sharpened.GetDataInformation().GetNumberOfPoints())
+    executive = sharpened.GetClientSideObject().GetExecutive().GetClassName()
+    check(executive == "vtkPVShockCompositeDataPipeline",
+          "failed upstream: the proxy's executive is vtkPVShockCompositeDataPipeline (%s)" % executive)
+    for proxy in (sharpened, subdivided, triangles, box):
+        Delete(proxy)
+
+
 def surface_cases():
     from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
     from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
@@ -1172,6 +1198,7 @@ cases = [
     shared_series_case,
     tiny_image_case,
     surface_cases,
+    failed_upstream_case,  # last: it hung before the shock executives
 ]
 for case in cases:
     try:

@@ -41,6 +41,14 @@ process 0 prints a MEASURE line with what each process did and checks:
 - flow mode mismatch: Composed with 4 updates (no ring stencil) on the bad
   process, Fixed on the others (both surface filters): every process fails
   with the same error naming FlowMode.
+- a filter before the shock filter fails on the bad process (a Python
+  algorithm whose RequestData returns 0 there; the surface filters on a
+  piece, the image filter on vtkRTAnalyticSource's pieces): every process
+  fails with the same one-line error naming the bad process and saying its
+  input failed to update (the shock filter still executes there to tell the
+  others, which wait in a collective step), and the outputs are empty. The
+  same pipeline without a controller (serial): the shock filter does not
+  execute and adds no error of its own.
 - image Domain Gradients on pieces: vtkRTAnalyticSource -> the image filter
   with Domain Gradients, the source cutting its pieces: every process fails
   with the same one-line error (the solve needs the whole image), empty output.
@@ -80,6 +88,7 @@ import numpy as np
 
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
 from vtkmodules.util.vtkConstants import VTK_STRING, VTK_UNSIGNED_CHAR
 from vtkmodules.vtkCommonCore import vtkIdTypeArray, vtkOutputWindow, vtkPoints, vtkUnsignedCharArray
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
@@ -609,6 +618,69 @@ def flow_mode_case(kind, bad):
     return local, judge
 
 
+class FailingOn(VTKPythonAlgorithmBase):
+    """A pass-through filter of `data_type` whose RequestData fails (returns 0,
+    as a VTK filter does on a piece it cannot handle) on process `bad`."""
+
+    def __init__(self, data_type, bad):
+        VTKPythonAlgorithmBase.__init__(self, nInputPorts=1, inputType=data_type, nOutputPorts=1,
+                                        outputType=data_type)
+        self.bad = bad
+
+    def RequestData(self, request, inInfo, outInfo):
+        if RANK == self.bad:
+            return 0
+        self.GetOutputData(outInfo, 0).ShallowCopy(self.GetInputData(inInfo, 0, 0))
+        return 1
+
+
+def upstream_failure_case(kind, bad):
+    label = "input fails upstream %s bad=%d np=%d" % (kind, bad, PROCESSES)
+
+    def pipeline(parallel):
+        """The shock filter after a FailingOn filter, on this process's piece."""
+        if kind == "image":
+            source = vtkRTAnalyticSource()
+            source.SetWholeExtent(0, 39, 0, 29, 0, 9)
+            failing = FailingOn("vtkImageData", bad)
+            failing.SetInputConnection(source.GetOutputPort())
+            algorithm = vtkImageShockAdvectionFilter()
+        else:
+            failing = FailingOn("vtkPolyData", bad)
+            failing.SetInputDataObject(0, piece_mesh())
+            algorithm = FILTERS[kind]()
+        algorithm.SetController(controller if parallel else None)
+        algorithm.SetNumberOfThreads(1)
+        algorithm.SetInputConnection(failing.GetOutputPort())
+        return algorithm
+
+    def local():
+        algorithm = pipeline(True)
+        messages.take()
+        start = time.time()
+        rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
+        output = algorithm.GetOutputDataObject(0)
+        record = {"rank": RANK, "rc": rc, "errors": messages.take(), "seconds": time.time() - start,
+                  "points": output.GetNumberOfPoints(), "cells": output.GetNumberOfCells(),
+                  "executive": algorithm.GetExecutive().GetClassName()}
+        serial = pipeline(False)
+        record["serial_rc"] = serial.UpdatePiece(0, 1, 0)
+        record["serial_errors"] = messages.take()
+        return record
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        check_agreed_failure(label, records, lambda t: "input failed to update" in t,
+                             "that its input failed to update", bad=bad, one_line=True)
+        check(all(r.get("points") == 0 for r in records), "%s: a failed execution leaves empty outputs" % label)
+        check(all(r.get("serial_rc") == (0 if r["rank"] == bad else 1) and r.get("serial_errors") == []
+                  for r in records),
+              "%s: serial, the filter fails only after its failed input, and adds no error: %s"
+              % (label, [(r.get("serial_rc"), r.get("serial_errors")) for r in records]))
+
+    return local, judge
+
+
 def gradient_domain_case():
     label = "image Domain Gradients on pieces np=%d" % PROCESSES
 
@@ -780,6 +852,9 @@ def all_cases():
                 cases.append(("bad_cell_id.%s.%s.bad%d" % (kind, cell, bad), bad_cell_id_case(kind, cell, bad)))
         cases.append(("array_name.bad%d" % bad, array_name_case(bad)))
     cases.append(("gradient_domain", gradient_domain_case()))
+    for bad in bad_ranks():
+        for kind in ("advection", "sharpen", "image"):
+            cases.append(("upstream_failure.%s.bad%d" % (kind, bad), upstream_failure_case(kind, bad)))
     # Those that may hang today last: a hang ends the whole run.
     for bad in bad_ranks():
         cases.append(("iterations.bad%d" % bad, iterations_case(bad)))

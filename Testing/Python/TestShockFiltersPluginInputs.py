@@ -1,7 +1,8 @@
-"""pvpython test of the ShockFilters ParaView plugin, sections 5 and 6: bad
+"""pvpython test of the ShockFilters ParaView plugin, sections 5 to 7: bad
 values (errors through vtkOutputWindow, an empty output, no crash, the session
-goes on; out-of-range values clamped by the classes) and composite inputs
-(GroupDatasets, partitioned collections, mixed block types).
+goes on; out-of-range values clamped by the classes), composite inputs
+(GroupDatasets, partitioned collections, mixed block types) and derived
+arrays (a vector's Magnitude or component chosen as the filtered array).
 
 Run by TestShockFiltersPlugin.py (CTest PluginShockFilters) in its session and
 namespace, after TestShockFiltersPluginPipelines.py, whose pipelines (image,
@@ -226,3 +227,26 @@ check(not np.array_equal(point_array(parts[1], "Elevation"), point_array(fetch(h
       "mixed blocks: the mesh block changed")
 check(np.array_equal(point_array(parts[0], "RTData"), point_array(fetch(wavelet), "RTData")),
       "mixed blocks: the image block unchanged by the surface filter")
+
+# ---------------------------------------------------------------------------
+# 7. A derived array chosen in the panel (a vector's Magnitude or one of its
+# components): ParaView computes it before the filter (vtkPVPostFilter, asked
+# for by the proxies' executive, vtkPVShockCompositeDataPipeline), and the
+# filter sharpens it as any array.
+vector = Calculator(Input=wavelet, ResultArrayName="V", Function="RTData*iHat + coordsY*jHat")
+for derived in ("V_Magnitude", "V_X"):
+    chosen = ImageShockAdvection(Input=vector, InputArray=["POINTS", derived])
+    messages.clear()
+    chosen.UpdatePipeline()
+    result = fetch(chosen)
+    check(not messages.errors and result.GetNumberOfPoints() == 80 * 60, "%s: filtered without error" % derived)
+    vectors = point_array(fetch(vector), "V")
+    given = np.linalg.norm(vectors, axis=1) if derived.endswith("Magnitude") else vectors[:, 0]
+    got = point_array(result, derived)
+    check(got is not None and got.shape == given.shape and not np.allclose(got, given),
+          "%s: the derived array is in the output, sharpened" % derived)
+    check(got is not None and got.min() >= given.min() - 1e-9 and got.max() <= given.max() + 1e-9,
+          "%s: values resampled from the input's (within its range)" % derived)
+    check(chosen.GetClientSideObject().GetExecutive().GetClassName() == "vtkPVShockCompositeDataPipeline",
+          "%s: the proxy's executive" % derived)
+    Delete(chosen)
