@@ -121,6 +121,7 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
   vtkDataArray* array = nullptr;
   std::string selection; // the filtered array, which every piece must agree on
   ShockParallel::CarriedArrays carried{ false, {}, {} }; // the ghost rings carry the filtered array only
+  bool reported = false; // the failure's own message is out already (serial: not repeated)
   auto findArray = [&](vtkPolyData* surface) -> std::string {
     if (!started)
     {
@@ -135,7 +136,8 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
       (association == vtkDataObject::FIELD_ASSOCIATION_CELLS ? carried.cell : carried.point)
         .push_back(array->GetName() ? array->GetName() : "");
     }
-    return array || surface->GetNumberOfPoints() == 0 ? "" : "no array to filter (see the message above)";
+    reported = !array && surface->GetNumberOfPoints() > 0;
+    return reported ? "no array to filter (see the message above)" : "";
   };
   // In parallel the pieces start with the rings the flow's stencils need and
   // two more, and get more only when the flow lines of their own points read
@@ -149,12 +151,16 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     ShockParallel::SurfacePiece piece;
     std::string error;
     vtkLogStartScope(TRACE, "shock: input, agreement and ghost rings");
+    reported = false;
     const bool begun = ShockPolyDataInternals::BeginSurface(inputVector, controller, rings, findArray,
       this->ParametersText(), &selection, carried, input, piece, error);
     vtkLogEndScope("shock: input, agreement and ghost rings");
     if (!begun)
     {
-      vtkErrorMacro(<< error);
+      if (controller || !reported)
+      {
+        vtkErrorMacro(<< error);
+      }
       return 0;
     }
     if (piece.skip)

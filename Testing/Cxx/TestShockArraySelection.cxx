@@ -158,6 +158,20 @@ TEST(ShockArraySelection, NoScalarsAtAllIsAClearError)
   EXPECT_NE(log.Errors.find("no active point or cell scalars"), std::string::npos) << log.Errors;
 }
 
+// The reason is said once: a serial run does not repeat it as "no array to filter".
+TEST(ShockArraySelection, NoScalarsOnAMeshIsOneClearError)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->Update();
+  vtkNew<vtkPolyDataShockAdvectionFilter> filter;
+  filter->SetInputData(sphere->GetOutput()); // normals only, no scalars
+  MessageLog log(filter);
+  EXPECT_FALSE(UpdateSucceeds(filter));
+  EXPECT_NE(log.Errors.find("no active point or cell scalars"), std::string::npos) << log.Errors;
+  EXPECT_EQ(log.Errors.find("ERROR"), log.Errors.rfind("ERROR")) << "one error only:\n" << log.Errors;
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+}
+
 TEST(ShockArraySelection, ANamedArrayThatIsMissingIsStillAnError)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
