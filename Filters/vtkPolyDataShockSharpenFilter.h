@@ -153,8 +153,11 @@ public:
    * The potential that moves the normals is still computed across them, so a
    * blurred crease is sharpened, whether it turns by small angles from edge to
    * edge or is still sharper than this angle with bent faces beside it (a
-   * Gaussian blur). Measured on the normals after NormalSmoothingPasses. Range
-   * [0, 180], default 30; 180 (no feature edge) reproduces the paper.
+   * Gaussian blur). A corner whose averaged normal is more than this angle
+   * from one of its faces' normals (the apex of a cone) is read per face when
+   * the normals are sampled, so that it does not tilt them. Measured on the
+   * normals after NormalSmoothingPasses. Range [0, 180], default 30; 180 (no
+   * feature edge) reproduces the paper.
    */
   vtkSetClampMacro(FeatureAngle, double, 0.0, 180.0);
   vtkGetMacro(FeatureAngle, double);

@@ -410,4 +410,88 @@ TEST(MeshSteps, ComposedContinuesTheTracesAlongTheIntermediateFlow)
   EXPECT_GT(MaxDifference(result, FilterMesh(m, input, C, naive)), 1e-4);
 }
 
+// A cell signal's Linear sampling reads each corner's area-weighted average of
+// its triangles' values; a corner whose average differs from one of its
+// triangles' values by more than cornerDeviation (the apex of a cone, where
+// the averaged normal is the axis) reads the sampled triangle's own value.
+// At t = 0 each face is read at its centre: a third of each corner's value.
+TEST(MeshSteps, ACornerThatDoesNotStandForItsTrianglesIsReadPerTriangle)
+{
+  // A cone's tip over an irregular ring (radii and heights vary), closed by
+  // nothing: the apex (point 0) is shared by every triangle.
+  SmallMesh m;
+  const int n = 24;
+  m.points = { 0.0, 0.0, 1.0 };
+  for (int i = 0; i < n; ++i)
+  {
+    const double a = 2.0 * 3.14159265358979323846 * (i + 0.2 * std::sin(1.7 * i)) / n;
+    const double r = 0.5 + 0.03 * std::cos(2.3 * i);
+    m.points.insert(m.points.end(), { r * std::cos(a), r * std::sin(a), 0.01 * std::sin(3.1 * i) });
+  }
+  for (int i = 0; i < n; ++i)
+    m.triangles.insert(m.triangles.end(), { 0, 1 + i, 1 + (i + 1) % n });
+  m.Build();
+  // The signal: each triangle's unit normal.
+  const int C = 3;
+  std::vector<double> normals(3 * n);
+  for (int f = 0; f < n; ++f)
+  {
+    const auto t = m.T(f);
+    const V3 c = Cross3(Sub(m.P(t[1]), m.P(t[0])), Sub(m.P(t[2]), m.P(t[0])));
+    for (int k = 0; k < 3; ++k)
+      normals[3 * f + k] = c[k] / Norm3(c);
+  }
+  // Independently: the corners' area-weighted averages, and which of them are
+  // farther than `deviation` from one of their triangles' values.
+  std::vector<double> average(3 * m.Points(), 0.0), weight(m.Points(), 0.0);
+  for (int f = 0; f < n; ++f)
+    for (std::int64_t p : m.T(f))
+    {
+      weight[p] += m.Area(f);
+      for (int c = 0; c < C; ++c)
+        average[3 * p + c] += m.Area(f) * normals[3 * f + c];
+    }
+  for (int p = 0; p < m.Points(); ++p)
+    for (int c = 0; c < C; ++c)
+      average[3 * p + c] /= weight[p];
+  const double deviation = 2.0 * std::sin(30.0 * 3.14159265358979323846 / 360.0); // 30 degrees apart
+  std::vector<bool> own(m.Points(), false);
+  for (int f = 0; f < n; ++f)
+    for (std::int64_t p : m.T(f))
+    {
+      double d2 = 0.0;
+      for (int c = 0; c < C; ++c)
+        d2 += (normals[3 * f + c] - average[3 * p + c]) * (normals[3 * f + c] - average[3 * p + c]);
+      own[p] = own[p] || d2 > deviation * deviation;
+    }
+  ASSERT_TRUE(own[0]);                                      // the apex: its average is about the axis
+  ASSERT_LT(std::count(own.begin(), own.end(), true), n / 2); // most ring corners read their averages
+
+  AdvectionParameters p;
+  p.time = 0.0;
+  for (const double given : { 0.0, deviation })
+  {
+    MeshSignal signal;
+    signal.location = MeshLocation::Triangles;
+    signal.components = C;
+    signal.values = normals.data();
+    signal.valueScale = 2.0;
+    signal.sampleAtTimeZero = true;
+    signal.cornerDeviation = given;
+    std::vector<double> out(normals.size());
+    ASSERT_TRUE(AdvectMeshSignal(m.mesh, signal, out.data(), p).Ok());
+    double changed = 0.0;
+    for (int f = 0; f < n; ++f)
+      for (int c = 0; c < C; ++c)
+      {
+        double expected = 0.0;
+        for (std::int64_t q : m.T(f))
+          expected += (given > 0.0 && own[q] ? normals[3 * f + c] : average[3 * q + c]) / 3.0;
+        EXPECT_NEAR(out[3 * f + c], expected, 1e-12) << "deviation " << given << ", face " << f;
+        changed = std::max(changed, std::abs(out[3 * f + c] - normals[3 * f + c]));
+      }
+    EXPECT_GT(changed, 0.05) << "the ring's averages still blend the neighbouring faces";
+  }
+}
+
 } // namespace

@@ -94,11 +94,16 @@ bool SampleSurface(const TriangleMesh& mesh, const SurfacePoint& q, Sampling sam
   {
     return false;
   }
-  // The corners' weights, the same for every channel (computed once).
+  // The corners' weights, the same for every channel (computed once), and
+  // where each corner's value is read: its point's, or the triangle's own.
   double weight[3];
+  const double* from[3];
+  const double* own = source.cells ? source.cells + q.triangle * C : nullptr;
+  const bool ownValid = own && source.ownCorner && AllFinite(own, C);
   for (int k = 0; k < 3; ++k)
   {
     weight[k] = q.barycentric[k] / total;
+    from[k] = ownValid && source.ownCorner[static_cast<size_t>(t[k])] ? own : source.points + t[k] * C;
   }
   for (int c = 0; c < C; ++c)
   {
@@ -110,7 +115,7 @@ bool SampleSurface(const TriangleMesh& mesh, const SurfacePoint& q, Sampling sam
     {
       if (valid[k])
       {
-        const double v = source.points[t[k] * C + c];
+        const double v = from[k][c];
         value += weight[k] * v;
         low = std::min(low, v);
         high = std::max(high, v);

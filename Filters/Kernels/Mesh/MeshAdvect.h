@@ -33,12 +33,18 @@ struct MeshSource
   const double* cells = nullptr;
   /// Per point: 1 when its values may be read (see MeshShockAdvection's validity rules).
   const unsigned char* validPoint = nullptr;
+  /**
+   * Cell signals, per point, or null: 1 where the point's average does not
+   * stand for its triangles (MeshSignal::cornerDeviation, a cone's apex):
+   * Linear sampling in a triangle reads the triangle's own value for that corner.
+   */
+  const unsigned char* ownCorner = nullptr;
 };
 
 /**
  * Add the source's value at q to `acc` (C values). Linear: the barycentric
  * interpolation of the valid corners' point values (renormalised, clamped to
- * their range). Nearest: the triangle's own value for a cell signal, else the
+ * their range; at an ownCorner, the triangle's own value). Nearest: the triangle's own value for a cell signal, else the
  * value of the nearest valid corner. Returns false, adding nothing, when no
  * valid value is there.
  */

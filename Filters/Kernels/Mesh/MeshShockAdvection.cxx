@@ -46,11 +46,50 @@ struct MeshRun
     return points;
   }
 
-  /// What advection reads from `values` (with `points` its per-point values).
-  MeshSource Source(const double* values, const std::vector<double>& points) const
+  /// What advection reads from `values` (with `points` its per-point values, `own` its corners read per triangle).
+  MeshSource Source(const double* values, const std::vector<double>& points,
+    const std::vector<unsigned char>& own) const
   {
-    return { this->C, this->CellSignal() ? points.data() : values,
-      this->CellSignal() ? values : nullptr, this->validPoint.data() };
+    return { this->C, this->CellSignal() ? points.data() : values, this->CellSignal() ? values : nullptr,
+      this->validPoint.data(), this->CellSignal() && !own.empty() ? own.data() : nullptr };
+  }
+
+  /**
+   * A cell signal's points whose average `points` differs from one of their
+   * valid triangles' `values` by more than signal.cornerDeviation (empty when
+   * that is 0, or for a point signal).
+   */
+  std::vector<unsigned char> OwnCorners(const double* values, const std::vector<double>& points) const
+  {
+    const double most = this->signal.cornerDeviation;
+    if (!this->CellSignal() || !(most > 0.0))
+    {
+      return {};
+    }
+    std::vector<unsigned char> own(static_cast<size_t>(this->Points()), 0);
+    const CompressedLists& around = this->mesh.PointTriangles();
+    const int C = this->C;
+#pragma omp parallel for num_threads(this->threads) schedule(static)
+    for (std::int64_t p = 0; p < this->Points(); ++p)
+    {
+      const double* average = points.data() + p * C;
+      for (std::int64_t i = around.Begin(p); i < around.End(p) && !own[static_cast<size_t>(p)]; ++i)
+      {
+        const std::int64_t f = around.items[static_cast<size_t>(i)];
+        if (!this->cellValid[static_cast<size_t>(f)])
+        {
+          continue;
+        }
+        double squared = 0.0;
+        for (int c = 0; c < C; ++c)
+        {
+          const double d = values[f * C + c] - average[c];
+          squared += d * d;
+        }
+        own[static_cast<size_t>(p)] = squared > most * most ? 1 : 0;
+      }
+    }
+    return own;
   }
 };
 
@@ -190,13 +229,14 @@ struct MeshSteps
   std::vector<double> next;                 // Naive: the resampled signal
   std::vector<SurfacePoint> positions;      // Composed: the composed back-traces
   std::vector<double> inputPoints;          // per-point values of the input (cell signals)
+  std::vector<unsigned char> ownCorners;    // the input's corners read per triangle (cell signals)
 };
 
 /// One advection pass of flow update k; false when aborted.
 bool AdvectStep(const MeshRun& run, MeshSteps& steps, AdvectionPass& pass, double* output)
 {
   const double* input = run.signal.values;
-  const MeshSource fromInput = run.Source(input, steps.inputPoints);
+  const MeshSource fromInput = run.Source(input, steps.inputPoints, steps.ownCorners);
   switch (run.p.flowMode)
   {
     case FlowMode::Fixed:
@@ -209,7 +249,8 @@ bool AdvectStep(const MeshRun& run, MeshSteps& steps, AdvectionPass& pass, doubl
       const std::vector<double> currentPoints =
         run.CellSignal() ? run.PointValues(steps.current.data()) : std::vector<double>();
       const bool completed =
-        Advect(pass, run, run.Source(steps.current.data(), currentPoints), steps.next.data(), nullptr);
+        Advect(pass, run, run.Source(steps.current.data(), currentPoints, steps.ownCorners), steps.next.data(),
+          nullptr);
       steps.current.swap(steps.next);
       return completed;
     }
@@ -259,6 +300,7 @@ MeshSteps StartSteps(MeshRun& run, bool advect)
       run.cellValid[static_cast<size_t>(f)] = AllFinite(input + f * run.C, run.C) ? 1 : 0;
     }
     steps.inputPoints = run.PointValues(input);
+    steps.ownCorners = run.OwnCorners(input, steps.inputPoints);
   }
   return steps;
 }

@@ -77,6 +77,17 @@ struct MeshSignal
    */
   bool sampleAtTimeZero = false;
   /**
+   * Cell signals, Sampling::Linear: a point whose per-point average differs
+   * from the value of one of its valid triangles by more than this (Euclidean
+   * distance over the channels, in the signal's units) does not stand for its
+   * triangles, and a sample in a triangle reads that triangle's own value for
+   * the corner. Geometry sharpening passes the distance of two unit normals
+   * FeatureAngle apart, so that the apex of a cone (where the averaged normal
+   * is the axis) does not tilt the normals of its faces. 0 (the default): every
+   * corner reads its point's average, as the paper does.
+   */
+  double cornerDeviation = 0.0;
+  /**
    * Length unit used to normalise lengths; 0 (the default) uses the mesh's mean
    * edge length. A piece of a parallel run passes the mean over all pieces so
    * that every piece uses the serial unit.

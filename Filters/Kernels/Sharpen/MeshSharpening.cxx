@@ -236,6 +236,13 @@ MeshSignal NormalsSignal(const SharpeningParameters& parameters)
   signal.sampleAtTimeZero = true;
   signal.potentialContrast = parameters.curvatureContrast;
   signal.contrastRings = parameters.contrastRings;
+  // A corner whose averaged normal is more than the feature angle from one of
+  // its faces' normals (a cone's apex) is read per face: unit normals that far
+  // apart are 2 sin(angle / 2) apart. FeatureAngle 180 keeps the paper's averages.
+  const double pi = 3.14159265358979323846;
+  signal.cornerDeviation = parameters.featureAngle > 0.0 && parameters.featureAngle < 180.0
+    ? 2.0 * std::sin(parameters.featureAngle * pi / 360.0)
+    : 0.0;
   signal.wholeTriangles = parameters.wholeTriangles;
   return signal;
 }
