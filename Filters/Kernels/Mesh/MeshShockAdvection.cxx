@@ -229,7 +229,7 @@ struct MeshSteps
   std::vector<double> next;                 // Naive: the resampled signal
   std::vector<SurfacePoint> positions;      // Composed: the composed back-traces
   std::vector<double> inputPoints;          // per-point values of the input (cell signals)
-  std::vector<unsigned char> ownCorners;    // the input's corners read per triangle (cell signals)
+  std::vector<unsigned char> ownCorners;    // the input's corners read per triangle (cell signals; every update reads them)
 };
 
 /// One advection pass of flow update k; false when aborted.
