@@ -84,6 +84,14 @@ bool vtkShockAdvectionFilter::ExecutesAfterInputFailure(bool updated)
   return this->InputFailed;
 }
 
+bool vtkShockAdvectionFilter::ContinuesAfterInformationFailure(bool updated)
+{
+  // The output's piece request is not known in this pass (VTK sets it after
+  // the information): any run that may be parallel goes on to its data pass.
+  this->InformationFailed = !updated && this->Controller && this->Controller->GetNumberOfProcesses() > 1;
+  return this->InformationFailed;
+}
+
 vtkTypeBool vtkShockAdvectionFilter::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

@@ -272,6 +272,22 @@ public:
    */
   bool ExecutesAfterInputFailure(bool updated);
 
+  /**
+   * For the filters' executive: whether the input `updated` in the
+   * information pass being processed. Returns true when the pipeline must go
+   * on although the input's information failed, because the filter may run
+   * in parallel (its Controller has more than one process) and the other
+   * processes would wait for it: the executive then asks the input nothing
+   * more until its information is asked again (InputInformationFailed), and
+   * the data request fails upstream, as after ExecutesAfterInputFailure. In
+   * serial, or without such a controller, false: the update stops there, as
+   * any VTK pipeline's.
+   */
+  bool ContinuesAfterInformationFailure(bool updated);
+
+  /// Whether the input's last information pass failed on this process of a parallel run.
+  bool InputInformationFailed() const { return this->InformationFailed; }
+
 protected:
   vtkShockAdvectionFilter();
   ~vtkShockAdvectionFilter() override;
@@ -384,6 +400,8 @@ protected:
   vtkMultiProcessController* Controller = nullptr;
   /// The input failed to update for this parallel execution (ExecutesAfterInputFailure).
   bool InputFailed = false;
+  /// The input's information failed in a parallel run (ContinuesAfterInformationFailure).
+  bool InformationFailed = false;
   /// The composite input last seen (the pipeline then hands RequestData its blocks one by one).
   vtkWeakPointer<vtkCompositeDataSet> CompositeInput;
 

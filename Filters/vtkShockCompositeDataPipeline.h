@@ -15,13 +15,21 @@
  * (vtkShockAdvectionFilter::ExecutesAfterInputFailure), it still executes the
  * filter: the filter takes part in the agreement of its first collective step
  * and every process stops with the same one-line error, naming the process
- * whose input failed. In serial, or for a request that is not for data,
- * nothing differs from vtkCompositeDataPipeline.
+ * whose input failed.
+ *
+ * The same holds for a filter upstream that fails in the information pass on
+ * one process (e.g. a reader whose file is missing on one node): in a run
+ * that may be parallel (the filter's controller has more than one process;
+ * the pieces are not known yet in that pass) the pipeline goes on to the data
+ * pass without asking that input anything more until its information is asked
+ * again (SkipsUpstream), and the filter stops every process as above, or,
+ * when the data request is not for pieces, is not executed. In serial (no
+ * such controller), nothing differs from vtkCompositeDataPipeline.
  *
  * The shock filters create it as their default executive. ParaView replaces a
  * filter's executive by vtkPVCompositeDataPipeline unless the proxy names
  * another: the plugin's proxies name vtkPVShockCompositeDataPipeline, which
- * does the same through ForwardedUpstream.
+ * does the same through SkipsUpstream and ForwardedUpstream.
  *
  * @sa vtkShockAdvectionFilter vtkCompositeDataPipeline
  */
@@ -41,11 +49,22 @@ public:
   /**
    * What an executive of a shock filter returns from ForwardUpstream:
    * `forwarded`, the result of forwarding `request` upstream, except for a
-   * data request that failed upstream while the filter runs in parallel:
-   * then 1, so that the filter executes and tells the other processes.
+   * request that failed upstream while the filter may run in parallel: then
+   * 1, so that the pipeline goes on and the filter tells the other processes
+   * (an information request: vtkShockAdvectionFilter::ContinuesAfterInformationFailure;
+   * a data request: vtkShockAdvectionFilter::ExecutesAfterInputFailure).
    * For executives of other bases (ParaView's).
    */
   static int ForwardedUpstream(vtkExecutive* executive, vtkInformation* request, int forwarded);
+
+  /**
+   * Whether an executive of a shock filter must not forward `request`
+   * upstream: after the input's information failed in a parallel run, the
+   * input is asked for no update extent and no data until its information is
+   * asked again. Then `result` receives what forwarding gives instead (0 for
+   * a data request, to be passed to ForwardedUpstream; else 1).
+   */
+  static bool SkipsUpstream(vtkExecutive* executive, vtkInformation* request, int& result);
 
 protected:
   vtkShockCompositeDataPipeline();

@@ -11,7 +11,12 @@ vtkPVShockCompositeDataPipeline::~vtkPVShockCompositeDataPipeline() = default;
 
 int vtkPVShockCompositeDataPipeline::ForwardUpstream(vtkInformation* request)
 {
-  return vtkShockCompositeDataPipeline::ForwardedUpstream(this, request, this->Superclass::ForwardUpstream(request));
+  int result = 0;
+  if (!vtkShockCompositeDataPipeline::SkipsUpstream(this, request, result))
+  {
+    result = this->Superclass::ForwardUpstream(request);
+  }
+  return vtkShockCompositeDataPipeline::ForwardedUpstream(this, request, result);
 }
 
 void vtkPVShockCompositeDataPipeline::PrintSelf(ostream& os, vtkIndent indent)

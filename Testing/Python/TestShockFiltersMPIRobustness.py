@@ -47,8 +47,13 @@ process 0 prints a MEASURE line with what each process did and checks:
   fails with the same one-line error naming the bad process and saying its
   input failed to update (the shock filter still executes there to tell the
   others, which wait in a collective step), and the outputs are empty. The
-  same pipeline without a controller (serial): the shock filter does not
-  execute and adds no error of its own.
+  same pipeline without a controller (serial), or with it but no pieces: the
+  shock filter does not execute and adds no error of its own. The same again
+  after the failing filter changed.
+- a filter before the shock filter fails on the bad process in its
+  information pass (RequestInformation returns 0 there, as a reader whose
+  file is missing on one node): the same checks, through the VTK classes'
+  executive and through ParaView's (the VTK object of a plugin proxy).
 - image Domain Gradients on pieces: vtkRTAnalyticSource -> the image filter
   with Domain Gradients, the source cutting its pieces: every process fails
   with the same one-line error (the solve needs the whole image), empty output.
@@ -619,43 +624,49 @@ def flow_mode_case(kind, bad):
 
 
 class FailingOn(VTKPythonAlgorithmBase):
-    """A pass-through filter of `data_type` whose RequestData fails (returns 0,
-    as a VTK filter does on a piece it cannot handle) on process `bad`."""
+    """A pass-through filter of `data_type` that fails (returns 0, as a VTK
+    filter does on a piece it cannot handle) on process `bad`: in its
+    RequestData (stage "data"), or in its RequestInformation (stage
+    "information", as a reader whose file is missing on one node)."""
 
-    def __init__(self, data_type, bad):
+    def __init__(self, data_type, bad, stage="data"):
         VTKPythonAlgorithmBase.__init__(self, nInputPorts=1, inputType=data_type, nOutputPorts=1,
                                         outputType=data_type)
         self.bad = bad
+        self.stage = stage
+
+    def RequestInformation(self, request, inInfo, outInfo):
+        return 0 if self.stage == "information" and RANK == self.bad else 1
 
     def RequestData(self, request, inInfo, outInfo):
-        if RANK == self.bad:
+        if self.stage == "data" and RANK == self.bad:
             return 0
         self.GetOutputData(outInfo, 0).ShallowCopy(self.GetInputData(inInfo, 0, 0))
         return 1
 
 
-def upstream_failure_case(kind, bad):
-    label = "input fails upstream %s bad=%d np=%d" % (kind, bad, PROCESSES)
+def upstream_failure_case(kind, bad, stage="data"):
+    label = "input fails upstream (%s) %s bad=%d np=%d" % (stage, kind, bad, PROCESSES)
 
     def pipeline(parallel):
         """The shock filter after a FailingOn filter, on this process's piece."""
         if kind == "image":
             source = vtkRTAnalyticSource()
             source.SetWholeExtent(0, 39, 0, 29, 0, 9)
-            failing = FailingOn("vtkImageData", bad)
+            failing = FailingOn("vtkImageData", bad, stage)
             failing.SetInputConnection(source.GetOutputPort())
             algorithm = vtkImageShockAdvectionFilter()
         else:
-            failing = FailingOn("vtkPolyData", bad)
+            failing = FailingOn("vtkPolyData", bad, stage)
             failing.SetInputDataObject(0, piece_mesh())
             algorithm = FILTERS[kind]()
         algorithm.SetController(controller if parallel else None)
         algorithm.SetNumberOfThreads(1)
         algorithm.SetInputConnection(failing.GetOutputPort())
-        return algorithm
+        return algorithm, failing
 
     def local():
-        algorithm = pipeline(True)
+        algorithm, failing = pipeline(True)
         messages.take()
         start = time.time()
         rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
@@ -663,9 +674,17 @@ def upstream_failure_case(kind, bad):
         record = {"rank": RANK, "rc": rc, "errors": messages.take(), "seconds": time.time() - start,
                   "points": output.GetNumberOfPoints(), "cells": output.GetNumberOfCells(),
                   "executive": algorithm.GetExecutive().GetClassName()}
-        serial = pipeline(False)
+        # Asked again after the failing filter changed: it fails again, and so do all.
+        failing.Modified()
+        record["again_rc"] = algorithm.UpdatePiece(RANK, PROCESSES, 0)
+        record["again_errors"] = messages.take()
+        serial, _ = pipeline(False)
         record["serial_rc"] = serial.UpdatePiece(0, 1, 0)
         record["serial_errors"] = messages.take()
+        # With the controller, but each process filtering its whole input (no pieces).
+        whole, _ = pipeline(True)
+        record["whole_rc"] = whole.UpdatePiece(0, 1, 0)
+        record["whole_errors"] = messages.take()
         return record
 
     def judge(records):
@@ -673,10 +692,61 @@ def upstream_failure_case(kind, bad):
         check_agreed_failure(label, records, lambda t: "input failed to update" in t,
                              "that its input failed to update", bad=bad, one_line=True)
         check(all(r.get("points") == 0 for r in records), "%s: a failed execution leaves empty outputs" % label)
+        again = [dict(r, rc=r.get("again_rc"), errors=r.get("again_errors", [])) for r in records]
+        check_agreed_failure(label + " (asked again)", again, lambda t: "input failed to update" in t,
+                             "that its input failed to update", bad=bad, one_line=True)
         check(all(r.get("serial_rc") == (0 if r["rank"] == bad else 1) and r.get("serial_errors") == []
                   for r in records),
               "%s: serial, the filter fails only after its failed input, and adds no error: %s"
               % (label, [(r.get("serial_rc"), r.get("serial_errors")) for r in records]))
+        check(all(r.get("whole_rc") == (0 if r["rank"] == bad else 1) and r.get("whole_errors") == []
+                  for r in records),
+              "%s: with the controller but no pieces, as in serial: %s"
+              % (label, [(r.get("whole_rc"), r.get("whole_errors")) for r in records]))
+
+    return local, judge
+
+
+def paraview_executive_case(kind, bad):
+    """The same failure in the information pass, through ParaView's executive
+    of the shock filters: the VTK object of a proxy of the plugin (pvbatch
+    --symmetric: every process holds its own)."""
+    label = "input fails upstream (information, ParaView's executive) %s bad=%d np=%d" % (kind, bad, PROCESSES)
+
+    def local():
+        from paraview import simple
+        simple.LoadPlugin(PLUGIN, ns=globals())  # the proxies' functions into this module
+        names = globals()
+        if kind == "image":
+            proxy = names["ImageShockAdvection"](Input=simple.Wavelet())
+            source = vtkRTAnalyticSource()
+            source.SetWholeExtent(0, 39, 0, 29, 0, 9)
+            failing = FailingOn("vtkImageData", bad, "information")
+            failing.SetInputConnection(source.GetOutputPort())
+        else:
+            proxy = names["SurfaceShockSharpen"](Input=simple.Sphere())
+            failing = FailingOn("vtkPolyData", bad, "information")
+            failing.SetInputDataObject(0, piece_mesh())
+        algorithm = proxy.GetClientSideObject()
+        algorithm.SetInputConnection(failing.GetOutputPort())
+        messages.take()
+        start = time.time()
+        rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
+        output = algorithm.GetOutputDataObject(0)
+        record = {"rank": RANK, "rc": rc, "errors": messages.take(), "seconds": time.time() - start,
+                  "points": output.GetNumberOfPoints(), "cells": output.GetNumberOfCells(),
+                  "executive": algorithm.GetExecutive().GetClassName()}
+        simple.Delete(proxy)
+        return record
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        check(all(r.get("executive") == "vtkPVShockCompositeDataPipeline" for r in records),
+              "%s: the proxies' executive is vtkPVShockCompositeDataPipeline: %s"
+              % (label, [r.get("executive") for r in records]))
+        check_agreed_failure(label, records, lambda t: "input failed to update" in t,
+                             "that its input failed to update", bad=bad, one_line=True)
+        check(all(r.get("points") == 0 for r in records), "%s: a failed execution leaves empty outputs" % label)
 
     return local, judge
 
@@ -855,6 +925,11 @@ def all_cases():
     for bad in bad_ranks():
         for kind in ("advection", "sharpen", "image"):
             cases.append(("upstream_failure.%s.bad%d" % (kind, bad), upstream_failure_case(kind, bad)))
+            cases.append(("upstream_information_failure.%s.bad%d" % (kind, bad),
+                          upstream_failure_case(kind, bad, "information")))
+        for kind in ("sharpen", "image"):
+            cases.append(("upstream_information_failure.paraview.%s.bad%d" % (kind, bad),
+                          paraview_executive_case(kind, bad)))
     # Those that may hang today last: a hang ends the whole run.
     for bad in bad_ranks():
         cases.append(("iterations.bad%d" % bad, iterations_case(bad)))
