@@ -36,6 +36,9 @@ process 0 prints a MEASURE line with what each process did and checks:
 - array name mismatch: the active point scalars are "Heat" on the processes
   and "Temperature" on the bad one (advection): every process fails with the
   same error (naming the mismatch), and no process outputs filtered values.
+- array layout mismatch: the active point scalars "Elevation" with 3
+  components, or as unsigned char, on the bad process (advection): every
+  process fails with the same one-line error naming what differs.
 - iterations mismatch: SolverIterations 25 and 30 on the bad process
   (sharpen): every process fails with the same error about the iterations.
 - flow mode mismatch: Composed with 4 updates (no ring stencil) on the bad
@@ -588,6 +591,40 @@ def array_name_case(bad):
     return local, judge
 
 
+def array_layout_case(bad, what):
+    """The active point scalars "Elevation" everywhere, but with 3 components
+    (what = "components") or as unsigned char (what = "type") on the bad
+    process: every process fails with the same error, none outputs values."""
+    label = "array %s mismatch bad=%d np=%d" % (what, bad, PROCESSES)
+
+    def local():
+        piece = piece_mesh()
+        if RANK == bad:
+            values = vtk_to_numpy(piece.GetPointData().GetScalars()).astype(float)
+            if what == "components":
+                array = numpy_to_vtk(np.ascontiguousarray(np.stack([values] * 3, axis=1)), deep=1)
+            else:
+                array = numpy_to_vtk(np.round((values + 1.0) * 127.0).astype(np.uint8), deep=1,
+                                     array_type=VTK_UNSIGNED_CHAR)
+            array.SetName("Elevation")
+            piece.GetPointData().SetScalars(array)
+        record, algorithm = run("advection", piece, label)
+        output = algorithm.GetOutput()
+        array = output.GetPointData().GetArray("Elevation")
+        record["filtered"] = bool(array is not None and output.GetNumberOfPoints() > 0)
+        return record
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        about = (lambda t: re.search(r"component", t, re.I)) if what == "components" else \
+            (lambda t: re.search(r"type|unsigned char|double", t, re.I))
+        check_agreed_failure(label, records, about, "which property of the array differs", bad=bad,
+                             one_line=True)
+        check(not any(r.get("filtered") for r in records), "%s: a process output filtered values" % label)
+
+    return local, judge
+
+
 def iterations_case(bad):
     label = "SolverIterations mismatch bad=%d np=%d" % (bad, PROCESSES)
 
@@ -921,6 +958,8 @@ def all_cases():
             for cell in ("triangle", "line", "vertex"):
                 cases.append(("bad_cell_id.%s.%s.bad%d" % (kind, cell, bad), bad_cell_id_case(kind, cell, bad)))
         cases.append(("array_name.bad%d" % bad, array_name_case(bad)))
+        for what in ("components", "type"):
+            cases.append(("array_%s.bad%d" % (what, bad), array_layout_case(bad, what)))
     cases.append(("gradient_domain", gradient_domain_case()))
     for bad in bad_ranks():
         for kind in ("advection", "sharpen", "image"):
