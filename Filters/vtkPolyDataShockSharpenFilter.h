@@ -157,7 +157,11 @@ public:
    * from one of its faces' normals (the apex of a cone) is read per face when
    * the normals are sampled, so that it does not tilt them. Measured on the
    * normals after NormalSmoothingPasses. Range [0, 180], default 30; 180 (no
-   * feature edge) reproduces the paper.
+   * feature edge) reproduces the paper. On a CAD tessellation with curved
+   * surfaces or designed roundings (facets turning by 5 to 15 degrees per
+   * edge), set it just below the facets' angle (5 to 10): below this angle
+   * the facets are sharpened like a blurred crease (docs/sharpening.md,
+   * "Designed roundings and coarse tessellations").
    */
   vtkSetClampMacro(FeatureAngle, double, 0.0, 180.0);
   vtkGetMacro(FeatureAngle, double);
