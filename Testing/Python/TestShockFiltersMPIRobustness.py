@@ -660,6 +660,17 @@ def flow_mode_case(kind, bad):
     return local, judge
 
 
+def update_piece(algorithm):
+    """UpdatePiece(rank, N, 0) of `algorithm` (already connected); this process's record."""
+    messages.take()
+    start = time.time()
+    rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
+    output = algorithm.GetOutputDataObject(0)
+    return {"rank": RANK, "rc": rc, "errors": messages.take(), "seconds": time.time() - start,
+            "points": output.GetNumberOfPoints(), "cells": output.GetNumberOfCells(),
+            "executive": algorithm.GetExecutive().GetClassName()}
+
+
 class FailingOn(VTKPythonAlgorithmBase):
     """A pass-through filter of `data_type` that fails (returns 0, as a VTK
     filter does on a piece it cannot handle) on process `bad`: in its
@@ -704,13 +715,7 @@ def upstream_failure_case(kind, bad, stage="data"):
 
     def local():
         algorithm, failing = pipeline(True)
-        messages.take()
-        start = time.time()
-        rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
-        output = algorithm.GetOutputDataObject(0)
-        record = {"rank": RANK, "rc": rc, "errors": messages.take(), "seconds": time.time() - start,
-                  "points": output.GetNumberOfPoints(), "cells": output.GetNumberOfCells(),
-                  "executive": algorithm.GetExecutive().GetClassName()}
+        record = update_piece(algorithm)
         # Asked again after the failing filter changed: it fails again, and so do all.
         failing.Modified()
         record["again_rc"] = algorithm.UpdatePiece(RANK, PROCESSES, 0)
@@ -766,13 +771,7 @@ def paraview_executive_case(kind, bad):
             failing.SetInputDataObject(0, piece_mesh())
         algorithm = proxy.GetClientSideObject()
         algorithm.SetInputConnection(failing.GetOutputPort())
-        messages.take()
-        start = time.time()
-        rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
-        output = algorithm.GetOutputDataObject(0)
-        record = {"rank": RANK, "rc": rc, "errors": messages.take(), "seconds": time.time() - start,
-                  "points": output.GetNumberOfPoints(), "cells": output.GetNumberOfCells(),
-                  "executive": algorithm.GetExecutive().GetClassName()}
+        record = update_piece(algorithm)
         simple.Delete(proxy)
         return record
 
