@@ -116,13 +116,14 @@ std::vector<double> ComputeFlow(const MeshRun& run, std::vector<double> signal, 
 
 /**
  * The flow of `current` (one update): fills the back-trace velocity -l u, returns the potential.
- * `currentPoints`, when not null, holds the per-point values of a cell signal `current`.
+ * `currentPoints`, when not empty, holds the per-point values of a cell signal
+ * `current` (taken: a caller that keeps them passes a copy).
  */
 std::vector<double> UpdateFlow(const MeshRun& run, const double* current,
-  const std::vector<double>* currentPoints, std::vector<double>& flow, ValueVector& velocity)
+  std::vector<double> currentPoints, std::vector<double>& flow, ValueVector& velocity)
 {
   std::vector<double> normalised =
-    currentPoints && run.CellSignal() ? *currentPoints : run.PointValues(current);
+    !currentPoints.empty() && run.CellSignal() ? std::move(currentPoints) : run.PointValues(current);
   const double range = run.range;
   const auto n = static_cast<std::int64_t>(normalised.size());
 #pragma omp parallel for num_threads(run.threads) schedule(static)
@@ -229,7 +230,7 @@ struct MeshSteps
   std::vector<double> next;                 // Naive: the resampled signal
   std::vector<SurfacePoint> positions;      // Composed: the composed back-traces
   std::vector<double> inputPoints;          // per-point values of the input (cell signals)
-  std::vector<unsigned char> ownCorners;    // the input's corners read per triangle (cell signals; every update reads them)
+  std::vector<unsigned char> ownCorners;    // the input's corners read per triangle (advected cell signals; every update reads them)
 };
 
 /// One advection pass of flow update k; false when aborted.
@@ -300,7 +301,10 @@ MeshSteps StartSteps(MeshRun& run, bool advect)
       run.cellValid[static_cast<size_t>(f)] = AllFinite(input + f * run.C, run.C) ? 1 : 0;
     }
     steps.inputPoints = run.PointValues(input);
-    steps.ownCorners = run.OwnCorners(input, steps.inputPoints);
+    if (advect)
+    {
+      steps.ownCorners = run.OwnCorners(input, steps.inputPoints); // read by the samples only
+    }
   }
   return steps;
 }
@@ -309,7 +313,7 @@ MeshSteps StartSteps(MeshRun& run, bool advect)
  * The flow updates, each followed by its advection pass (none when `advect`
  * is false); sets report.aborted when the progress callback or a pass aborts.
  */
-void RunUpdates(const MeshRun& run, MeshSteps& steps, const MeshRun* flowRun, const MeshSteps& flowSteps,
+void RunUpdates(const MeshRun& run, MeshSteps& steps, const MeshRun* flowRun, MeshSteps& flowSteps,
   bool advect, double* output, AdvectionReport& report, MeshFlowFields* fields,
   const ProgressFunction& progress)
 {
@@ -327,9 +331,12 @@ void RunUpdates(const MeshRun& run, MeshSteps& steps, const MeshRun* flowRun, co
     const auto flowStart = Clock::now();
     // The first update of every mode starts from the input, whose per-point values are at hand.
     const double* current = fixed ? run.signal.values : steps.current.data();
+    // The flow mesh's per-point values serve this update only (taken); the advected
+    // mesh's are read again by the samples (copied).
     std::vector<double> potential = flowRun
-      ? UpdateFlow(*flowRun, current, k == 0 ? &flowSteps.inputPoints : nullptr, flow, velocity)
-      : UpdateFlow(run, current, k == 0 ? &steps.inputPoints : nullptr, flow, velocity);
+      ? UpdateFlow(*flowRun, current, k == 0 ? std::move(flowSteps.inputPoints) : std::vector<double>(), flow,
+          velocity)
+      : UpdateFlow(run, current, k == 0 ? steps.inputPoints : std::vector<double>(), flow, velocity);
     report.flowSeconds += SecondsSince(flowStart);
     if (fields && k == updates - 1)
     {
