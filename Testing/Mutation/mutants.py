@@ -396,7 +396,7 @@ MUTANTS = [
          replacement="    \" cannot filter its piece: \" + BroadcastText(controller, localError, 0);",
          bug="every process reports process 0's message, not the failing process's reason"),
     dict(id="own-corner-not-read", file=K + "Mesh/MeshAdvect.cxx",
-         original="    from[k] = ownValid && source.ownCorner[static_cast<size_t>(t[k])] ? own : source.points + t[k] * C;",
+         original="    from[k] = ownValid && ownCorner[static_cast<size_t>(t[k])] ? own : source.points + t[k] * C;",
          replacement="    from[k] = source.points + t[k] * C;",
          bug="a cone's apex is read as its averaged normal (the axis) and tilts its faces"),
     dict(id="sharpen-corners-averaged", file=K + "Sharpen/MeshSharpening.cxx",

@@ -98,12 +98,17 @@ bool SampleSurface(const TriangleMesh& mesh, const SurfacePoint& q, Sampling sam
   // where each corner's value is read: its point's, or the triangle's own.
   double weight[3];
   const double* from[3];
-  const double* own = source.cells ? source.cells + q.triangle * C : nullptr;
-  const bool ownValid = own && source.ownCorner && AllFinite(own, C);
+  // The triangle's own value is checked only when one of its corners asks for it.
+  const unsigned char* ownCorner = source.cells ? source.ownCorner : nullptr;
+  const bool anyOwn = ownCorner &&
+    (ownCorner[static_cast<size_t>(t[0])] || ownCorner[static_cast<size_t>(t[1])] ||
+      ownCorner[static_cast<size_t>(t[2])]);
+  const double* own = anyOwn ? source.cells + q.triangle * C : nullptr;
+  const bool ownValid = own && AllFinite(own, C);
   for (int k = 0; k < 3; ++k)
   {
     weight[k] = q.barycentric[k] / total;
-    from[k] = ownValid && source.ownCorner[static_cast<size_t>(t[k])] ? own : source.points + t[k] * C;
+    from[k] = ownValid && ownCorner[static_cast<size_t>(t[k])] ? own : source.points + t[k] * C;
   }
   for (int c = 0; c < C; ++c)
   {

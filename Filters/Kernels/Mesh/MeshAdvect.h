@@ -44,9 +44,9 @@ struct MeshSource
 /**
  * Add the source's value at q to `acc` (C values). Linear: the barycentric
  * interpolation of the valid corners' point values (renormalised, clamped to
- * their range; at an ownCorner, the triangle's own value). Nearest: the triangle's own value for a cell signal, else the
- * value of the nearest valid corner. Returns false, adding nothing, when no
- * valid value is there.
+ * their range; at an ownCorner, the triangle's own value). Nearest: the
+ * triangle's own value for a cell signal, else the value of the nearest valid
+ * corner. Returns false, adding nothing, when no valid value is there.
  */
 bool SampleSurface(const TriangleMesh& mesh, const SurfacePoint& q, Sampling sampling,
   const MeshSource& source, double* acc);
