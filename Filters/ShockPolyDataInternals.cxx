@@ -277,14 +277,20 @@ bool BeginSurface(vtkInformationVector** inputVector, vtkMultiProcessController*
 {
   error.clear();
   input = AsSurface(vtkDataSet::GetData(inputVector[0]), error);
-  if (input)
+  if (!input)
+  {
+    // A filter that cannot start says why (e.g. its input failed to update, and left no data set).
+    const std::string reason = check ? check(nullptr) : std::string();
+    error = reason.empty() ? error : reason;
+  }
+  else
   {
     // Ids and coordinates first: no later step (nor any collective one) reads a broken piece.
     error = ValidateSurface(input);
-  }
-  if (input && error.empty() && check)
-  {
-    error = check(input);
+    if (error.empty() && check)
+    {
+      error = check(input);
+    }
   }
   // In parallel: every process agrees (on failure, parameters and arrays), then gets ghost cells (collective).
   return ShockParallel::PrepareSurfacePiece(controller, input, error, parameters,

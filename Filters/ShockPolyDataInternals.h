@@ -199,7 +199,9 @@ vtkSmartPointer<vtkPolyData> AsSurface(vtkDataSet* input, std::string& error);
  * The first steps of a surface filter's RequestData (both surface filters):
  * the input as a surface (AsSurface), the filter's own checks on it
  * (`check` returns an error message, or "" when the surface is usable; it is
- * not called without a surface, nor when ValidateSurface refuses it), then,
+ * not called when ValidateSurface refuses the surface, and called with
+ * nullptr when there is no surface: then it returns the filter's own reason
+ * not to start, if any, which wins over AsSurface's), then,
  * with a `controller`, the agreement of every process (ShockParallel::Agree
  * on the error, on `parameters` and `*selection`, the filtered array as
  * `check` chose it) and the piece's ghost layers, carrying the arrays

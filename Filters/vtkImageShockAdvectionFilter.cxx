@@ -389,18 +389,17 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
-  if (!input || !output)
-  {
-    vtkErrorMacro("Input and output must be vtkImageData."); // the same on every process
-    return 0;
-  }
-  // Checks first, then every process agrees (before the exchange, a collective step).
+  // Checks first, then every process agrees (before the exchange, a collective
+  // step). A process without an input image (its input failed to update)
+  // says so in the agreement.
   std::string notStarted;
   const bool ok = this->BeginExecution(&notStarted);
-  const bool empty = input->GetNumberOfPoints() == 0;
+  const bool empty = !input || input->GetNumberOfPoints() == 0;
   int association = -1;
   vtkDataArray* array = ok && !empty ? this->GetArrayToFilter(inputVector, association) : nullptr;
-  std::string error = !ok ? notStarted : (!empty && !array ? "no array to filter (see the message above)" : "");
+  std::string error = !ok ? notStarted
+    : !input || !output   ? "the input or the output is not image data"
+    : (!empty && !array ? "no array to filter (see the message above)" : "");
   std::string selection;
   if (array)
   {
@@ -412,7 +411,7 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
   {
     error = GradientPiecesError; // the same on every process, before the collective steps
   }
-  const std::string arrays = ShockParallel::ArraysFingerprintText(input);
+  const std::string arrays = input ? ShockParallel::ArraysFingerprintText(input) : std::string();
   if (!ShockParallel::Agree(controller, error, this->ParametersText(), arrays.empty() ? arrays : arrays + selection, error))
   {
     vtkErrorMacro(<< error);

@@ -247,6 +247,7 @@ protected:
   ~vtkImageShockAdvectionFilter() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  const char* PieceOutputType() const override { return "vtkImageData"; }
 
   /// A piece of a distributed image asks a source that cuts any extent for the piece with
   /// its halo (PieceFromSource), else for what is asked of it (the halo comes from the

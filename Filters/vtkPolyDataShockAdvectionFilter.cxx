@@ -127,6 +127,10 @@ int vtkPolyDataShockAdvectionFilter::RequestData(
     {
       return notStarted;
     }
+    if (!surface)
+    {
+      return "";
+    }
     array = surface->GetNumberOfPoints() > 0 ? this->GetArrayToFilter(inputVector, association) : nullptr;
     if (array)
     {

@@ -296,9 +296,9 @@ int vtkPolyDataShockSharpenFilter::RequestData(
   // The ghost rings carry the positions, and the active normals (recomputed for the output) only.
   ShockParallel::CarriedArrays carried{ false, {}, {} };
   auto wholeOrPieces = [&unknown, &carried, &notStarted, started](vtkPolyData* surface) -> std::string {
-    if (!started)
+    if (!started || !surface)
     {
-      return notStarted;
+      return started ? "" : notStarted;
     }
     for (auto* normals : { surface->GetPointData()->GetNormals(), surface->GetCellData()->GetNormals() })
     {

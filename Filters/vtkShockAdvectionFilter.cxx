@@ -1,5 +1,7 @@
 #include "vtkShockAdvectionFilter.h"
 
+#include "vtkDataObjectTypes.h"
+
 #include <sstream>
 
 #include "vtkCompositeDataIterator.h"
@@ -92,6 +94,13 @@ bool vtkShockAdvectionFilter::ContinuesAfterInformationFailure(bool updated)
   return this->InformationFailed;
 }
 
+bool vtkShockAdvectionFilter::ContinuesAfterDataObjectFailure(bool updated)
+{
+  // As in the information pass: the pieces are not known yet.
+  this->DataObjectFailed = !updated && this->Controller && this->Controller->GetNumberOfProcesses() > 1;
+  return this->DataObjectFailed;
+}
+
 vtkTypeBool vtkShockAdvectionFilter::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -101,6 +110,21 @@ vtkTypeBool vtkShockAdvectionFilter::ProcessRequest(
   if (auto* composite = vtkCompositeDataSet::SafeDownCast(inInfo ? inInfo->Get(vtkDataObject::DATA_OBJECT()) : nullptr))
   {
     this->CompositeInput = composite;
+  }
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()) && this->DataObjectFailed &&
+    !(inInfo && inInfo->Get(vtkDataObject::DATA_OBJECT())))
+  {
+    // The input has no data object on this process: the output of a data-set
+    // input, so that the pipeline reaches the data pass, where the filter
+    // tells the other processes (ExecutesAfterInputFailure).
+    vtkInformation* outInfo = outputVector->GetInformationObject(0);
+    vtkDataObject* output = outInfo->Get(vtkDataObject::DATA_OBJECT());
+    if (!output || !output->IsA(this->PieceOutputType()))
+    {
+      outInfo->Set(vtkDataObject::DATA_OBJECT(),
+        vtkSmartPointer<vtkDataObject>::Take(vtkDataObjectTypes::NewDataObject(this->PieceOutputType())));
+    }
+    return 1;
   }
   const vtkTypeBool result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))

@@ -288,6 +288,20 @@ public:
   /// Whether the input's last information pass failed on this process of a parallel run.
   bool InputInformationFailed() const { return this->InformationFailed; }
 
+  /**
+   * For the filters' executive: whether the input `updated` in the data-object
+   * pass being processed (e.g. a reader that cannot tell its output's type
+   * because its file is missing on one node). As ContinuesAfterInformationFailure:
+   * true when the filter may run in parallel, and the pipeline goes on without
+   * the input: its information is not asked in this pass
+   * (InputDataObjectFailed), and the information pass goes on as after
+   * a failed one. False in serial or without such a controller.
+   */
+  bool ContinuesAfterDataObjectFailure(bool updated);
+
+  /// Whether the input's last data-object pass failed on this process of a parallel run.
+  bool InputDataObjectFailed() const { return this->DataObjectFailed; }
+
 protected:
   vtkShockAdvectionFilter();
   ~vtkShockAdvectionFilter() override;
@@ -306,6 +320,9 @@ protected:
    * processes of a parallel execution.
    */
   bool BeginExecution(std::string* reason = nullptr);
+
+  /// The output type of a data-set input: vtkPolyData (the image filter: vtkImageData).
+  virtual const char* PieceOutputType() const { return "vtkPolyData"; }
 
   /// Creates a vtkShockCompositeDataPipeline.
   vtkExecutive* CreateDefaultExecutive() override;
@@ -402,6 +419,8 @@ protected:
   bool InputFailed = false;
   /// The input's information failed in a parallel run (ContinuesAfterInformationFailure).
   bool InformationFailed = false;
+  /// The input's data object failed in a parallel run (ContinuesAfterDataObjectFailure).
+  bool DataObjectFailed = false;
   /// The composite input last seen (the pipeline then hands RequestData its blocks one by one).
   vtkWeakPointer<vtkCompositeDataSet> CompositeInput;
 

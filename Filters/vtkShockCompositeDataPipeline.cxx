@@ -1,6 +1,8 @@
 #include "vtkShockCompositeDataPipeline.h"
 
+#include "vtkDataObject.h"
 #include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkShockAdvectionFilter.h"
@@ -22,9 +24,22 @@ vtkShockAdvectionFilter* FilterOf(vtkExecutive* executive)
 bool vtkShockCompositeDataPipeline::SkipsUpstream(vtkExecutive* executive, vtkInformation* request, int& result)
 {
   vtkShockAdvectionFilter* filter = FilterOf(executive);
-  if (!filter || !request || !filter->InputInformationFailed() ||
-    request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()) ||
-    request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
+  if (!filter || !request || request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()))
+  {
+    return false; // a new data-object pass asks the input anew
+  }
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
+  {
+    if (!filter->InputDataObjectFailed())
+    {
+      return false;
+    }
+    // The input has no data object of this pass: its information is not
+    // asked either; ForwardedUpstream goes on as after a failed information pass.
+    result = 0;
+    return true;
+  }
+  if (!filter->InputInformationFailed())
   {
     return false;
   }
@@ -41,6 +56,10 @@ int vtkShockCompositeDataPipeline::ForwardedUpstream(vtkExecutive* executive, vt
   if (!filter || !request)
   {
     return forwarded;
+  }
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()))
+  {
+    return filter->ContinuesAfterDataObjectFailure(forwarded != 0) ? 1 : forwarded;
   }
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
   {
@@ -61,6 +80,48 @@ int vtkShockCompositeDataPipeline::ForwardUpstream(vtkInformation* request)
     result = this->Superclass::ForwardUpstream(request);
   }
   return ForwardedUpstream(this, request, result);
+}
+
+bool vtkShockCompositeDataPipeline::InputMissingAfterFailure(
+  vtkExecutive* executive, int port, int index, vtkInformationVector** inInfoVec)
+{
+  vtkShockAdvectionFilter* filter = FilterOf(executive);
+  if (!filter || !filter->InputDataObjectFailed() || !inInfoVec || !inInfoVec[port])
+  {
+    return false;
+  }
+  vtkInformation* info = inInfoVec[port]->GetInformationObject(index);
+  return info && !info->Get(vtkDataObject::DATA_OBJECT());
+}
+
+bool vtkShockCompositeDataPipeline::SkipsDefaultInformation(
+  vtkExecutive* executive, vtkInformation* request, int direction)
+{
+  vtkShockAdvectionFilter* filter = FilterOf(executive);
+  return filter && request && filter->InputDataObjectFailed() && direction == vtkExecutive::RequestUpstream &&
+    request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT());
+}
+
+void vtkShockCompositeDataPipeline::CopyDefaultInformation(
+  vtkInformation* request, int direction, vtkInformationVector** inInfoVec, vtkInformationVector* outInfoVec)
+{
+  if (!SkipsDefaultInformation(this, request, direction))
+  {
+    this->Superclass::CopyDefaultInformation(request, direction, inInfoVec, outInfoVec);
+  }
+}
+
+int vtkShockCompositeDataPipeline::InputTypeIsValid(int port, int index, vtkInformationVector** inInfoVec)
+{
+  return InputMissingAfterFailure(this, port, index, inInfoVec) ? 1
+                                                                 : this->Superclass::InputTypeIsValid(port, index, inInfoVec);
+}
+
+int vtkShockCompositeDataPipeline::InputFieldsAreValid(int port, int index, vtkInformationVector** inInfoVec)
+{
+  return InputMissingAfterFailure(this, port, index, inInfoVec)
+    ? 1
+    : this->Superclass::InputFieldsAreValid(port, index, inInfoVec);
 }
 
 void vtkShockCompositeDataPipeline::PrintSelf(ostream& os, vtkIndent indent)

@@ -66,11 +66,32 @@ public:
    */
   static bool SkipsUpstream(vtkExecutive* executive, vtkInformation* request, int& result);
 
+  /**
+   * Whether the input `index` of `port` of an executive of a shock filter
+   * has no data object because its data-object pass failed in a parallel run
+   * (vtkShockAdvectionFilter::ContinuesAfterDataObjectFailure): the
+   * executive then takes that missing input as valid, so that the filter
+   * reaches its data pass and stops every process.
+   */
+  static bool InputMissingAfterFailure(vtkExecutive* executive, int port, int index, vtkInformationVector** inInfoVec);
+
+  /**
+   * Whether an executive of a shock filter must not copy `request`'s default
+   * information in `direction`: the update extent of a request to an input
+   * whose data-object pass failed in a parallel run (it has no data object to
+   * hold it, and is asked nothing in this pass).
+   */
+  static bool SkipsDefaultInformation(vtkExecutive* executive, vtkInformation* request, int direction);
+
 protected:
   vtkShockCompositeDataPipeline();
   ~vtkShockCompositeDataPipeline() override;
 
   int ForwardUpstream(vtkInformation* request) override;
+  void CopyDefaultInformation(vtkInformation* request, int direction, vtkInformationVector** inInfoVec,
+    vtkInformationVector* outInfoVec) override;
+  int InputTypeIsValid(int port, int index, vtkInformationVector** inInfoVec) override;
+  int InputFieldsAreValid(int port, int index, vtkInformationVector** inInfoVec) override;
 
 private:
   vtkShockCompositeDataPipeline(const vtkShockCompositeDataPipeline&) = delete;

@@ -33,6 +33,12 @@ protected:
 
   /// vtkPVCompositeDataPipeline's, then vtkShockCompositeDataPipeline::ForwardedUpstream.
   int ForwardUpstream(vtkInformation* request) override;
+  /// vtkPVCompositeDataPipeline's, unless vtkShockCompositeDataPipeline::SkipsDefaultInformation.
+  void CopyDefaultInformation(vtkInformation* request, int direction, vtkInformationVector** inInfoVec,
+    vtkInformationVector* outInfoVec) override;
+  /// vtkPVCompositeDataPipeline's, unless vtkShockCompositeDataPipeline::InputMissingAfterFailure.
+  int InputTypeIsValid(int port, int index, vtkInformationVector** inInfoVec) override;
+  int InputFieldsAreValid(int port, int index, vtkInformationVector** inInfoVec) override;
 
 private:
   vtkPVShockCompositeDataPipeline(const vtkPVShockCompositeDataPipeline&) = delete;

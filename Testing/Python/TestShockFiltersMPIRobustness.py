@@ -57,6 +57,10 @@ process 0 prints a MEASURE line with what each process did and checks:
   information pass (RequestInformation returns 0 there, as a reader whose
   file is missing on one node): the same checks, through the VTK classes'
   executive and through ParaView's (the VTK object of a plugin proxy).
+- the same in its data-object pass (RequestDataObject returns 0 there, as a
+  reader that cannot tell its output's type): the same checks, both
+  executives, and the failing filter, which has no output object there, is
+  asked for nothing more (no information, update extent or data).
 - image Domain Gradients on pieces: vtkRTAnalyticSource -> the image filter
   with Domain Gradients, the source cutting its pieces: every process fails
   with the same one-line error (the solve needs the whole image), empty output.
@@ -674,20 +678,39 @@ def update_piece(algorithm):
 class FailingOn(VTKPythonAlgorithmBase):
     """A pass-through filter of `data_type` that fails (returns 0, as a VTK
     filter does on a piece it cannot handle) on process `bad`: in its
-    RequestData (stage "data"), or in its RequestInformation (stage
-    "information", as a reader whose file is missing on one node)."""
+    RequestData (stage "data"), in its RequestInformation (stage
+    "information", as a reader whose file is missing on one node), or in its
+    RequestDataObject (stage "dataobject", as a reader that cannot tell its
+    output's type there)."""
 
     def __init__(self, data_type, bad, stage="data"):
         VTKPythonAlgorithmBase.__init__(self, nInputPorts=1, inputType=data_type, nOutputPorts=1,
                                         outputType=data_type)
         self.bad = bad
         self.stage = stage
+        # The passes it was asked for after its data object failed (a reader
+        # without an output object must be asked nothing more).
+        self.asked_without_output = []
+
+    def failed_object(self, what):
+        if self.stage == "dataobject" and RANK == self.bad:
+            self.asked_without_output.append(what)
+            return True
+        return False
+
+    def RequestDataObject(self, request, inInfo, outInfo):
+        return 0 if self.stage == "dataobject" and RANK == self.bad else 1
 
     def RequestInformation(self, request, inInfo, outInfo):
+        if self.failed_object("information"):
+            return 0
         return 0 if self.stage == "information" and RANK == self.bad else 1
 
+    def RequestUpdateExtent(self, request, inInfo, outInfo):
+        return 0 if self.failed_object("update extent") else 1
+
     def RequestData(self, request, inInfo, outInfo):
-        if self.stage == "data" and RANK == self.bad:
+        if self.failed_object("data") or (self.stage == "data" and RANK == self.bad):
             return 0
         self.GetOutputData(outInfo, 0).ShallowCopy(self.GetInputData(inInfo, 0, 0))
         return 1
@@ -727,6 +750,7 @@ def upstream_failure_case(kind, bad, stage="data"):
         whole, _ = pipeline(True)
         record["whole_rc"] = whole.UpdatePiece(0, 1, 0)
         record["whole_errors"] = messages.take()
+        record["asked_without_output"] = failing.asked_without_output
         return record
 
     def judge(records):
@@ -745,15 +769,18 @@ def upstream_failure_case(kind, bad, stage="data"):
                   for r in records),
               "%s: with the controller but no pieces, as in serial: %s"
               % (label, [(r.get("whole_rc"), r.get("whole_errors")) for r in records]))
+        check(all(r.get("asked_without_output") == [] for r in records),
+              "%s: an input without its data object is asked nothing more: %s"
+              % (label, [r.get("asked_without_output") for r in records]))
 
     return local, judge
 
 
-def paraview_executive_case(kind, bad):
-    """The same failure in the information pass, through ParaView's executive
-    of the shock filters: the VTK object of a proxy of the plugin (pvbatch
-    --symmetric: every process holds its own)."""
-    label = "input fails upstream (information, ParaView's executive) %s bad=%d np=%d" % (kind, bad, PROCESSES)
+def paraview_executive_case(kind, bad, stage="information"):
+    """The same failure in the information (or data-object) pass, through
+    ParaView's executive of the shock filters: the VTK object of a proxy of
+    the plugin (pvbatch --symmetric: every process holds its own)."""
+    label = "input fails upstream (%s, ParaView's executive) %s bad=%d np=%d" % (stage, kind, bad, PROCESSES)
 
     def local():
         from paraview import simple
@@ -763,15 +790,16 @@ def paraview_executive_case(kind, bad):
             proxy = names["ImageShockAdvection"](Input=simple.Wavelet())
             source = vtkRTAnalyticSource()
             source.SetWholeExtent(0, 39, 0, 29, 0, 9)
-            failing = FailingOn("vtkImageData", bad, "information")
+            failing = FailingOn("vtkImageData", bad, stage)
             failing.SetInputConnection(source.GetOutputPort())
         else:
             proxy = names["SurfaceShockSharpen"](Input=simple.Sphere())
-            failing = FailingOn("vtkPolyData", bad, "information")
+            failing = FailingOn("vtkPolyData", bad, stage)
             failing.SetInputDataObject(0, piece_mesh())
         algorithm = proxy.GetClientSideObject()
         algorithm.SetInputConnection(failing.GetOutputPort())
         record = update_piece(algorithm)
+        record["asked_without_output"] = failing.asked_without_output
         simple.Delete(proxy)
         return record
 
@@ -783,6 +811,9 @@ def paraview_executive_case(kind, bad):
         check_agreed_failure(label, records, lambda t: "input failed to update" in t,
                              "that its input failed to update", bad=bad, one_line=True)
         check(all(r.get("points") == 0 for r in records), "%s: a failed execution leaves empty outputs" % label)
+        check(all(r.get("asked_without_output") == [] for r in records),
+              "%s: an input without its data object is asked nothing more: %s"
+              % (label, [r.get("asked_without_output") for r in records]))
 
     return local, judge
 
@@ -965,9 +996,13 @@ def all_cases():
             cases.append(("upstream_failure.%s.bad%d" % (kind, bad), upstream_failure_case(kind, bad)))
             cases.append(("upstream_information_failure.%s.bad%d" % (kind, bad),
                           upstream_failure_case(kind, bad, "information")))
+            cases.append(("upstream_dataobject_failure.%s.bad%d" % (kind, bad),
+                          upstream_failure_case(kind, bad, "dataobject")))
         for kind in ("sharpen", "image"):
             cases.append(("upstream_information_failure.paraview.%s.bad%d" % (kind, bad),
                           paraview_executive_case(kind, bad)))
+            cases.append(("upstream_dataobject_failure.paraview.%s.bad%d" % (kind, bad),
+                          paraview_executive_case(kind, bad, "dataobject")))
     # Those that may hang today last: a hang ends the whole run.
     for bad in bad_ranks():
         cases.append(("iterations.bad%d" % bad, iterations_case(bad)))
