@@ -23,8 +23,13 @@
  * the pieces are not known yet in that pass) the pipeline goes on to the data
  * pass without asking that input anything more until its information is asked
  * again (SkipsUpstream), and the filter stops every process as above, or,
- * when the data request is not for pieces, is not executed. In serial (no
- * such controller), nothing differs from vtkCompositeDataPipeline.
+ * when the data request is not for pieces, is not executed. A filter upstream
+ * that fails in the data-object pass on one process (a reader that cannot
+ * tell its output's type there) is treated alike: its information is not
+ * asked either, the missing input is taken as valid
+ * (InputMissingAfterFailure), no update extent is copied to it
+ * (SkipsDefaultInformation), and the filter makes its own output. In serial
+ * (no such controller), nothing differs from vtkCompositeDataPipeline.
  *
  * The shock filters create it as their default executive. ParaView replaces a
  * filter's executive by vtkPVCompositeDataPipeline unless the proxy names
@@ -61,8 +66,9 @@ public:
    * Whether an executive of a shock filter must not forward `request`
    * upstream: after the input's information failed in a parallel run, the
    * input is asked for no update extent and no data until its information is
-   * asked again. Then `result` receives what forwarding gives instead (0 for
-   * a data request, to be passed to ForwardedUpstream; else 1).
+   * asked again; after its data object failed, not for its information
+   * either. Then `result` receives what forwarding gives instead (0 for a
+   * data or information request, to be passed to ForwardedUpstream; else 1).
    */
   static bool SkipsUpstream(vtkExecutive* executive, vtkInformation* request, int& result);
 
