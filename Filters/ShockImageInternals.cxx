@@ -55,6 +55,35 @@ double AxisScale(vtkImageData* image, int a)
  * (a rotation or reflection of the axes, each scaled: the scales count as
  * spacing), else the message. A shear has no grid of the paper.
  */
+std::string GridText(vtkInformation* inInfo, vtkImageData* image)
+{
+  std::ostringstream text;
+  text.precision(12);
+  text << "whole extent";
+  if (inInfo && inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    const int* whole = inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+    for (int k = 0; k < 6; ++k)
+    {
+      text << ' ' << whole[k];
+    }
+  }
+  else
+  {
+    text << " unknown";
+  }
+  const double* origin = image->GetOrigin();
+  const double* spacing = image->GetSpacing();
+  text << ";origin " << origin[0] << ' ' << origin[1] << ' ' << origin[2] << ";spacing " << spacing[0] << ' '
+       << spacing[1] << ' ' << spacing[2] << ";direction";
+  const double* direction = image->GetDirectionMatrix()->GetData();
+  for (int k = 0; k < 9; ++k)
+  {
+    text << ' ' << direction[k];
+  }
+  return text.str();
+}
+
 std::string CheckDirection(vtkImageData* image)
 {
   const vtkMatrix3x3* d = image->GetDirectionMatrix();

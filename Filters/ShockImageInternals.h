@@ -29,6 +29,14 @@ double AxisScale(vtkImageData* image, int a);
 /// "" when the direction matrix has orthogonal, non-zero, finite columns, else the message.
 std::string CheckDirection(vtkImageData* image);
 
+/**
+ * The grid a piece of `image` belongs to, as "whole extent ...;origin
+ * ...;spacing ...;direction ...": the whole extent from `inInfo` (its
+ * WHOLE_EXTENT, "unknown" without one), the rest from the image (12
+ * significant digits). The pieces of one image have the same text.
+ */
+std::string GridText(vtkInformation* inInfo, vtkImageData* image);
+
 /// The blanking mark of samples: HIDDENCELL for cell data, HIDDENPOINT for point data.
 unsigned char HiddenMark(bool cellData);
 

@@ -300,18 +300,21 @@ int MoreLayers(vtkMultiProcessController* controller, bool aborted, int needed, 
 }
 
 bool Agree(vtkMultiProcessController* controller, const std::string& localError,
-  const std::string& parameters, const std::string& arrays, std::string& error)
+  const std::string& parameters, const std::string& arrays, std::string& error, const std::string& grid)
 {
   // One reduction: the first failing process, and whether the fingerprints of
-  // the parameters and of the arrays (processes with data only) are the same everywhere.
+  // the parameters, of the arrays (processes with data only) and of the grid
+  // (when given) are the same everywhere.
   const int me = controller->GetLocalProcessId();
   const int processes = controller->GetNumberOfProcesses();
   const vtkIdType none = std::numeric_limits<vtkIdType>::min() / 2;
   const vtkIdType p = Fingerprint(parameters);
   const vtkIdType a = arrays.empty() ? none : Fingerprint(arrays);
-  const vtkIdType local[5] = { localError.empty() ? 0 : processes - me, p, -p, a, a == none ? none : -a };
-  vtkIdType global[5];
-  controller->AllReduce(local, global, 5, vtkCommunicator::MAX_OP);
+  const vtkIdType g = grid.empty() ? none : Fingerprint(grid);
+  const vtkIdType local[7] = { localError.empty() ? 0 : processes - me, p, -p, a, a == none ? none : -a, g,
+    g == none ? none : -g };
+  vtkIdType global[7];
+  controller->AllReduce(local, global, 7, vtkCommunicator::MAX_OP);
   if (global[0] > 0)
   {
     const int first = static_cast<int>(processes - global[0]);
@@ -321,20 +324,18 @@ bool Agree(vtkMultiProcessController* controller, const std::string& localError,
   }
   const bool sameParameters = global[1] == -global[2];
   const bool sameArrays = global[3] == none || global[3] == -global[4];
-  if (sameParameters && sameArrays)
+  const bool sameGrid = global[5] == none || global[5] == -global[6];
+  if (sameParameters && sameArrays && sameGrid)
   {
     return true;
   }
   // Name the first process that differs from the reference (process 0's
-  // parameters; the arrays of the first process with data) and what differs.
-  const std::string& mineText = sameParameters ? arrays : parameters;
-  const vtkIdType hasData = arrays.empty() ? processes : me;
+  // parameters; the arrays or grid of the first process that has them) and what differs.
+  const char* what = !sameParameters ? "filter's parameters" : !sameArrays ? "filter's arrays" : "image's grid";
+  const std::string& mineText = !sameParameters ? parameters : !sameArrays ? arrays : grid;
+  const vtkIdType hasData = mineText.empty() ? processes : me;
   vtkIdType reference = 0;
-  if (!sameParameters)
-  {
-    reference = 0;
-  }
-  else
+  if (sameParameters)
   {
     controller->AllReduce(&hasData, &reference, 1, vtkCommunicator::MIN_OP);
   }
@@ -349,10 +350,11 @@ bool Agree(vtkMultiProcessController* controller, const std::string& localError,
   const std::string detail = BroadcastText(controller,
     "process " + std::to_string(me) + " has " + ours + " where process " + std::to_string(reference) + " has " + theirs,
     static_cast<int>(firstDiffering));
-  error = std::string("The processes disagree on the filter's ") +
-    (sameParameters ? "arrays" : "parameters") + ": " + detail +
-    (sameParameters ? "; every piece must hold the same point and cell arrays (names, types, components) and filter the same one."
-                    : "; every process must run the filter with the same parameters.");
+  const std::string why = !sameParameters
+    ? "; every process must run the filter with the same parameters."
+    : !sameArrays ? "; every piece must hold the same point and cell arrays (names, types, components) and filter the same one."
+                  : "; the pieces must be pieces of one image (the same whole extent, origin, spacing and direction).";
+  error = std::string("The processes disagree on the ") + what + ": " + detail + why;
   return false;
 }
 

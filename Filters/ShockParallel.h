@@ -223,10 +223,13 @@ int MoreLayers(vtkMultiProcessController* controller, bool aborted, int needed, 
  * parameters and the array it filters) or `arrays` (ArraysFingerprintText of
  * the piece; "" for an empty piece, which is not compared) differ. Every
  * process then gets the same one-line `error`, naming the process and what
- * is wrong or differs.
+ * is wrong or differs. `grid` (an image's GridText; "" for a surface, not
+ * compared) is compared in the same reduction: pieces of images with
+ * different whole extents, origins, spacings or directions do not fit together.
  */
 bool Agree(vtkMultiProcessController* controller, const std::string& localError,
-  const std::string& parameters, const std::string& arrays, std::string& error);
+  const std::string& parameters, const std::string& arrays, std::string& error,
+  const std::string& grid = std::string());
 
 /**
  * The point and cell arrays of a piece as a "name (type, components);..."

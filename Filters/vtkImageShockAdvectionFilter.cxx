@@ -412,7 +412,10 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
     error = GradientPiecesError; // the same on every process, before the collective steps
   }
   const std::string arrays = input ? ShockParallel::ArraysFingerprintText(input) : std::string();
-  if (!ShockParallel::Agree(controller, error, this->ParametersText(), arrays.empty() ? arrays : arrays + selection, error))
+  // The pieces fit together only as pieces of one grid (the halo exchange assumes it).
+  const std::string grid = input ? GridText(inputVector[0]->GetInformationObject(0), input) : std::string();
+  if (!ShockParallel::Agree(
+        controller, error, this->ParametersText(), arrays.empty() ? arrays : arrays + selection, error, grid))
   {
     vtkErrorMacro(<< error);
     return 0;

@@ -61,6 +61,11 @@ process 0 prints a MEASURE line with what each process did and checks:
   reader that cannot tell its output's type): the same checks, both
   executives, and the failing filter, which has no output object there, is
   asked for nothing more (no information, update extent or data).
+- image grid differs: vtkRTAnalyticSource's pieces, the bad process's image
+  with another whole extent, spacing or origin: every process fails with the
+  same one-line error naming the image's grid and what differs (before, the
+  pieces were filtered as if they fitted, and samples were owned by no
+  process); the same pipeline on one grid then runs everywhere.
 - image Domain Gradients on pieces: vtkRTAnalyticSource -> the image filter
   with Domain Gradients, the source cutting its pieces: every process fails
   with the same one-line error (the solve needs the whole image), empty output.
@@ -818,6 +823,52 @@ def paraview_executive_case(kind, bad, stage="information"):
     return local, judge
 
 
+def image_grid_case(bad, what):
+    """The image filter on vtkRTAnalyticSource's pieces, the bad process's
+    image differing in its whole extent, spacing or origin (its file is
+    another version on that node): the pieces do not fit together, and every
+    process refuses them with the same one-line error naming what differs."""
+    label = "image grid differs (%s) bad=%d np=%d" % (what, bad, PROCESSES)
+
+    def pipeline(differs):
+        from vtkmodules.vtkImagingCore import vtkImageChangeInformation
+        source = vtkRTAnalyticSource()
+        source.SetWholeExtent(0, 49 if (differs and what == "whole_extent") else 39, 0, 29, 0, 9)
+        change = vtkImageChangeInformation()
+        change.SetInputConnection(source.GetOutputPort())
+        if differs and what == "spacing":
+            change.SetOutputSpacing(1.0, 1.0, 1.5)
+        if differs and what == "origin":
+            change.SetOriginTranslation(0.25, 0.0, 0.0)
+        algorithm = vtkImageShockAdvectionFilter()
+        algorithm.SetController(controller)
+        algorithm.SetNumberOfThreads(1)
+        algorithm.SetInputConnection(change.GetOutputPort())
+        return algorithm
+
+    def local():
+        record = update_piece(pipeline(RANK == bad))
+        # The same pipeline with the same grid everywhere runs.
+        same = pipeline(False)
+        record["same_rc"] = same.UpdatePiece(RANK, PROCESSES, 0)
+        record["same_errors"] = messages.take()
+        record["same_points"] = same.GetOutputDataObject(0).GetNumberOfPoints()
+        return record
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        word = {"whole_extent": "whole extent", "spacing": "spacing", "origin": "origin"}[what]
+        check_agreed_failure(label, records, lambda t: "image's grid" in t and word in t,
+                             "that the image's %s differs" % word, bad=bad, one_line=True)
+        check(all(r.get("points") == 0 for r in records), "%s: a failed execution leaves empty outputs" % label)
+        check(all(r.get("same_rc") == 1 and r.get("same_errors") == [] and r.get("same_points", 0) > 0
+                  for r in records),
+              "%s: the same pipeline on one grid runs everywhere: %s"
+              % (label, [(r.get("same_rc"), r.get("same_errors"), r.get("same_points")) for r in records]))
+
+    return local, judge
+
+
 def gradient_domain_case():
     label = "image Domain Gradients on pieces np=%d" % PROCESSES
 
@@ -991,6 +1042,9 @@ def all_cases():
         for what in ("components", "type"):
             cases.append(("array_%s.bad%d" % (what, bad), array_layout_case(bad, what)))
     cases.append(("gradient_domain", gradient_domain_case()))
+    for bad in bad_ranks():
+        for what in ("whole_extent", "spacing", "origin"):
+            cases.append(("image_grid.%s.bad%d" % (what, bad), image_grid_case(bad, what)))
     for bad in bad_ranks():
         for kind in ("advection", "sharpen", "image"):
             cases.append(("upstream_failure.%s.bad%d" % (kind, bad), upstream_failure_case(kind, bad)))
