@@ -84,6 +84,34 @@ std::string GridText(vtkInformation* inInfo, vtkImageData* image)
   return text.str();
 }
 
+std::string RepeatedPieceError(vtkMultiProcessController* controller, vtkInformation* outInfo)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  const int processes = controller->GetNumberOfProcesses();
+  int mine = outInfo && outInfo->Has(SDDP::UPDATE_PIECE_NUMBER()) ? outInfo->Get(SDDP::UPDATE_PIECE_NUMBER()) : 0;
+  std::vector<int> pieces(static_cast<size_t>(processes), 0);
+  controller->AllGather(&mine, pieces.data(), 1);
+  std::vector<int> firstAsking(static_cast<size_t>(processes), -1);
+  for (int p = 0; p < processes; ++p)
+  {
+    const int piece = pieces[static_cast<size_t>(p)];
+    if (piece < 0 || piece >= processes)
+    {
+      continue; // no such piece (PieceController: as many pieces as processes)
+    }
+    int& first = firstAsking[static_cast<size_t>(piece)];
+    if (first >= 0)
+    {
+      return "Process " + std::to_string(p) + " of " + std::to_string(processes) + " asks for piece " +
+        std::to_string(piece) + " of " + std::to_string(processes) + ", as process " + std::to_string(first) +
+        " does: each process must ask for a piece of its own (e.g. UpdatePiece(rank, number of processes, 0)), "
+        "or the pieces no process asks for are missing and the halos beside them wrong.";
+    }
+    first = p;
+  }
+  return "";
+}
+
 std::string CheckDirection(vtkImageData* image)
 {
   const vtkMatrix3x3* d = image->GetDirectionMatrix();

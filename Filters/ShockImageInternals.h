@@ -20,6 +20,7 @@
 class vtkDataArray;
 class vtkImageData;
 class vtkInformation;
+class vtkMultiProcessController;
 
 namespace ShockImageInternals
 {
@@ -36,6 +37,14 @@ std::string CheckDirection(vtkImageData* image);
  * significant digits). The pieces of one image have the same text.
  */
 std::string GridText(vtkInformation* inInfo, vtkImageData* image);
+
+/**
+ * "" when the processes of `controller` ask `outInfo` for pieces of their own
+ * (their UPDATE_PIECE_NUMBER differ), else the one-line message naming the
+ * first process that asks for a piece an earlier one asks for, the same on every process
+ * (collective: one gather).
+ */
+std::string RepeatedPieceError(vtkMultiProcessController* controller, vtkInformation* outInfo);
 
 /// The blanking mark of samples: HIDDENCELL for cell data, HIDDENPOINT for point data.
 unsigned char HiddenMark(bool cellData);

@@ -420,6 +420,14 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
     vtkErrorMacro(<< error);
     return 0;
   }
+  // Each process asks for a piece of its own: two that ask for the same one
+  // leave another piece to no process, and the halos on its side to no one.
+  error = RepeatedPieceError(controller, outputVector->GetInformationObject(0));
+  if (!error.empty())
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
   const bool cellData = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
   const bool hidden = array && AnyHidden(input, array, cellData);
   int whole[6];

@@ -66,6 +66,11 @@ process 0 prints a MEASURE line with what each process did and checks:
   same one-line error naming the image's grid and what differs (before, the
   pieces were filtered as if they fitted, and samples were owned by no
   process); the same pipeline on one grid then runs everywhere.
+- image piece asked twice: the bad process asks for the piece of the one
+  before it: every process fails with the same one-line error naming the bad
+  process (before, both filtered that piece with success, and the halos
+  beside the piece no one asked for were wrong: values 0.5 % of the range
+  off); each asking for its own piece, all then run.
 - image Domain Gradients on pieces: vtkRTAnalyticSource -> the image filter
   with Domain Gradients, the source cutting its pieces: every process fails
   with the same one-line error (the solve needs the whole image), empty output.
@@ -869,6 +874,52 @@ def image_grid_case(bad, what):
     return local, judge
 
 
+def repeated_piece_case(bad):
+    """The image filter on vtkRTAnalyticSource's pieces, the bad process asking
+    for the piece of the process before it (a script's UpdatePiece(0, N, 0)
+    on every process): no process would filter that piece's neighbour, and
+    the halos beside it would be wrong. Every process refuses with the same
+    one-line error naming the bad process; the same filters asking each for
+    its own piece then run."""
+    label = "image piece asked twice bad=%d np=%d" % (bad, PROCESSES)
+
+    def pipeline():
+        source = vtkRTAnalyticSource()
+        source.SetWholeExtent(0, 39, 0, 29, 0, 9)
+        algorithm = vtkImageShockAdvectionFilter()
+        algorithm.SetController(controller)
+        algorithm.SetNumberOfThreads(1)
+        algorithm.SetInputConnection(source.GetOutputPort())
+        return algorithm
+
+    def local():
+        algorithm = pipeline()
+        messages.take()
+        rc = algorithm.UpdatePiece(bad - 1 if RANK == bad else RANK, PROCESSES, 0)
+        output = algorithm.GetOutputDataObject(0)
+        record = {"rank": RANK, "rc": rc, "errors": messages.take(), "points": output.GetNumberOfPoints(),
+                  "cells": output.GetNumberOfCells(), "seconds": 0.0}
+        # A new pipeline on every process (VTK re-executes a failed filter
+        # only after a change, which must then be made on every process).
+        own = pipeline()
+        record["own_rc"] = own.UpdatePiece(RANK, PROCESSES, 0)
+        record["own_errors"] = messages.take()
+        record["own_points"] = own.GetOutputDataObject(0).GetNumberOfPoints()
+        return record
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        check_agreed_failure(label, records, lambda t: "asks for piece %d" % (bad - 1) in t,
+                             "that it asks for another process's piece", bad=bad, one_line=True)
+        check(all(r.get("points") == 0 for r in records), "%s: a failed execution leaves empty outputs" % label)
+        check(all(r.get("own_rc") == 1 and r.get("own_errors") == [] and r.get("own_points", 0) > 0
+                  for r in records),
+              "%s: each asking for its own piece, all run: %s"
+              % (label, [(r.get("own_rc"), r.get("own_errors"), r.get("own_points")) for r in records]))
+
+    return local, judge
+
+
 def gradient_domain_case():
     label = "image Domain Gradients on pieces np=%d" % PROCESSES
 
@@ -1045,6 +1096,7 @@ def all_cases():
     for bad in bad_ranks():
         for what in ("whole_extent", "spacing", "origin"):
             cases.append(("image_grid.%s.bad%d" % (what, bad), image_grid_case(bad, what)))
+        cases.append(("repeated_piece.bad%d" % bad, repeated_piece_case(bad)))
     for bad in bad_ranks():
         for kind in ("advection", "sharpen", "image"):
             cases.append(("upstream_failure.%s.bad%d" % (kind, bad), upstream_failure_case(kind, bad)))
