@@ -828,6 +828,15 @@ def paraview_executive_case(kind, bad, stage="information"):
     return local, judge
 
 
+def image_filter_on(port):
+    """Image Shock Advection of `port`'s pieces with the run's controller, 1 thread."""
+    algorithm = vtkImageShockAdvectionFilter()
+    algorithm.SetController(controller)
+    algorithm.SetNumberOfThreads(1)
+    algorithm.SetInputConnection(port)
+    return algorithm
+
+
 def image_grid_case(bad, what):
     """The image filter on vtkRTAnalyticSource's pieces, the bad process's
     image differing in its whole extent, spacing or origin (its file is
@@ -845,11 +854,7 @@ def image_grid_case(bad, what):
             change.SetOutputSpacing(1.0, 1.0, 1.5)
         if differs and what == "origin":
             change.SetOriginTranslation(0.25, 0.0, 0.0)
-        algorithm = vtkImageShockAdvectionFilter()
-        algorithm.SetController(controller)
-        algorithm.SetNumberOfThreads(1)
-        algorithm.SetInputConnection(change.GetOutputPort())
-        return algorithm
+        return image_filter_on(change.GetOutputPort())
 
     def local():
         record = update_piece(pipeline(RANK == bad))
@@ -886,11 +891,7 @@ def repeated_piece_case(bad):
     def pipeline():
         source = vtkRTAnalyticSource()
         source.SetWholeExtent(0, 39, 0, 29, 0, 9)
-        algorithm = vtkImageShockAdvectionFilter()
-        algorithm.SetController(controller)
-        algorithm.SetNumberOfThreads(1)
-        algorithm.SetInputConnection(source.GetOutputPort())
-        return algorithm
+        return image_filter_on(source.GetOutputPort())
 
     def local():
         algorithm = pipeline()
