@@ -50,11 +50,6 @@ double AxisScale(vtkImageData* image, int a)
     d->GetElement(2, a) * d->GetElement(2, a));
 }
 
-/**
- * "" when the direction matrix is finite with orthogonal, non-zero columns
- * (a rotation or reflection of the axes, each scaled: the scales count as
- * spacing), else the message. A shear has no grid of the paper.
- */
 std::string GridText(vtkInformation* inInfo, vtkImageData* image)
 {
   std::ostringstream text;
@@ -112,6 +107,11 @@ std::string RepeatedPieceError(vtkMultiProcessController* controller, vtkInforma
   return "";
 }
 
+/**
+ * "" when the direction matrix is finite with orthogonal, non-zero columns
+ * (a rotation or reflection of the axes, each scaled: the scales count as
+ * spacing), else the message. A shear has no grid of the paper.
+ */
 std::string CheckDirection(vtkImageData* image)
 {
   const vtkMatrix3x3* d = image->GetDirectionMatrix();
