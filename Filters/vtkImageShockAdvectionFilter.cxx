@@ -771,6 +771,24 @@ int vtkImageShockAdvectionFilter::RequestUpdateExtent(
       inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
       inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
     }
+    else if (outInfo->Has(SDDP::UPDATE_EXTENT()) && inInfo->Has(SDDP::WHOLE_EXTENT()))
+    {
+      // The request as it came, within the whole extent: after the whole
+      // extent shrank, a request left from before it may reach beyond.
+      int extent[6];
+      int whole[6];
+      outInfo->Get(SDDP::UPDATE_EXTENT(), extent);
+      inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+      for (int a = 0; a < 3; ++a)
+      {
+        if (extent[2 * a] <= extent[2 * a + 1])
+        {
+          extent[2 * a] = std::max(extent[2 * a], whole[2 * a]);
+          extent[2 * a + 1] = std::min(extent[2 * a + 1], whole[2 * a + 1]);
+        }
+      }
+      inInfo->Set(SDDP::UPDATE_EXTENT(), extent, 6);
+    }
     return 1;
   }
   if (UpdatePieces(outInfo) > 1)
@@ -817,6 +835,16 @@ bool vtkImageShockAdvectionFilter::PieceFromSource(
   if (outInfo->Has(SDDP::UPDATE_EXTENT()))
   {
     outInfo->Get(SDDP::UPDATE_EXTENT(), asked);
+    // Within the whole extent: after the whole extent shrank, a request left
+    // from before it may reach beyond (the pieces are cut from what exists).
+    for (int a = 0; a < 3; ++a)
+    {
+      if (asked[2 * a] <= asked[2 * a + 1])
+      {
+        asked[2 * a] = std::max(asked[2 * a], whole[2 * a]);
+        asked[2 * a + 1] = std::min(asked[2 * a + 1], whole[2 * a + 1]);
+      }
+    }
   }
   // Every process must take the same way (a reader may read collectively),
   // and every piece needs samples on each axis the image spans (one point

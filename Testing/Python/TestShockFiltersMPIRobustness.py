@@ -65,7 +65,8 @@ process 0 prints a MEASURE line with what each process did and checks:
   with another whole extent, spacing or origin: every process fails with the
   same one-line error naming the image's grid and what differs (before, the
   pieces were filtered as if they fitted, and samples were owned by no
-  process); the same pipeline on one grid then runs everywhere.
+  process); the bad process's grid mended and the change applied on every
+  process, the same filters run and their pieces tile the image.
 - image piece asked twice: the bad process asks for the piece of the one
   before it: every process fails with the same one-line error naming the bad
   process (before, both filtered that piece with success, and the halos
@@ -844,37 +845,48 @@ def image_grid_case(bad, what):
     process refuses them with the same one-line error naming what differs."""
     label = "image grid differs (%s) bad=%d np=%d" % (what, bad, PROCESSES)
 
-    def pipeline(differs):
+    def local():
         from vtkmodules.vtkImagingCore import vtkImageChangeInformation
         source = vtkRTAnalyticSource()
-        source.SetWholeExtent(0, 49 if (differs and what == "whole_extent") else 39, 0, 29, 0, 9)
         change = vtkImageChangeInformation()
         change.SetInputConnection(source.GetOutputPort())
-        if differs and what == "spacing":
-            change.SetOutputSpacing(1.0, 1.0, 1.5)
-        if differs and what == "origin":
-            change.SetOriginTranslation(0.25, 0.0, 0.0)
-        return image_filter_on(change.GetOutputPort())
 
-    def local():
-        record = update_piece(pipeline(RANK == bad))
-        # The same pipeline with the same grid everywhere runs.
-        same = pipeline(False)
-        record["same_rc"] = same.UpdatePiece(RANK, PROCESSES, 0)
+        def set_grid(differs):
+            source.SetWholeExtent(0, 49 if (differs and what.startswith("whole_extent")) else 39, 0, 29, 0, 9)
+            change.SetOutputSpacing(1.0, 1.0, 1.5 if (differs and what == "spacing") else 1.0)
+            change.SetOriginTranslation(0.25 if (differs and what == "origin") else 0.0, 0.0, 0.0)
+            change.Modified()  # on every process, as ParaView applies a change
+            source.Modified()
+
+        set_grid(RANK == bad)
+        # "whole_extent": the source itself (which reads each piece with its
+        # halo); the others through a filter (the halo is exchanged).
+        algorithm = image_filter_on((source if what == "whole_extent" else change).GetOutputPort())
+        record = update_piece(algorithm)
+        # The bad process's grid mended (a file replaced, then reloaded):
+        # the same filters run, each on its own piece of the one image.
+        set_grid(False)
+        record["same_rc"] = algorithm.UpdatePiece(RANK, PROCESSES, 0)
         record["same_errors"] = messages.take()
-        record["same_points"] = same.GetOutputDataObject(0).GetNumberOfPoints()
+        record["same_points"] = algorithm.GetOutputDataObject(0).GetNumberOfPoints()
+        record["same_extent"] = list(algorithm.GetOutputDataObject(0).GetExtent())
         return record
 
     def judge(records):
         print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
-        word = {"whole_extent": "whole extent", "spacing": "spacing", "origin": "origin"}[what]
+        word = "whole extent" if what.startswith("whole_extent") else what
         check_agreed_failure(label, records, lambda t: "image's grid" in t and word in t,
                              "that the image's %s differs" % word, bad=bad, one_line=True)
         check(all(r.get("points") == 0 for r in records), "%s: a failed execution leaves empty outputs" % label)
         check(all(r.get("same_rc") == 1 and r.get("same_errors") == [] and r.get("same_points", 0) > 0
                   for r in records),
-              "%s: the same pipeline on one grid runs everywhere: %s"
+              "%s: the grid mended, the same filters run everywhere: %s"
               % (label, [(r.get("same_rc"), r.get("same_errors"), r.get("same_points")) for r in records]))
+        # Their pieces lie in the one whole extent and, by cells, tile it.
+        extents = [r.get("same_extent", [0, -1] * 3) for r in records]
+        cells = sum(max(0, e[1] - e[0]) * max(0, e[3] - e[2]) * max(0, e[5] - e[4]) for e in extents)
+        check(all(e[0] >= 0 and e[1] <= 39 and e[3] <= 29 and e[5] <= 9 for e in extents) and cells == 39 * 29 * 9,
+              "%s: the mended run's pieces tile the 40 x 30 x 10 image: %s" % (label, extents))
 
     return local, judge
 
@@ -1095,7 +1107,7 @@ def all_cases():
             cases.append(("array_%s.bad%d" % (what, bad), array_layout_case(bad, what)))
     cases.append(("gradient_domain", gradient_domain_case()))
     for bad in bad_ranks():
-        for what in ("whole_extent", "spacing", "origin"):
+        for what in ("whole_extent", "whole_extent_filtered", "spacing", "origin"):
             cases.append(("image_grid.%s.bad%d" % (what, bad), image_grid_case(bad, what)))
         cases.append(("repeated_piece.bad%d" % bad, repeated_piece_case(bad)))
     for bad in bad_ranks():
