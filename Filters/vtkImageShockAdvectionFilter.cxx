@@ -397,8 +397,11 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
   const bool empty = !input || input->GetNumberOfPoints() == 0;
   int association = -1;
   vtkDataArray* array = ok && !empty ? this->GetArrayToFilter(inputVector, association) : nullptr;
+  vtkDataObject* given = vtkDataObject::GetData(inputVector[0]);
   std::string error = !ok ? notStarted
-    : !input || !output   ? "the input or the output is not image data"
+    : !input              ? std::string("the input is ") + (given ? std::string("a ") + given->GetClassName() : "missing") +
+      ", not image data"
+    : !output             ? "the output is not image data"
     : (!empty && !array ? "no array to filter (see the message above)" : "");
   std::string selection;
   if (array)

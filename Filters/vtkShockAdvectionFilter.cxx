@@ -4,6 +4,7 @@
 
 #include <sstream>
 
+#include "vtkAlgorithm.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
@@ -101,6 +102,33 @@ bool vtkShockAdvectionFilter::ContinuesAfterDataObjectFailure(bool updated)
   return this->DataObjectFailed;
 }
 
+bool vtkShockAdvectionFilter::ContinuesAfterInvalidInput() const
+{
+  return this->Controller && this->Controller->GetNumberOfProcesses() > 1;
+}
+
+namespace
+{
+/// Whether `input` is of a type the port takes (INPUT_REQUIRED_DATA_TYPE); a composite data set counts as taken.
+bool TakesType(vtkAlgorithm* algorithm, vtkDataObject* input)
+{
+  vtkInformation* port = algorithm->GetInputPortInformation(0);
+  if (!input || vtkCompositeDataSet::SafeDownCast(input) || !port ||
+    !port->Has(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE()))
+  {
+    return true;
+  }
+  for (int k = 0; k < port->Length(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE()); ++k)
+  {
+    if (input->IsA(port->Get(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), k)))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+}
+
 vtkTypeBool vtkShockAdvectionFilter::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -111,12 +139,14 @@ vtkTypeBool vtkShockAdvectionFilter::ProcessRequest(
   {
     this->CompositeInput = composite;
   }
-  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()) && this->DataObjectFailed &&
-    !(inInfo && inInfo->Get(vtkDataObject::DATA_OBJECT())))
+  vtkDataObject* given = inInfo ? inInfo->Get(vtkDataObject::DATA_OBJECT()) : nullptr;
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()) &&
+    ((this->DataObjectFailed && !given) || (given && this->ContinuesAfterInvalidInput() && !TakesType(this, given))))
   {
-    // The input has no data object on this process: the output of a data-set
-    // input, so that the pipeline reaches the data pass, where the filter
-    // tells the other processes (ExecutesAfterInputFailure).
+    // The input has no data object on this process, or one of a type the
+    // filter does not take: the output of a data-set input, so that the
+    // pipeline reaches the data pass, where the filter tells the other
+    // processes (ExecutesAfterInputFailure; the input's type).
     vtkInformation* outInfo = outputVector->GetInformationObject(0);
     vtkDataObject* output = outInfo->Get(vtkDataObject::DATA_OBJECT());
     if (!output || !output->IsA(this->PieceOutputType()))

@@ -302,6 +302,16 @@ public:
   /// Whether the input's last data-object pass failed on this process of a parallel run.
   bool InputDataObjectFailed() const { return this->DataObjectFailed; }
 
+  /**
+   * For the filters' executive: whether an input VTK finds invalid (of a
+   * type the filter does not take) is let through, because the filter may run
+   * in parallel (its Controller has more than one process) and the other
+   * processes would wait for it: RequestData then stops every process with
+   * the same one-line error naming the input's type. False in serial or
+   * without such a controller: VTK refuses the input, as for any filter.
+   */
+  bool ContinuesAfterInvalidInput() const;
+
 protected:
   vtkShockAdvectionFilter();
   ~vtkShockAdvectionFilter() override;

@@ -111,17 +111,24 @@ void vtkShockCompositeDataPipeline::CopyDefaultInformation(
   }
 }
 
+int vtkShockCompositeDataPipeline::ValidatedInput(vtkExecutive* executive, int valid)
+{
+  vtkShockAdvectionFilter* filter = FilterOf(executive);
+  return !valid && filter && filter->ContinuesAfterInvalidInput() ? 1 : valid;
+}
+
 int vtkShockCompositeDataPipeline::InputTypeIsValid(int port, int index, vtkInformationVector** inInfoVec)
 {
-  return InputMissingAfterFailure(this, port, index, inInfoVec) ? 1
-                                                                 : this->Superclass::InputTypeIsValid(port, index, inInfoVec);
+  return InputMissingAfterFailure(this, port, index, inInfoVec)
+    ? 1
+    : ValidatedInput(this, this->Superclass::InputTypeIsValid(port, index, inInfoVec));
 }
 
 int vtkShockCompositeDataPipeline::InputFieldsAreValid(int port, int index, vtkInformationVector** inInfoVec)
 {
   return InputMissingAfterFailure(this, port, index, inInfoVec)
     ? 1
-    : this->Superclass::InputFieldsAreValid(port, index, inInfoVec);
+    : ValidatedInput(this, this->Superclass::InputFieldsAreValid(port, index, inInfoVec));
 }
 
 void vtkShockCompositeDataPipeline::PrintSelf(ostream& os, vtkIndent indent)

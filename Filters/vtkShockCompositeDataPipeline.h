@@ -82,6 +82,14 @@ public:
   static bool InputMissingAfterFailure(vtkExecutive* executive, int port, int index, vtkInformationVector** inInfoVec);
 
   /**
+   * What an executive of a shock filter returns from InputTypeIsValid and
+   * InputFieldsAreValid: `valid`, except for an invalid input while the
+   * filter may run in parallel (vtkShockAdvectionFilter::ContinuesAfterInvalidInput):
+   * then 1, so that the filter tells the other processes instead of stopping alone.
+   */
+  static int ValidatedInput(vtkExecutive* executive, int valid);
+
+  /**
    * Whether an executive of a shock filter must not copy `request`'s default
    * information in `direction`: the update extent of a request to an input
    * whose data-object pass failed in a parallel run (it has no data object to

@@ -32,14 +32,15 @@ int vtkPVShockCompositeDataPipeline::InputTypeIsValid(int port, int index, vtkIn
 {
   return vtkShockCompositeDataPipeline::InputMissingAfterFailure(this, port, index, inInfoVec)
     ? 1
-    : this->Superclass::InputTypeIsValid(port, index, inInfoVec);
+    : vtkShockCompositeDataPipeline::ValidatedInput(this, this->Superclass::InputTypeIsValid(port, index, inInfoVec));
 }
 
 int vtkPVShockCompositeDataPipeline::InputFieldsAreValid(int port, int index, vtkInformationVector** inInfoVec)
 {
   return vtkShockCompositeDataPipeline::InputMissingAfterFailure(this, port, index, inInfoVec)
     ? 1
-    : this->Superclass::InputFieldsAreValid(port, index, inInfoVec);
+    : vtkShockCompositeDataPipeline::ValidatedInput(
+        this, this->Superclass::InputFieldsAreValid(port, index, inInfoVec));
 }
 
 void vtkPVShockCompositeDataPipeline::PrintSelf(ostream& os, vtkIndent indent)

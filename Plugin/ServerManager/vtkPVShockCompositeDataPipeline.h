@@ -36,7 +36,8 @@ protected:
   /// vtkPVCompositeDataPipeline's, unless vtkShockCompositeDataPipeline::SkipsDefaultInformation.
   void CopyDefaultInformation(vtkInformation* request, int direction, vtkInformationVector** inInfoVec,
     vtkInformationVector* outInfoVec) override;
-  /// vtkPVCompositeDataPipeline's, unless vtkShockCompositeDataPipeline::InputMissingAfterFailure.
+  /// vtkPVCompositeDataPipeline's, unless vtkShockCompositeDataPipeline::InputMissingAfterFailure,
+  /// through vtkShockCompositeDataPipeline::ValidatedInput.
   int InputTypeIsValid(int port, int index, vtkInformationVector** inInfoVec) override;
   int InputFieldsAreValid(int port, int index, vtkInformationVector** inInfoVec) override;
 

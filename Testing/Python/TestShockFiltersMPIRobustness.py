@@ -72,6 +72,12 @@ process 0 prints a MEASURE line with what each process did and checks:
   process (before, both filtered that piece with success, and the halos
   beside the piece no one asked for were wrong: values 0.5 % of the range
   off); each asking for its own piece, all then run.
+- input of another type: a vtkImageData before a surface filter, a
+  vtkPolyData before the image filter, on the bad process: VTK refused it
+  there alone and the other processes hung; now every process stops with
+  the same one-line error naming the type (the last error on the bad
+  process, after VTK's own); without a controller VTK refuses it on the bad
+  process only.
 - image Domain Gradients on pieces: vtkRTAnalyticSource -> the image filter
   with Domain Gradients, the source cutting its pieces: every process fails
   with the same one-line error (the solve needs the whole image), empty output.
@@ -933,6 +939,59 @@ def repeated_piece_case(bad):
     return local, judge
 
 
+def wrong_type_case(kind, bad):
+    """The bad process's input is of a type the filter does not take (a
+    vtkImageData before a surface filter, a vtkPolyData before the image
+    filter): VTK refuses it on that process alone, and the others waited for
+    it for ever. Every process now stops with the same one-line error naming
+    the type, after VTK's own errors on the bad process; without a
+    controller VTK refuses it there and the others run."""
+    label = "input of another type %s bad=%d np=%d" % (kind, bad, PROCESSES)
+    wrong = "vtkPolyData" if kind == "image" else "vtkImageData"
+
+    def pipeline(parallel):
+        algorithm = vtkImageShockAdvectionFilter() if kind == "image" else FILTERS[kind]()
+        algorithm.SetController(controller if parallel else None)
+        algorithm.SetNumberOfThreads(1)
+        if kind == "image" and RANK == bad:
+            algorithm.SetInputDataObject(0, piece_mesh())
+        elif kind == "image" or RANK == bad:
+            source = vtkRTAnalyticSource()
+            source.SetWholeExtent(0, 39, 0, 29, 0, 9)
+            algorithm.SetInputConnection(source.GetOutputPort())
+        else:
+            algorithm.SetInputDataObject(0, piece_mesh())
+        return algorithm
+
+    def local():
+        algorithm = pipeline(True)
+        messages.take()
+        rc = algorithm.UpdatePiece(RANK, PROCESSES, 0)
+        output = algorithm.GetOutputDataObject(0)
+        errors = messages.take()
+        record = {"rank": RANK, "rc": rc, "all_errors": errors, "errors": errors[-1:], "seconds": 0.0,
+                  "points": output.GetNumberOfPoints() if output else 0, "cells": 0}
+        serial = pipeline(False)
+        record["serial_rc"] = serial.UpdatePiece(0, 1, 0)  # each its whole input, no controller
+        record["serial_errors"] = messages.take()
+        return record
+
+    def judge(records):
+        print("MEASURE %-40s %s" % (label, describe(records)), flush=True)
+        # The agreed line is every process's last error (VTK's own come before it on the bad one).
+        check_agreed_failure(label, records, lambda t: wrong in t and "cannot filter its piece" in t,
+                             "the input's type", bad=bad, one_line=True)
+        check(all(len(r["all_errors"]) == 1 for r in records if r["rank"] != bad),
+              "%s: the other processes report the agreed line only: %s" % (label, [r["all_errors"] for r in records]))
+        check(all(r.get("points") == 0 for r in records), "%s: a failed execution leaves empty outputs" % label)
+        check(all(r.get("serial_rc") == (0 if r["rank"] == bad else 1) for r in records)
+              and all(r.get("serial_errors") == [] for r in records if r["rank"] != bad),
+              "%s: without a controller VTK refuses the input on the bad process only: %s"
+              % (label, [(r.get("serial_rc"), r.get("serial_errors")) for r in records]))
+
+    return local, judge
+
+
 def gradient_domain_case():
     label = "image Domain Gradients on pieces np=%d" % PROCESSES
 
@@ -1110,6 +1169,8 @@ def all_cases():
         for what in ("whole_extent", "whole_extent_filtered", "spacing", "origin"):
             cases.append(("image_grid.%s.bad%d" % (what, bad), image_grid_case(bad, what)))
         cases.append(("repeated_piece.bad%d" % bad, repeated_piece_case(bad)))
+        for kind in ("advection", "sharpen", "image"):
+            cases.append(("wrong_type.%s.bad%d" % (kind, bad), wrong_type_case(kind, bad)))
     for bad in bad_ranks():
         for kind in ("advection", "sharpen", "image"):
             cases.append(("upstream_failure.%s.bad%d" % (kind, bad), upstream_failure_case(kind, bad)))
