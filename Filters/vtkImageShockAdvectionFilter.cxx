@@ -125,6 +125,22 @@ void GrowWithin(const int piece[6], const int whole[6], int layers, int grown[6]
 }
 
 /**
+ * `extent` cut to within `whole` on every axis it is not empty on: a request
+ * left from before the whole extent shrank may reach beyond it.
+ */
+void KeepWithinWhole(int extent[6], const int whole[6])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (extent[2 * a] <= extent[2 * a + 1])
+    {
+      extent[2 * a] = std::max(extent[2 * a], whole[2 * a]);
+      extent[2 * a + 1] = std::min(extent[2 * a + 1], whole[2 * a + 1]);
+    }
+  }
+}
+
+/**
  * Whether the algorithm that produces the filter's input cuts any extent it is
  * asked for (vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT: image readers, the Wavelet),
  * looking through ParaView's vtkPVPostFilter, which ParaView puts after every
@@ -776,20 +792,12 @@ int vtkImageShockAdvectionFilter::RequestUpdateExtent(
     }
     else if (outInfo->Has(SDDP::UPDATE_EXTENT()) && inInfo->Has(SDDP::WHOLE_EXTENT()))
     {
-      // The request as it came, within the whole extent: after the whole
-      // extent shrank, a request left from before it may reach beyond.
+      // The request as it came, within the whole extent.
       int extent[6];
       int whole[6];
       outInfo->Get(SDDP::UPDATE_EXTENT(), extent);
       inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
-      for (int a = 0; a < 3; ++a)
-      {
-        if (extent[2 * a] <= extent[2 * a + 1])
-        {
-          extent[2 * a] = std::max(extent[2 * a], whole[2 * a]);
-          extent[2 * a + 1] = std::min(extent[2 * a + 1], whole[2 * a + 1]);
-        }
-      }
+      KeepWithinWhole(extent, whole);
       inInfo->Set(SDDP::UPDATE_EXTENT(), extent, 6);
     }
     return 1;
@@ -838,16 +846,7 @@ bool vtkImageShockAdvectionFilter::PieceFromSource(
   if (outInfo->Has(SDDP::UPDATE_EXTENT()))
   {
     outInfo->Get(SDDP::UPDATE_EXTENT(), asked);
-    // Within the whole extent: after the whole extent shrank, a request left
-    // from before it may reach beyond (the pieces are cut from what exists).
-    for (int a = 0; a < 3; ++a)
-    {
-      if (asked[2 * a] <= asked[2 * a + 1])
-      {
-        asked[2 * a] = std::max(asked[2 * a], whole[2 * a]);
-        asked[2 * a + 1] = std::min(asked[2 * a + 1], whole[2 * a + 1]);
-      }
-    }
+    KeepWithinWhole(asked, whole); // the pieces are cut from what exists
   }
   // Every process must take the same way (a reader may read collectively),
   // and every piece needs samples on each axis the image spans (one point

@@ -91,20 +91,25 @@ bool vtkShockAdvectionFilter::ContinuesAfterInformationFailure(bool updated)
 {
   // The output's piece request is not known in this pass (VTK sets it after
   // the information): any run that may be parallel goes on to its data pass.
-  this->InformationFailed = !updated && this->Controller && this->Controller->GetNumberOfProcesses() > 1;
+  this->InformationFailed = !updated && this->MayRunInParallel();
   return this->InformationFailed;
 }
 
 bool vtkShockAdvectionFilter::ContinuesAfterDataObjectFailure(bool updated)
 {
   // As in the information pass: the pieces are not known yet.
-  this->DataObjectFailed = !updated && this->Controller && this->Controller->GetNumberOfProcesses() > 1;
+  this->DataObjectFailed = !updated && this->MayRunInParallel();
   return this->DataObjectFailed;
+}
+
+bool vtkShockAdvectionFilter::MayRunInParallel() const
+{
+  return this->Controller && this->Controller->GetNumberOfProcesses() > 1;
 }
 
 bool vtkShockAdvectionFilter::ContinuesAfterInvalidInput() const
 {
-  return this->Controller && this->Controller->GetNumberOfProcesses() > 1;
+  return this->MayRunInParallel();
 }
 
 namespace

@@ -316,6 +316,12 @@ protected:
   vtkShockAdvectionFilter();
   ~vtkShockAdvectionFilter() override;
 
+  /**
+   * Whether this filter may run on pieces in parallel: its Controller has more
+   * than one process (the pieces themselves are known only in the data pass).
+   */
+  bool MayRunInParallel() const;
+
   /// Checks the parameters that clamping cannot enforce; vtkErrorMacro and false if invalid.
   bool ValidateParameters();
 
