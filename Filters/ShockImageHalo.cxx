@@ -5,6 +5,8 @@
  */
 #include "ShockParallel.h"
 
+#include "GridShockAdvection.h" // shock::LayeredSignalOverlap
+
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
@@ -202,8 +204,16 @@ std::vector<Box> HaloBoxes(const std::vector<Box>& owns, const std::vector<Box>&
  * box's samples). Where held extents overlap, a sample may arrive from two
  * processes: the same value.
  */
+/// Where held and received samples go: the samples of `box`, row-major, at `bytes`.
+struct Destination
+{
+  Box box;
+  char* bytes;
+};
+
 void ExchangeHalos(vtkMultiProcessController* controller, const std::vector<Box>& helds,
-  const std::vector<Box>& halos, const char* heldBytes, char* grownBytes, size_t tupleBytes)
+  const std::vector<Box>& halos, const char* heldBytes, const std::vector<Destination>& destinations,
+  size_t tupleBytes)
 {
   const int me = controller->GetLocalProcessId();
   const int processes = controller->GetNumberOfProcesses();
@@ -213,8 +223,18 @@ void ExchangeHalos(vtkMultiProcessController* controller, const std::vector<Box>
     return sender == receiver || Empty(shared) || inside == shared ? Box{ 1, 0, 1, 0, 1, 0 } : shared;
   };
   const Box& mine = helds[static_cast<size_t>(me)];
-  const Box& target = halos[static_cast<size_t>(me)];
-  CopyBox(heldBytes, mine, grownBytes, target, Intersect(mine, target), tupleBytes);
+  // Each destination gets its samples of `box` from `bytes` (a buffer of `from`).
+  const auto deliver = [&](const char* bytes, const Box& from, const Box& box) {
+    for (const Destination& to : destinations)
+    {
+      const Box part = Intersect(box, to.box);
+      if (!Empty(part))
+      {
+        CopyBox(bytes, from, to.bytes, to.box, part, tupleBytes);
+      }
+    }
+  };
+  deliver(heldBytes, mine, Intersect(mine, halos[static_cast<size_t>(me)]));
   std::vector<char> buffer;
   for (int a = 0; a < processes; ++a)
   {
@@ -239,15 +259,49 @@ void ExchangeHalos(vtkMultiProcessController* controller, const std::vector<Box>
       else
       {
         controller->Receive(buffer.data(), static_cast<vtkIdType>(buffer.size()), a, HaloTag);
-        CopyBox(buffer.data(), box, grownBytes, target, box, tupleBytes);
+        deliver(buffer.data(), box, box);
       }
     }
   }
+}
+
+/**
+ * The axis along which the grown box `target` adds layers to the piece `own`
+ * (ImageLayers): its last axis of more than one sample, or -1 when the halo
+ * is not only along it, or the array cannot be read in place.
+ */
+int LayersAxis(vtkDataArray* array, const Box& held, const Box& own, const Box& target)
+{
+  const int type = array->GetDataType();
+  if (!array->HasStandardMemoryLayout() || (type != VTK_FLOAT && type != VTK_DOUBLE && type != VTK_UNSIGNED_CHAR) ||
+    held != own || target == own)
+  {
+    return -1;
+  }
+  int axis = -1;
+  for (int a = 0; a < 3; ++a)
+  {
+    axis = target[2 * a + 1] > target[2 * a] ? a : axis;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (a != axis && (target[2 * a] != own[2 * a] || target[2 * a + 1] != own[2 * a + 1]))
+    {
+      return -1;
+    }
+  }
+  return axis;
 }
 }
 
 vtkSmartPointer<vtkDataArray> GrowImageSamples(vtkMultiProcessController* controller, vtkDataArray* array,
   const int held[6], const int own[6], int layers, int grown[6])
+{
+  return GrowImageSamples(controller, array, held, own, layers, grown, nullptr);
+}
+
+vtkSmartPointer<vtkDataArray> GrowImageSamples(vtkMultiProcessController* controller, vtkDataArray* array,
+  const int held[6], const int own[6], int layers, int grown[6], ImageLayers* layered)
 {
   const int me = controller->GetLocalProcessId();
   const bool has = array && array->GetNumberOfTuples() > 0;
@@ -270,18 +324,53 @@ vtkSmartPointer<vtkDataArray> GrowImageSamples(vtkMultiProcessController* contro
     source = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(array->GetDataType()));
     source->DeepCopy(array); // an array of structures, as the rows are copied
   }
-  auto result = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(array->GetDataType()));
-  result->SetName(array->GetName());
-  result->SetNumberOfComponents(components);
-  result->CopyComponentNames(array);
-  result->SetNumberOfTuples(Samples(target));
+  const auto newArray = [&](const Box& box) {
+    auto made = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(array->GetDataType()));
+    made->SetName(array->GetName());
+    made->SetNumberOfComponents(components);
+    made->CopyComponentNames(array);
+    made->SetNumberOfTuples(Samples(box));
+    return made;
+  };
+  const Box mine{ { held[0], held[1], held[2], held[3], held[4], held[5] } };
+  const Box piece{ { own[0], own[1], own[2], own[3], own[4], own[5] } };
+  const int axis = layered ? LayersAxis(array, mine, piece, target) : -1;
+  if (axis >= 0)
+  {
+    // The halo in layers: below and above the piece, each with the piece's
+    // layers beside it (shock::LayeredSignalOverlap); the piece where it lies.
+    const int overlap = static_cast<int>(shock::LayeredSignalOverlap);
+    layered->used = true;
+    layered->piece = array;
+    layered->pieceFirst = own[2 * axis] - target[2 * axis];
+    layered->pieceEnd = own[2 * axis + 1] + 1 - target[2 * axis];
+    std::vector<Destination> destinations;
+    if (target[2 * axis] < own[2 * axis])
+    {
+      Box below = target;
+      below[2 * axis + 1] = std::min(target[2 * axis + 1], own[2 * axis] + overlap - 1);
+      layered->below = newArray(below);
+      destinations.push_back({ below, static_cast<char*>(layered->below->GetVoidPointer(0)) });
+    }
+    if (target[2 * axis + 1] > own[2 * axis + 1])
+    {
+      Box above = target;
+      above[2 * axis] = std::max(target[2 * axis], own[2 * axis + 1] + 1 - overlap);
+      layered->above = newArray(above);
+      destinations.push_back({ above, static_cast<char*>(layered->above->GetVoidPointer(0)) });
+    }
+    ExchangeHalos(
+      controller, helds, halos, static_cast<const char*>(source->GetVoidPointer(0)), destinations, tupleBytes);
+    return nullptr;
+  }
+  auto result = newArray(target);
   ExchangeHalos(controller, helds, halos, static_cast<const char*>(source->GetVoidPointer(0)),
-    static_cast<char*>(result->GetVoidPointer(0)), tupleBytes);
+    { Destination{ target, static_cast<char*>(result->GetVoidPointer(0)) } }, tupleBytes);
   return result;
 }
 
 vtkSmartPointer<vtkImageData> ImageWithHalo(vtkMultiProcessController* controller, vtkImageData* input,
-  const int* own, vtkDataArray* array, bool cellData, bool hidden, int layers)
+  const int* own, vtkDataArray* array, bool cellData, bool hidden, int layers, ImageLayers* layered)
 {
   // The samples held and the piece's as sample extents (cells: one fewer on
   // the axes the input spans).
@@ -295,14 +384,17 @@ vtkSmartPointer<vtkImageData> ImageWithHalo(vtkMultiProcessController* controlle
     held[2 * a + 1] -= less;
     piece[2 * a + 1] -= less;
   }
-  int grown[6];
-  vtkSmartPointer<vtkDataArray> grownArray = GrowImageSamples(controller, array, held, piece, layers, grown);
   // Blanked samples: their marks travel with the halo when any piece has some
-  // (decided together: the exchange is collective).
-  vtkSmartPointer<vtkDataArray> grownGhosts;
+  // (decided together: the exchange is collective); the kernel then reads one
+  // grown array (masked), not layers.
   int anyHidden = 0;
   const int mine = hidden ? 1 : 0;
   controller->AllReduce(&mine, &anyHidden, 1, vtkCommunicator::MAX_OP);
+  int grown[6];
+  vtkSmartPointer<vtkDataArray> grownArray =
+    GrowImageSamples(controller, array, held, piece, layers, grown, anyHidden ? nullptr : layered);
+  const bool inLayers = layered && layered->used;
+  vtkSmartPointer<vtkDataArray> grownGhosts;
   if (anyHidden)
   {
     vtkUnsignedCharArray* ghosts = !array ? nullptr : (cellData ? input->GetCellGhostArray() : input->GetPointGhostArray());
@@ -316,7 +408,7 @@ vtkSmartPointer<vtkImageData> ImageWithHalo(vtkMultiProcessController* controlle
     int grownAgain[6];
     grownGhosts = GrowImageSamples(controller, array ? ghosts : nullptr, held, piece, layers, grownAgain);
   }
-  if (input->GetNumberOfPoints() == 0 || !grownArray)
+  if (input->GetNumberOfPoints() == 0 || !(grownArray || inLayers))
   {
     return nullptr;
   }
@@ -335,7 +427,10 @@ vtkSmartPointer<vtkImageData> ImageWithHalo(vtkMultiProcessController* controlle
   withHalo->SetDirectionMatrix(input->GetDirectionMatrix());
   vtkDataSetAttributes* samples = cellData ? static_cast<vtkDataSetAttributes*>(withHalo->GetCellData())
                                            : static_cast<vtkDataSetAttributes*>(withHalo->GetPointData());
-  samples->SetScalars(grownArray);
+  if (grownArray)
+  {
+    samples->SetScalars(grownArray);
+  }
   if (grownGhosts)
   {
     grownGhosts->SetName(vtkDataSetAttributes::GhostArrayName());

@@ -21,6 +21,10 @@ class vtkDataArray;
 class vtkImageData;
 class vtkInformation;
 class vtkMultiProcessController;
+namespace ShockParallel
+{
+struct ImageLayers;
+}
 
 namespace ShockImageInternals
 {
@@ -83,6 +87,9 @@ struct SampleTarget
   /// With `extent`: where the kernel reports how far the traces of the written
   /// samples went beyond them (AdvectionReport::haloReach); null when not wanted.
   std::array<std::int64_t, 6>* haloReach = nullptr;
+  /// The piece's halo in layers beside the piece's own array (ShockParallel::ImageLayers);
+  /// null: the filtered array holds every sample.
+  const ShockParallel::ImageLayers* layers = nullptr;
 };
 
 /**

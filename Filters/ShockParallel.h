@@ -64,15 +64,43 @@ vtkSmartPointer<vtkDataArray> GrowImageSamples(vtkMultiProcessController* contro
   const int held[6], const int own[6], int layers, int grown[6]);
 
 /**
+ * A piece's halo without a copy of the piece (shock::LayeredSignal): when the
+ * grown extent differs from the piece only along its last axis of more than
+ * one sample, and the piece's array holds exactly the piece (float, double or
+ * 8-bit, contiguous), the halo layers below and above the piece, each with
+ * the shock::LayeredSignalOverlap layers of the piece beside it, in arrays of
+ * their own; the piece is read where it lies.
+ */
+struct ImageLayers
+{
+  bool used = false;                   ///< the halo came in layers (else as one grown array)
+  vtkDataArray* piece = nullptr;       ///< the piece's own array
+  vtkSmartPointer<vtkDataArray> below; ///< null when the piece starts at the grown extent's first layer
+  vtkSmartPointer<vtkDataArray> above; ///< null when it ends at the last
+  vtkIdType pieceFirst = 0;            ///< the piece's layers in the grown extent: [pieceFirst, pieceEnd)
+  vtkIdType pieceEnd = 0;
+};
+
+/**
+ * GrowImageSamples, the halo in layers when `layered` is given and the piece
+ * allows (ImageLayers; then nullptr is returned and `layered->used` is set).
+ * The same exchange on every process, whichever way each one stores it.
+ */
+vtkSmartPointer<vtkDataArray> GrowImageSamples(vtkMultiProcessController* controller, vtkDataArray* array,
+  const int held[6], const int own[6], int layers, int grown[6], ImageLayers* layered);
+
+/**
  * The image piece `own` (a point extent within `input`'s; null: `input`'s
  * whole extent) with a halo of `layers` samples of `array` around it
  * (GrowImageSamples), and of the blanking marks when any process's piece has
  * some (`hidden`: this one's has), as an image of its own holding only that
  * array (as its scalars) and those marks; nullptr for an empty piece.
- * Collective: every process takes part, empty pieces too (null `array`).
+ * With `layered` and no blanking on any process, the halo may come in layers
+ * (ImageLayers): the image then holds no array. Collective: every process
+ * takes part, empty pieces too (null `array`).
  */
 vtkSmartPointer<vtkImageData> ImageWithHalo(vtkMultiProcessController* controller, vtkImageData* input,
-  const int* own, vtkDataArray* array, bool cellData, bool hidden, int layers);
+  const int* own, vtkDataArray* array, bool cellData, bool hidden, int layers, ImageLayers* layered = nullptr);
 
 /// Whether the filter's upstream produces composite data (the pipeline then runs it block by block).
 bool UpstreamIsComposite(vtkAlgorithm* filter);

@@ -32,6 +32,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <type_traits>
 
 vtkStandardNewMacro(vtkImageShockAdvectionFilter);
 
@@ -190,7 +191,8 @@ double BytesPerSample(vtkImageData* image)
  * named by its selection, else the active point scalars, else the active cell
  * scalars), found without messages; 0 when there is none.
  */
-double SelectedBytesPerSample(vtkAlgorithm* filter, vtkImageData* image)
+/// The array the filter would filter in `image` (its selection, else the scalars); null when none.
+vtkAbstractArray* SelectedArray(vtkAlgorithm* filter, vtkImageData* image)
 {
   vtkInformation* selection = filter->GetInputArrayInformation(0);
   vtkAbstractArray* array = nullptr;
@@ -206,7 +208,35 @@ double SelectedBytesPerSample(vtkAlgorithm* filter, vtkImageData* image)
     array = image->GetPointData()->GetScalars() ? image->GetPointData()->GetScalars()
                                                 : image->GetCellData()->GetScalars();
   }
+  return array;
+}
+
+double SelectedBytesPerSample(vtkAlgorithm* filter, vtkImageData* image)
+{
+  vtkAbstractArray* array = SelectedArray(filter, image);
   return array ? static_cast<double>(array->GetDataTypeSize()) * array->GetNumberOfComponents() : 0.0;
+}
+
+/**
+ * Whether the halo `halo` of the point extent `piece` lies only along its
+ * last axis of more than one point: the piece's halo then comes in layers
+ * (ShockParallel::ImageLayers).
+ */
+bool HaloAlongLastAxis(const int piece[6], const int halo[6])
+{
+  int axis = -1;
+  for (int a = 0; a < 3; ++a)
+  {
+    axis = halo[2 * a + 1] > halo[2 * a] ? a : axis;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (a != axis && (halo[2 * a] != piece[2 * a] || halo[2 * a + 1] != piece[2 * a + 1]))
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 /// Whether `outer` contains `inner` (point extents; an empty `inner` is contained).
@@ -363,7 +393,7 @@ int vtkImageShockAdvectionFilter::FilterSamples(
   bool aborted = false;
   std::array<std::int64_t, 6> reach{};
   const bool ran = this->RunKernel(grid, masked ? masked.GetPointer() : array, filtered,
-    this->GenerateFlowArrays ? &fields : nullptr, written, aborted, reach);
+    this->GenerateFlowArrays ? &fields : nullptr, written, aborted, reach, masked ? nullptr : target.layers);
   if (target.haloReach)
   {
     *target.haloReach = reach;
@@ -503,13 +533,20 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
     const bool holds = empty || (fromSource && knowsWhole && Contains(input->GetExtent(), needs));
     const bool inPlace = ShockParallel::Count(controller, !holds) == 0;
     vtkSmartPointer<vtkImageData> withHalo = input;
+    // The advection of the values reads a piece where it lies and its halo in
+    // layers of their own (shock::LayeredSignal), when the halo lies only
+    // along the piece's last axis: no copy of the piece.
+    ShockParallel::ImageLayers halo;
+    const bool layered = this->Method == ADVECTION && this->Domain == VALUES && this->HierarchyLevels <= 1;
     if (!inPlace)
     {
       vtkLogScopeF(TRACE, "shock: image halo exchange");
-      withHalo = ShockParallel::ImageWithHalo(controller, input, own, array, cellData, hidden, layers);
+      withHalo = ShockParallel::ImageWithHalo(
+        controller, input, own, array, cellData, hidden, layers, layered ? &halo : nullptr);
     }
     this->LastGhostLevels = layers;
     this->LastHaloFromSource = inPlace && fromSource;
+    this->LastHaloInLayers = halo.used;
     ++this->LastHaloAttempts;
     // The output is the piece (an empty piece of a parallel run is normal).
     vtkDataArray* replaced = array;
@@ -525,7 +562,7 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
     int needed = -1;
     if (withHalo && !empty)
     {
-      vtkDataArray* grownArray = inPlace
+      vtkDataArray* grownArray = inPlace || halo.used
         ? array
         : (cellData ? static_cast<vtkDataSetAttributes*>(withHalo->GetCellData())
                     : static_cast<vtkDataSetAttributes*>(withHalo->GetPointData()))
@@ -536,6 +573,8 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
       ShockImageInternals::SampleTarget target{ output, replaced, own };
       target.wholeExtent = knowsWhole ? whole : nullptr;
       target.haloReach = &reach;
+      target.layers = halo.used ? &halo : nullptr;
+      vtkLogF(TRACE, "shock: the halo %s", inPlace ? "read with the piece" : (halo.used ? "in layers" : "copied with the piece"));
       done = this->FilterSamples(withHalo, grownArray, association, target) != 0;
       if (replaced != array)
       {
@@ -625,12 +664,15 @@ struct GridRun
   shock::GridFlowFields* fields;
   shock::ProgressFunction progress;
   const std::array<std::int64_t, 6>& written; ///< AdvectionParameters::writtenSamples
+  /// With a piece's halo in layers: `signal` is the piece's own array (shock::LayeredSignal).
+  const ShockParallel::ImageLayers* layers;
 };
 }
 
 bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDataArray* array,
   const ShockFilterInternals::KernelOutput& filtered, shock::GridFlowFields* fields,
-  const std::array<std::int64_t, 6>& written, bool& aborted, std::array<std::int64_t, 6>& reach)
+  const std::array<std::int64_t, 6>& written, bool& aborted, std::array<std::int64_t, 6>& reach,
+  const ShockParallel::ImageLayers* layers)
 {
   // The phase a fraction belongs to (the gradient domain solves after 0.8).
   const bool gradients = this->Domain == GRADIENTS && this->Method == ADVECTION;
@@ -640,7 +682,7 @@ bool vtkImageShockAdvectionFilter::RunKernel(const shock::GridShape& grid, vtkDa
       fraction, gradients && fraction >= 0.8 ? "integrating the advected gradients" : tracing);
   };
   ShockFilterInternals::GridRun run{ grid, array, ShockFilterInternals::SignalForKernel(array, this->NumberOfThreads),
-    filtered.writer, fields, progress, written };
+    filtered.writer, fields, progress, written, layers };
   shock::Status status;
   if (this->Domain == GRADIENTS && this->Method != ADVECTION)
   {
@@ -678,6 +720,19 @@ shock::Status vtkImageShockAdvectionFilter::RunAdvection(
   shock::GradientDomainParameters domain;
   domain.screening = this->GradientScreening;
   const auto advect = [&](const auto* values) {
+    if (run.layers && this->Domain == VALUES)
+    {
+      // A piece read where it lies, its halo in layers below and above it.
+      using T = std::remove_cv_t<std::remove_pointer_t<decltype(values)>>;
+      const auto layer = [](vtkDataArray* a) { return a ? static_cast<const T*>(a->GetVoidPointer(0)) : nullptr; };
+      shock::LayeredSignal<T> layered;
+      layered.below = layer(run.layers->below);
+      layered.piece = values;
+      layered.above = layer(run.layers->above);
+      layered.pieceFirst = run.layers->pieceFirst;
+      layered.pieceEnd = run.layers->pieceEnd;
+      return shock::AdvectGridSignal(grid, components, layered, output, parameters, &report, fields, progress);
+    }
     return this->Domain == GRADIENTS
       ? shock::AdvectGridGradients(grid, components, values, output, parameters, domain, &report, fields, progress)
       : shock::AdvectGridSignal(grid, components, values, output, parameters, &report, fields, progress);
@@ -748,6 +803,7 @@ void vtkImageShockAdvectionFilter::ResetMeasurements()
   this->LastGhostLevels = 0;
   this->LastHaloAttempts = 0;
   this->LastHaloFromSource = false;
+  this->LastHaloInLayers = false;
 }
 
 // --- Parallel execution: ghost samples in, cropped output out ------------------
@@ -875,6 +931,27 @@ bool vtkImageShockAdvectionFilter::PieceFromSource(
     stencil < 0 ? this->GhostLevels : std::min(this->GhostLevels, std::max(stencil + 2, this->AgreedHalo));
   const int pieces = UpdatePieces(outInfo);
   const int me = outInfo->Get(SDDP::UPDATE_PIECE_NUMBER());
+  // The advection of a float, double or 8-bit array reads a piece where it
+  // lies and a halo along the piece's last axis in layers of their own
+  // (ShockParallel::ImageLayers): no copy of the piece, and no second
+  // execution of the source with the halo. Exchanged then, when every piece's
+  // halo lies so.
+  vtkDataArray* selected = vtkDataArray::SafeDownCast(SelectedArray(this, last));
+  const int type = selected ? selected->GetDataType() : VTK_VOID;
+  bool inLayers = layers > 0 && this->Method == ADVECTION && this->HierarchyLevels <= 1 && selected &&
+    selected->HasStandardMemoryLayout() && (type == VTK_FLOAT || type == VTK_DOUBLE || type == VTK_UNSIGNED_CHAR);
+  for (int p = 0; p < pieces && inLayers; ++p)
+  {
+    int piece[6];
+    int halo[6];
+    inLayers = translator->PieceToExtentThreadSafe(p, pieces, 0, asked, piece, mode, 0) != 0;
+    GrowWithin(piece, whole, layers, halo);
+    inLayers = inLayers && HaloAlongLastAxis(piece, halo);
+  }
+  if (inLayers)
+  {
+    return false;
+  }
   for (int p = 0; p < pieces; ++p)
   {
     int piece[6];
@@ -980,4 +1057,5 @@ void vtkImageShockAdvectionFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastGhostLevels: " << this->LastGhostLevels << "\n";
   os << indent << "LastHaloAttempts: " << this->LastHaloAttempts << "\n";
   os << indent << "LastHaloFromSource: " << (this->LastHaloFromSource ? "true" : "false") << "\n";
+  os << indent << "LastHaloInLayers: " << (this->LastHaloInLayers ? "true" : "false") << "\n";
 }

@@ -78,6 +78,10 @@
 class vtkDataArray;
 class vtkImageData;
 class vtkMultiProcessController;
+namespace ShockParallel
+{
+struct ImageLayers;
+}
 namespace shock
 {
 struct GridShape;
@@ -234,6 +238,20 @@ public:
    */
   vtkGetMacro(LastHaloFromSource, bool);
 
+  /**
+   * Parallel runs: whether the last result read each piece where it lies and
+   * its halo in layers of their own (true; shock::LayeredSignal), instead of
+   * a copy of the piece with its halo. Taken when the halo came from the other
+   * processes and lies only along the piece's last axis of more than one
+   * sample (the pipeline cuts a volume into slabs along z, an image into rows
+   * along y), the filtered array is float, double or 8-bit, Method is
+   * ADVECTION, Domain VALUES, HierarchyLevels 1, and no piece has blanked
+   * samples. When every piece's halo would lie so, the source is asked for the
+   * plain pieces (no second execution with the halo, GetLastHaloFromSource
+   * false). Process 0's, in ParaView.
+   */
+  vtkGetMacro(LastHaloInLayers, bool);
+
   ///@{
   /// The filtered image (output port 0, or the given port).
   vtkImageData* GetOutput();
@@ -319,6 +337,7 @@ protected:
   int LastGhostLevels = 0;
   int LastHaloAttempts = 0;
   bool LastHaloFromSource = false;
+  bool LastHaloInLayers = false;
   bool AskedPieceFromSource = false; ///< RequestUpdateExtent asked the source for AskedPiece with its halo
   int AskedPiece[6] = { 0, -1, 0, -1, 0, -1 };
   int AgreedHalo = 0;                               ///< the halo the last parallel execution agreed on
@@ -329,7 +348,8 @@ private:
   /// vtkErrorMacro) on failure.
   bool RunKernel(const shock::GridShape& grid, vtkDataArray* array,
     const ShockFilterInternals::KernelOutput& output, shock::GridFlowFields* fields,
-    const std::array<std::int64_t, 6>& written, bool& aborted, std::array<std::int64_t, 6>& reach);
+    const std::array<std::int64_t, 6>& written, bool& aborted, std::array<std::int64_t, 6>& reach,
+    const ShockParallel::ImageLayers* layers = nullptr);
   /// The paper's advection (Method ADVECTION), of the values or of their gradients (Domain).
   shock::Status RunAdvection(
     const ShockFilterInternals::GridRun& run, bool& aborted, std::array<std::int64_t, 6>& reach);

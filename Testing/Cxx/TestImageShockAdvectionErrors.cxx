@@ -152,7 +152,7 @@ TEST(ImageShockAdvectionFilter, PrintSelfListsTheParameters)
   for (const char* key : { "FlowTime", "SmoothingPasses", "StepFraction", "FlowMode: Composed",
          "NumberOfFlowUpdates", "Sampling: Nearest", "TracingMode: Stepped", "GenerateFlowArrays",
          "NumberOfThreads", "Method: Advection", "CourantNumber", "MaximumIterations", "LastGhostLevels: 0",
-         "LastHaloAttempts: 0", "LastHaloFromSource: false" })
+         "LastHaloAttempts: 0", "LastHaloFromSource: false", "LastHaloInLayers: false" })
   {
     EXPECT_NE(os.str().find(key), std::string::npos) << key;
   }

@@ -1108,16 +1108,18 @@ def image_abort_case():
     return local, judge
 
 
-def image_abort_from_source_case():
-    label = "image abort, piece read with its halo, np=%d" % PROCESSES
+def image_abort_from_source_case(layers=False):
+    """Rank 0 aborts at its first progress report: its output keeps the
+    piece's own values, never an empty array. The source feeds the filter
+    directly (its arrays known from a first execution): each piece is read
+    with its halo, or, `layers`, the volume cut into slabs along z, read where
+    it lies with its halo exchanged in layers beside it."""
+    label = "image abort, %s, np=%d" % ("halo in layers" if layers else "piece read with its halo", PROCESSES)
+    whole = (0, 31, 0, 23, 0, 63) if layers else (0, 63, 0, 47, 0, 31)
 
     def local():
-        # The source feeds the filter directly: each piece is read with its
-        # halo (the source's arrays are known from a first execution), and
-        # rank 0 aborts at its first progress report: its output keeps the
-        # piece's own values, never an empty array.
         source = vtkRTAnalyticSource()
-        source.SetWholeExtent(0, 63, 0, 47, 0, 31)
+        source.SetWholeExtent(*whole)
         source.UpdatePiece(RANK, PROCESSES, 0)
         algorithm = vtkImageShockAdvectionFilter()
         algorithm.SetController(controller)
@@ -1128,13 +1130,14 @@ def image_abort_from_source_case():
         output = algorithm.GetOutput()
         values = output.GetPointData().GetScalars()
         reference = vtkRTAnalyticSource()
-        reference.SetWholeExtent(0, 63, 0, 47, 0, 31)
+        reference.SetWholeExtent(*whole)
         reference.UpdateExtent(output.GetExtent())
         expected = reference.GetOutput().GetPointData().GetScalars()
         same = (values is not None and values.GetNumberOfTuples() == output.GetNumberOfPoints() > 0
                 and np.array_equal(vtk_to_numpy(values), vtk_to_numpy(expected)))
         return {"rank": RANK, "rc": rc, "returned": True, "abort_at": abort_at,
-                "from_source": algorithm.GetLastHaloFromSource(), "tuples": values.GetNumberOfTuples() if values else -1,
+                "from_source": algorithm.GetLastHaloFromSource(), "in_layers": algorithm.GetLastHaloInLayers(),
+                "tuples": values.GetNumberOfTuples() if values else -1,
                 "points": output.GetNumberOfPoints(), "unfiltered": bool(same), "errors": messages.take()}
 
     def judge(records):
@@ -1143,7 +1146,12 @@ def image_abort_from_source_case():
             [r["points"] for r in records], records[0].get("abort_at")), flush=True)
         check(all(r.get("returned") for r in records), "%s: every process returned and reached the Barrier" % label)
         check(records[0].get("abort_at") is not None, "%s: no progress report on rank 0 to abort at" % label)
-        check(all(r["from_source"] for r in records), "%s: every piece was read with its halo" % label)
+        if layers:
+            check(all(r["in_layers"] and not r["from_source"] for r in records),
+                  "%s: every piece was read where it lies, its halo in layers" % label)
+        else:
+            check(all(r["from_source"] and not r["in_layers"] for r in records),
+                  "%s: every piece was read with its halo" % label)
         check(records[0]["unfiltered"], "%s: the aborted piece keeps its own values (%d tuples for %d points)"
               % (label, records[0]["tuples"], records[0]["points"]))
 
@@ -1191,6 +1199,7 @@ def all_cases():
     cases.append(("abort", abort_case()))
     cases.append(("image_abort", image_abort_case()))
     cases.append(("image_abort_from_source", image_abort_from_source_case()))
+    cases.append(("image_abort_in_layers", image_abort_from_source_case(layers=True)))
     return cases
 
 

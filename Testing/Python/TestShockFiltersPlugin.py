@@ -76,7 +76,8 @@ COMMON_NAMES = {
     "TracingMode", "StepFraction", "Sampling", "GenerateFlowArrays", "NumberOfThreads",
     "LastSetupSeconds", "LastFlowSeconds", "LastAdvectionSeconds", "LastTraceSteps",
     "GhostLevels"}
-EXPECTED_NAMES = {"ImageShockAdvection": COMMON_NAMES | {"LastGhostLevels", "LastHaloAttempts", "LastHaloFromSource"}}
+EXPECTED_NAMES = {"ImageShockAdvection": COMMON_NAMES | {"LastGhostLevels", "LastHaloAttempts", "LastHaloFromSource",
+                                                       "LastHaloInLayers"}}
 EXPECTED_NAMES["SurfaceShockAdvection"] = COMMON_NAMES | {"LastGhostLevels", "LastRingAttempts"}
 EXPECTED_NAMES["SurfaceShockSharpen"] = (COMMON_NAMES - {"InputArray"}) | {
     "FeatureAngle", "CurvatureContrast", "FitTarget", "LastRepeatedTriangles", "LastDegenerateTriangles", "LastFeatureEdges",

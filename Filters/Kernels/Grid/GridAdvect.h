@@ -35,13 +35,14 @@ namespace grid
  * built for AVX2, and 8-bit images with 3 or 4 components are read with
  * CombineByteReadsAvx2.
  */
-template <int D, typename T>
+template <int D, typename S>
 struct VertexAdvection
 {
+  using T = SignalValue<S>;
   const AdvectionContext<D>& ctx;
   const GridTracer<D>& tracer;
   double time;
-  const T* source;
+  const S source; ///< one array, or LayeredValues (GridLayered.h)
   const SampleWriter& out;
   float* positions;
   Neighbourhood<D> hood;
@@ -52,7 +53,7 @@ struct VertexAdvection
   std::int64_t lastLower;
 
   VertexAdvection(const AdvectionContext<D>& context, const GridTracer<D>& tracer_, double time_,
-    const T* source_, const SampleWriter& out_, float* positions_, const RowBlocks<D>& blocks_)
+    const S& source_, const SampleWriter& out_, float* positions_, const RowBlocks<D>& blocks_)
     : ctx(context)
     , tracer(tracer_)
     , time(time_)
@@ -76,7 +77,9 @@ struct VertexAdvection
     const Lattice<D>& L = this->ctx.L;
     const int C = this->ctx.C;
     const unsigned char* valid = this->ctx.valid;
-    const bool vectorReads = Wide && D == 2 && std::is_same_v<T, unsigned char> && (C == 3 || C == 4);
+    // (Four bytes a read: one past a sample of 3 components, so one array only.)
+    const bool vectorReads =
+      Wide && D == 2 && IsOneArray<S> && std::is_same_v<T, unsigned char> && (C == 3 || C == 4);
     // The results of one block, handed to `out` at its end.
     std::vector<double> row(static_cast<size_t>(BlockLength * C));
     // One block at a time (grain 1): the items handed out are [k, k + 1).
@@ -101,7 +104,8 @@ struct VertexAdvection
         double* result = row.data() + j * C;
         if (valid && !valid[s])
         {
-          std::copy(this->source + s * C, this->source + (s + 1) * C, result);
+          const T* own = ValuesNear(this->source, s) + s * C;
+          std::copy(own, own + C, result);
         }
         else if (interiorRow && i[0] >= 1 && i[0] + 1 < L.n[0])
         {
@@ -180,7 +184,7 @@ struct VertexAdvection
         }
       }
     }
-    CombineSampleReads<D, T, Wide>(
+    CombineSampleReads<D, S, Wide>(
       vectorReads, this->lastLower, this->ctx.L, this->hood, this->source, s, this->ctx.C, weights, ends, far, result);
   }
 
@@ -202,15 +206,15 @@ struct VertexAdvection
     {
       TraceFromSample<D, Wide>(this->tracer, this->time, i, at, b, faces.Face(i[0], b), ends[b], tally);
     }
-    CombineSampleReads<D, T, Wide, false>(
+    CombineSampleReads<D, S, Wide, false>(
       vectorReads, this->lastLower, this->ctx.L, this->hood, this->source, s, this->ctx.C, nullptr, ends, Corners,
       result);
   }
 };
 
 /// The threads' region of a VertexAdvection pass, built for the baseline x86-64.
-template <int D, typename T>
-void RunVertexAdvection(const VertexAdvection<D, T>& pass, ParallelItems& items,
+template <int D, typename S>
+void RunVertexAdvection(const VertexAdvection<D, S>& pass, ParallelItems& items,
   TraceTally<D>& tally)
 {
 #pragma omp parallel num_threads(pass.ctx.threads)
@@ -225,8 +229,8 @@ void RunVertexAdvection(const VertexAdvection<D, T>& pass, ParallelItems& items,
 #ifdef SHOCK_GRID_AVX2
 /// RunVertexAdvection built for AVX2 (GridAvx2.h). The region is written out
 /// again, not shared: GCC builds an OpenMP region for its enclosing function's target.
-template <int D, typename T>
-SHOCK_TARGET_AVX2 void RunVertexAdvectionAvx2(const VertexAdvection<D, T>& pass,
+template <int D, typename S>
+SHOCK_TARGET_AVX2 void RunVertexAdvectionAvx2(const VertexAdvection<D, S>& pass,
   ParallelItems& items, TraceTally<D>& tally)
 {
 #pragma omp parallel num_threads(pass.ctx.threads)
@@ -240,24 +244,24 @@ SHOCK_TARGET_AVX2 void RunVertexAdvectionAvx2(const VertexAdvection<D, T>& pass,
 #endif
 
 /// AdvectVertices (see VertexAdvection) on the samples of `blocks`; false when aborted through the progress callback.
-template <int D, typename T>
+template <int D, typename S>
 bool AdvectVertices(const AdvectionContext<D>& ctx, const GridTracer<D>& tracer, double time,
-  const T* source, const SampleWriter& out, float* positions, const RowBlocks<D>& blocks,
+  const S& source, const SampleWriter& out, float* positions, const RowBlocks<D>& blocks,
   double progressStart, double progressSpan)
 {
-  const VertexAdvection<D, T> pass(ctx, tracer, time, source, out, positions, blocks);
+  const VertexAdvection<D, S> pass(ctx, tracer, time, source, out, positions, blocks);
   // The blocks are independent: the threads take them one at a time as they come.
   ParallelItems items(pass.blocks.Count(), 1, ctx.progress, progressStart, progressSpan);
   TraceTally<D> tally;
 #ifdef SHOCK_GRID_AVX2
   if (UsesAvx2())
   {
-    RunVertexAdvectionAvx2<D, T>(pass, items, tally);
+    RunVertexAdvectionAvx2<D, S>(pass, items, tally);
   }
   else
 #endif
   {
-    RunVertexAdvection<D, T>(pass, items, tally);
+    RunVertexAdvection<D, S>(pass, items, tally);
   }
   ctx.report.traceSteps += tally.steps;
   ctx.report.truncatedTraces += tally.truncated;

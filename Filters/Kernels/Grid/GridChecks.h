@@ -6,6 +6,7 @@
 #ifndef GridChecks_h
 #define GridChecks_h
 
+#include "GridLayered.h"
 #include "GridShape.h"
 #include "ShockTypes.h"
 
@@ -72,6 +73,14 @@ Status CheckGridRun(const GridShape& shape, int components, const T* input,
     }
   }
   return CheckAdvectionParameters(parameters);
+}
+
+/// CheckGridRun for a layered signal (its arrays are checked by AdvectLayered).
+template <typename T>
+Status CheckGridRun(const GridShape& shape, int components, const LayeredValues<T>& input,
+  const SampleWriter& output, const AdvectionParameters& parameters)
+{
+  return CheckGridRun(shape, components, input.piece, output, parameters);
 }
 
 /// The argument checks shared by the grid kernels' entry points; an empty Status when valid.

@@ -23,6 +23,7 @@
 
 #include "GridChecks.h"
 #include "GridLattice.h"
+#include "GridLayered.h"
 #include "GridShape.h"
 #include "GridSmooth.h"
 #include "ShockTypes.h"
@@ -253,9 +254,10 @@ public:
   /// Face layers per slab (>= 1); a test hook: the flow does not depend on it.
   void SetSlabFaces(std::int64_t faces) { this->SlabFaces = std::max<std::int64_t>(faces, 1); }
 
-  /// Compute the flow of `signal` (float, double or 8-bit), intensities divided by `range`.
-  template <typename T>
-  void Compute(const T* signal, double range)
+  /// Compute the flow of `signal` (float, double or 8-bit; one array or
+  /// LayeredValues, GridLayered.h), intensities divided by `range`.
+  template <typename S>
+  void Compute(const S& signal, double range)
   {
     const std::int64_t M = L.m[D - 1];
     const std::int64_t slabFaces = std::min(this->SlabFaces, M);
@@ -393,10 +395,11 @@ private:
   };
 
   /// The velocity of the face layers [f0, f1), in workspace `w`, by `threads` threads.
-  template <typename T>
-  void ComputeSlabFlow(const T* signal, double range, std::int64_t f0, std::int64_t f1,
+  template <typename S>
+  void ComputeSlabFlow(const S& signal, double range, std::int64_t f0, std::int64_t f1,
     Workspace& w, int threads)
   {
+    using T = SignalValue<S>;
     const std::int64_t M = L.m[D - 1];
     const std::int64_t layerSamples = L.sampleStride[D - 1];
     const std::int64_t layerFaces = L.faceStride[D - 1];
@@ -411,7 +414,9 @@ private:
     // (there are fewer faces than samples) goes to the potential's buffer, and
     // the raw potential to the smoothed signal's, each once its previous
     // content has been used.
-    UmbrellaSmooth<D>(slab, C, signal + a * layerSamples * C, 1.0 / range, w.smoothed.get(),
+    std::vector<T> gathered; // the slab's layers, when they lie in more than one array
+    UmbrellaSmooth<D>(slab, C, SlabValues(signal, C, a * layerSamples, slab.numSamples, gathered), 1.0 / range,
+      w.smoothed.get(),
       w.scratch.get(), validSample, this->Passes, threads);
     double* energy = w.potential.get();
     FaceEnergy<D>(slab, C, w.smoothed.get(), validFace, energy, threads);

@@ -8,6 +8,7 @@
 #ifndef GridLattice_h
 #define GridLattice_h
 
+#include "GridLayered.h"
 #include "GridShape.h"
 #include "ShockTypes.h"
 
@@ -379,14 +380,41 @@ std::vector<unsigned char> ValidFaces(
   return valid;
 }
 
+/// ScanSignal of a layered signal (GridLayered.h): each array's own samples.
+template <typename T>
+SignalRange ScanSignal(std::int64_t numSamples, int components, const LayeredValues<T>& values, int threads)
+{
+  SignalRange all;
+  ForEachRun(values, 0, numSamples, [&](std::int64_t first, std::int64_t count, const T* array) {
+    const SignalRange part = ScanSignal(count, components, array + first * components, threads);
+    all.low = std::min(all.low, part.low);
+    all.high = std::max(all.high, part.high);
+    all.allFinite = all.allFinite && part.allFinite;
+  });
+  return all;
+}
+
+/// FiniteSamples of a layered signal (GridLayered.h).
+template <typename T>
+std::vector<unsigned char> FiniteSamples(
+  std::int64_t numSamples, int components, const LayeredValues<T>& values, int threads)
+{
+  std::vector<unsigned char> valid(static_cast<size_t>(numSamples));
+  ForEachRun(values, 0, numSamples, [&](std::int64_t first, std::int64_t count, const T* array) {
+    const std::vector<unsigned char> part = FiniteSamples(count, components, array + first * components, threads);
+    std::copy(part.begin(), part.end(), valid.begin() + first);
+  });
+  return valid;
+}
+
 /// Validity masks of a signal: both empty, and null pointers, when every sample is finite.
 template <int D>
 struct ValidityMasks
 {
   std::vector<unsigned char> samples, faces;
 
-  template <typename T>
-  ValidityMasks(const Lattice<D>& L, int C, const T* values, bool allFinite, int threads)
+  template <typename S>
+  ValidityMasks(const Lattice<D>& L, int C, const S& values, bool allFinite, int threads)
   {
     if (!allFinite)
     {
@@ -420,8 +448,8 @@ void WriteSignal(std::int64_t numSamples, int C, const T* values, const SampleWr
 }
 
 /// The samples of `blocks` handed unchanged to `output` (the values of a run without flow).
-template <int D, typename T>
-void WriteSignal(const Lattice<D>& L, const RowBlocks<D>& blocks, int C, const T* values,
+template <int D, typename S>
+void WriteSignal(const Lattice<D>& L, const RowBlocks<D>& blocks, int C, const S& values,
   const SampleWriter& output, int threads)
 {
 #pragma omp parallel num_threads(threads)
@@ -433,7 +461,7 @@ void WriteSignal(const Lattice<D>& L, const RowBlocks<D>& blocks, int C, const T
       std::array<std::int64_t, D> i;
       const std::int64_t count = blocks.Get(k, i);
       const std::int64_t first = L.SampleIndex(i);
-      std::copy(values + first * C, values + (first + count) * C, row.data());
+      CopySamples(values, C, first, count, row.data());
       output(first, count, row.data());
     }
   }

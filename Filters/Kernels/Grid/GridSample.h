@@ -12,6 +12,7 @@
 
 #include "GridAvx2.h"
 #include "GridLattice.h"
+#include "GridLayered.h"
 #include "GridTrace.h"
 #include "ShockTypes.h"
 
@@ -80,10 +81,15 @@ struct Stencil
     ++this->size;
   }
 
-  /// The weighted sum of component c of `values` (C components per sample).
-  template <typename T>
-  double Apply(const T* values, int C, int c) const
+  /// The weighted sum of component c of `values` (C components per sample; one
+  /// array, or LayeredValues: each sample read from the array that holds it).
+  template <typename S>
+  double Apply(const S& values, int C, int c) const
   {
+    const auto read = [&](int r) {
+      const std::int64_t s = this->sample[r];
+      return Widen(ValuesNear(values, s)[s * C + c]);
+    };
     // Four partial sums: four short chains of dependent additions instead of one long one.
     double partial[4] = { 0.0, 0.0, 0.0, 0.0 };
     int r = 0;
@@ -91,12 +97,12 @@ struct Stencil
     {
       for (int k = 0; k < 4; ++k)
       {
-        partial[k] += this->weight[r + k] * Widen(values[this->sample[r + k] * C + c]);
+        partial[k] += this->weight[r + k] * read(r + k);
       }
     }
     for (; r < this->size; ++r)
     {
-      partial[0] += this->weight[r] * Widen(values[this->sample[r] * C + c]);
+      partial[0] += this->weight[r] * read(r);
     }
     return (partial[0] + partial[1]) + (partial[2] + partial[3]);
   }

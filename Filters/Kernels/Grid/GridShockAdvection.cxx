@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 namespace shock
 {
@@ -21,8 +22,8 @@ using namespace grid;
 /// The flow of the current signal, on range-normalised intensities, timed into the
 /// report. After the last update's flow, the fields are exported and the
 /// workspace released (only the velocity is needed from there on).
-template <int D, typename T>
-void ComputeFlow(const Lattice<D>& L, FlowComputation<D>& flow, const T* signal, double range,
+template <int D, typename S>
+void ComputeFlow(const Lattice<D>& L, FlowComputation<D>& flow, const S& signal, double range,
   bool last, GridFlowFields* fields, AdvectionReport& report)
 {
   const auto flowStart = Clock::now();
@@ -40,9 +41,9 @@ void ComputeFlow(const Lattice<D>& L, FlowComputation<D>& flow, const T* signal,
 
 /// The advection of one flow update (Appendix A AdvectVertices), timed into the
 /// report; false when aborted.
-template <int D, typename T>
+template <int D, typename S>
 bool AdvectUpdate(const AdvectionContext<D>& ctx, const FlowComputation<D>& flow,
-  const AdvectionParameters& p, double stepTime, const T* source, const SampleWriter& target,
+  const AdvectionParameters& p, double stepTime, const S& source, const SampleWriter& target,
   float* positions, const RowBlocks<D>& blocks, double progressStart, double progressSpan)
 {
   const auto advectStart = Clock::now();
@@ -67,12 +68,12 @@ SampleWriter BufferWriter(double* buffer, int C)
  * results of the updates before the last in double buffers (every sample), and
  * the last update hands the results of the written samples to the run's output.
  */
-template <int D, typename T>
+template <int D, typename S>
 class FlowUpdates
 {
 public:
   FlowUpdates(const AdvectionContext<D>& ctx, FlowComputation<D>& flow, const GridShape& shape, int C,
-    const T* input, const AdvectionParameters& p, double range, const CarriedSignal* carried, GridFlowFields* fields)
+    const S& input, const AdvectionParameters& p, double range, const CarriedSignal* carried, GridFlowFields* fields)
     : Ctx(ctx)
     , Flow(flow)
     , C(C)
@@ -111,7 +112,7 @@ public:
     for (int k = 0; k < this->Updates; ++k)
     {
       const bool last = k == this->Updates - 1;
-      this->WithSignal([&](auto signal) {
+      this->WithSignal([&](const auto& signal) {
         ComputeFlow<D>(this->Ctx.L, this->Flow, signal, this->Range, last, this->Fields, this->Ctx.report);
       });
       const double progressStart = (k + 0.1) / this->Updates;
@@ -164,9 +165,12 @@ private:
       this->Positions = InitialTracePositions<D>(this->Ctx.L, this->Ctx.threads);
     }
     bool completed = false;
-    this->WithSignal([&](auto signal) {
-      completed = TraceThroughCoarseLevels<D>(this->Levels, this->C, signal, this->Range, this->Ctx.valid,
-        this->P, this->StepTime, this->Positions.get(), this->Ctx.report, this->Ctx.progress, progressStart);
+    this->WithSignal([&](const auto& signal) {
+      if constexpr (IsOneArray<decltype(signal)>) // a layered signal has no coarser levels (AdvectLayered)
+      {
+        completed = TraceThroughCoarseLevels<D>(this->Levels, this->C, signal, this->Range, this->Ctx.valid,
+          this->P, this->StepTime, this->Positions.get(), this->Ctx.report, this->Ctx.progress, progressStart);
+      }
     });
     return completed;
   }
@@ -193,7 +197,7 @@ private:
   const AdvectionContext<D>& Ctx; ///< its C: the advected signal's components (the carried signal's, if any)
   FlowComputation<D>& Flow;
   const int C; ///< the input signal's components, which the flow and the coarse levels read
-  const T* Input;
+  const S Input; ///< one array, or LayeredValues (GridLayered.h)
   const AdvectionParameters& P;
   const double Range;
   const CarriedSignal* Carried;
@@ -213,8 +217,8 @@ private:
  * The grid run on a signal stored as T (float, double or 8-bit): the signal's
  * range, the masks of its finite samples and faces, then the flow updates.
  */
-template <int D, typename T>
-Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter& output,
+template <int D, typename S>
+Status RunGrid(const GridShape& shape, int C, const S& input, const SampleWriter& output,
   const AdvectionParameters& p, AdvectionReport& report, GridFlowFields* fields,
   const ProgressFunction& progress, const CarriedSignal* carried = nullptr)
 {
@@ -255,7 +259,7 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
   }
   const AdvectionContext<D> ctx{ L, carried ? carried->components : C, threads, p.sampling, masks.Samples(),
     progress, report };
-  FlowUpdates<D, T> updates(ctx, flow, shape, C, input, p, range, carried, fields);
+  FlowUpdates<D, S> updates(ctx, flow, shape, C, input, p, range, carried, fields);
   report.aborted = !updates.Run(output);
   if (report.aborted || !(p.time > 0.0))
   {
@@ -265,8 +269,8 @@ Status RunGrid(const GridShape& shape, int C, const T* input, const SampleWriter
 }
 
 /// The checks and the dispatch on the number of active axes of AdvectGridSignal.
-template <typename T>
-Status AdvectGrid(const GridShape& shape, int components, const T* input,
+template <typename S>
+Status AdvectGrid(const GridShape& shape, int components, const S& input,
   const SampleWriter& output, const AdvectionParameters& parameters, AdvectionReport* report,
   GridFlowFields* fields, const ProgressFunction& progress,
   const CarriedSignal* carried = nullptr)
@@ -308,7 +312,7 @@ Status AdvectGrid(const GridShape& shape, int components, const T* input,
       {
         WriteSignal(shape.NumberOfSamples(), carried->components, carried->values, output, 1);
       }
-      else
+      else if constexpr (IsOneArray<S>) // (a layered signal spans an axis: AdvectLayered)
       {
         WriteSignal(shape.NumberOfSamples(), components, input, output, 1);
       }
@@ -320,7 +324,85 @@ Status AdvectGrid(const GridShape& shape, int components, const T* input,
   }
 }
 
+/**
+ * AdvectGridSignal on a LayeredSignal: its arrays checked against the grid and
+ * read as LayeredValues (GridLayered.h).
+ */
+template <typename T>
+Status AdvectLayered(const GridShape& shape, int components, const LayeredSignal<T>& input,
+  const SampleWriter& output, const AdvectionParameters& parameters, AdvectionReport* report,
+  GridFlowFields* fields, const ProgressFunction& progress)
+{
+  const Status arguments = CheckGridShape(shape, components);
+  if (!arguments.Ok())
+  {
+    return arguments;
+  }
+  // The layers: along the grid's last axis of more than one sample.
+  int axis = -1;
+  std::int64_t layerSamples = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (shape.dimensions[a] > 1)
+    {
+      axis = a;
+    }
+  }
+  if (axis < 0)
+  {
+    return { "a layered signal needs a grid with more than one sample" };
+  }
+  for (int a = 0; a < axis; ++a)
+  {
+    layerSamples *= shape.dimensions[a];
+  }
+  const std::int64_t n = shape.dimensions[axis];
+  const std::int64_t first = input.pieceFirst;
+  const std::int64_t end = input.pieceEnd;
+  if (!(0 <= first && first < end && end <= n) || !input.piece || (first > 0) != (input.below != nullptr) ||
+    (end < n) != (input.above != nullptr))
+  {
+    return { "the layered signal's piece (layers " + std::to_string(first) + " to " + std::to_string(end) +
+      " of " + std::to_string(n) + ") must be within the grid, with an array below it exactly when it does "
+      "not start at layer 0 and one above it exactly when it does not end at the last" };
+  }
+  if (parameters.hierarchyLevels > 1)
+  {
+    return { "a layered signal is advected without coarser levels (hierarchyLevels 1)" };
+  }
+  const std::int64_t layerValues = layerSamples * components;
+  constexpr std::int64_t O = LayeredSignalOverlap;
+  grid::LayeredValues<T> values;
+  values.below = input.below; // from layer 0
+  values.piece = input.piece - first * layerValues;
+  values.above = input.above ? input.above - std::max<std::int64_t>(end - O, 0) * layerValues : nullptr;
+  values.low = first > 0 ? first * layerSamples : 0;
+  values.high = std::max(values.low, end < n ? (end - O) * layerSamples : n * layerSamples);
+  return AdvectGrid(shape, components, values, output, parameters, report, fields, progress);
+}
+
 } // namespace
+
+Status AdvectGridSignal(const GridShape& shape, int components, const LayeredSignal<float>& input,
+  const SampleWriter& output, const AdvectionParameters& parameters, AdvectionReport* report,
+  GridFlowFields* fields, const ProgressFunction& progress)
+{
+  return AdvectLayered(shape, components, input, output, parameters, report, fields, progress);
+}
+
+Status AdvectGridSignal(const GridShape& shape, int components, const LayeredSignal<double>& input,
+  const SampleWriter& output, const AdvectionParameters& parameters, AdvectionReport* report,
+  GridFlowFields* fields, const ProgressFunction& progress)
+{
+  return AdvectLayered(shape, components, input, output, parameters, report, fields, progress);
+}
+
+Status AdvectGridSignal(const GridShape& shape, int components, const LayeredSignal<unsigned char>& input,
+  const SampleWriter& output, const AdvectionParameters& parameters, AdvectionReport* report,
+  GridFlowFields* fields, const ProgressFunction& progress)
+{
+  return AdvectLayered(shape, components, input, output, parameters, report, fields, progress);
+}
 
 Status AdvectGridSignal(const GridShape& shape, int components, const double* input,
   double* output, const AdvectionParameters& parameters, AdvectionReport* report,

@@ -77,6 +77,50 @@ Status AdvectGridSignal(const GridShape& shape, int components, const unsigned c
   AdvectionReport* report = nullptr, GridFlowFields* fields = nullptr,
   const ProgressFunction& progress = ProgressFunction());
 
+/// The layers of a piece that each array of a LayeredSignal also holds beside its own.
+constexpr std::int64_t LayeredSignalOverlap = 2;
+
+/**
+ * A grid signal held in up to three arrays along the grid's last axis of more
+ * than one sample (its layers 0 .. n-1): a piece of a distributed image where
+ * it lies (layers [pieceFirst, pieceEnd)), and the halo that other processes
+ * sent, below and above it. `below` (non-null exactly when pieceFirst > 0)
+ * holds layers [0, min(pieceFirst + LayeredSignalOverlap, n)); `above`
+ * (non-null exactly when pieceEnd < n) holds layers
+ * [max(pieceEnd - LayeredSignalOverlap, 0), n). Each side array repeats the
+ * piece's layers beside it, so that any LayeredSignalOverlap + 1 consecutive
+ * layers lie in one array: every read of the advection (a cell's corners, a
+ * sample's 3^D neighbourhood) then addresses one array, and the piece is not
+ * copied. Values as in AdvectGridSignal: x fastest, components interleaved.
+ */
+template <typename T>
+struct LayeredSignal
+{
+  const T* below = nullptr;
+  const T* piece = nullptr;
+  const T* above = nullptr;
+  std::int64_t pieceFirst = 0;
+  std::int64_t pieceEnd = 0;
+};
+
+/**
+ * AdvectGridSignal on a LayeredSignal (float, double or 8-bit): the same
+ * results, to the last bit, as on one array holding the same values. Not with
+ * coarser levels (hierarchyLevels > 1).
+ */
+Status AdvectGridSignal(const GridShape& shape, int components, const LayeredSignal<float>& input,
+  const SampleWriter& output, const AdvectionParameters& parameters,
+  AdvectionReport* report = nullptr, GridFlowFields* fields = nullptr,
+  const ProgressFunction& progress = ProgressFunction());
+Status AdvectGridSignal(const GridShape& shape, int components, const LayeredSignal<double>& input,
+  const SampleWriter& output, const AdvectionParameters& parameters,
+  AdvectionReport* report = nullptr, GridFlowFields* fields = nullptr,
+  const ProgressFunction& progress = ProgressFunction());
+Status AdvectGridSignal(const GridShape& shape, int components,
+  const LayeredSignal<unsigned char>& input, const SampleWriter& output,
+  const AdvectionParameters& parameters, AdvectionReport* report = nullptr,
+  GridFlowFields* fields = nullptr, const ProgressFunction& progress = ProgressFunction());
+
 /// A signal that follows another's flow: `components` floats per sample, interleaved.
 struct CarriedSignal
 {

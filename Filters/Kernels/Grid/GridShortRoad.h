@@ -199,18 +199,21 @@ SHOCK_NOINLINE void TraceLeavingFaceOutOfLine(const GridTracer<D>& tracer, doubl
  * position and weight serve all K components at once. UseHood false: every
  * trace went through the tracer, the neighbourhood is not read.
  */
-template <int D, int K, typename T, bool UseHood = true>
+template <int D, int K, typename S, bool UseHood = true>
 SHOCK_ALWAYS_INLINE void CombineReads(const Lattice<D>& L, const Neighbourhood<D>& hood,
-  const T* source, std::int64_t s, int C, int c0, const double* weights,
+  const S& source, std::int64_t s, int C, int c0, const double* weights,
   const std::array<double, D>* ends, int far, double* result)
 {
+  using T = SignalValue<S>;
   constexpr int Corners = Lattice<D>::Corners;
   double partial[K][4] = {};
   for (int e = 0; e < far; ++e)
   {
-    // SampleGrid's multilinear read, every corner valid.
+    // SampleGrid's multilinear read, every corner valid (the cell's corners in
+    // the array of its lower corner: GridLayered.h).
     std::array<double, D> frac;
-    const T* lower = source + LocateCell<D>(L, ends[e], frac) * C + c0;
+    const std::int64_t cell = LocateCell<D>(L, ends[e], frac);
+    const T* lower = ValuesNear(source, cell) + cell * C + c0;
     for (int b = 0; b < Corners; ++b)
     {
       const double w = CornerWeight<D>(frac, b);
@@ -221,7 +224,8 @@ SHOCK_ALWAYS_INLINE void CombineReads(const Lattice<D>& L, const Neighbourhood<D
       }
     }
   }
-  const T* own = source + s * C + c0;
+  // The neighbourhood's lowest layer is the one below the sample's (an interior sample).
+  const T* own = ValuesNear(source, s - L.sampleStride[D - 1]) + s * C + c0;
   for (int k = 0; k < K; ++k)
   {
     // Four partial sums: short chains of dependent additions.
@@ -248,26 +252,26 @@ SHOCK_ALWAYS_INLINE void CombineReads(const Lattice<D>& L, const Neighbourhood<D
 }
 
 /// CombineReads for all C components, four at a time.
-template <int D, typename T, bool UseHood = true>
+template <int D, typename S, bool UseHood = true>
 SHOCK_ALWAYS_INLINE void CombineAllReads(const Lattice<D>& L, const Neighbourhood<D>& hood,
-  const T* source, std::int64_t s, int C, const double* weights,
+  const S& source, std::int64_t s, int C, const double* weights,
   const std::array<double, D>* ends, int far, double* result)
 {
   int c0 = 0;
   for (; c0 + 4 <= C; c0 += 4)
   {
-    CombineReads<D, 4, T, UseHood>(L, hood, source, s, C, c0, weights, ends, far, result);
+    CombineReads<D, 4, S, UseHood>(L, hood, source, s, C, c0, weights, ends, far, result);
   }
   switch (C - c0)
   {
     case 1:
-      CombineReads<D, 1, T, UseHood>(L, hood, source, s, C, c0, weights, ends, far, result);
+      CombineReads<D, 1, S, UseHood>(L, hood, source, s, C, c0, weights, ends, far, result);
       break;
     case 2:
-      CombineReads<D, 2, T, UseHood>(L, hood, source, s, C, c0, weights, ends, far, result);
+      CombineReads<D, 2, S, UseHood>(L, hood, source, s, C, c0, weights, ends, far, result);
       break;
     case 3:
-      CombineReads<D, 3, T, UseHood>(L, hood, source, s, C, c0, weights, ends, far, result);
+      CombineReads<D, 3, S, UseHood>(L, hood, source, s, C, c0, weights, ends, far, result);
       break;
     default:
       break;
@@ -359,16 +363,16 @@ SHOCK_TARGET_AVX2 inline bool CombineByteReadsAvx2(const Lattice<2>& L,
 
 /**
  * The combine of AdvectVertices's short road for sample s: CombineAllReads, or
- * with Wide and `vectorReads` (D = 2, 8-bit samples, C = 3 or 4) its AVX2
- * version, which only a caller built for AVX2 may take.
+ * with Wide and `vectorReads` (D = 2, 8-bit samples in one array, C = 3 or 4)
+ * its AVX2 version, which only a caller built for AVX2 may take.
  */
-template <int D, typename T, bool Wide, bool UseHood = true>
+template <int D, typename S, bool Wide, bool UseHood = true>
 SHOCK_ALWAYS_INLINE void CombineSampleReads(bool vectorReads, std::int64_t lastLower,
-  const Lattice<D>& L, const Neighbourhood<D>& hood, const T* source, std::int64_t s, int C,
+  const Lattice<D>& L, const Neighbourhood<D>& hood, const S& source, std::int64_t s, int C,
   const double* weights, const std::array<double, D>* ends, int far, double* result)
 {
 #ifdef SHOCK_GRID_AVX2
-  if constexpr (Wide && D == 2 && std::is_same_v<T, unsigned char>)
+  if constexpr (Wide && D == 2 && IsOneArray<S> && std::is_same_v<SignalValue<S>, unsigned char>)
   {
     if (vectorReads &&
       CombineByteReadsAvx2<UseHood>(L, hood, source, s, C, lastLower, weights, ends, far, result))
@@ -379,7 +383,7 @@ SHOCK_ALWAYS_INLINE void CombineSampleReads(bool vectorReads, std::int64_t lastL
 #endif
   (void)vectorReads;
   (void)lastLower;
-  CombineAllReads<D, T, UseHood>(L, hood, source, s, C, weights, ends, far, result);
+  CombineAllReads<D, S, UseHood>(L, hood, source, s, C, weights, ends, far, result);
 }
 
 ///@}
