@@ -187,11 +187,10 @@ double BytesPerSample(vtkImageData* image)
 }
 
 /**
- * Bytes per sample of the array `filter` would filter on `image` (the one
- * named by its selection, else the active point scalars, else the active cell
- * scalars), found without messages; 0 when there is none.
+ * The array `filter` would filter on `image` (the one named by its selection,
+ * else the active point scalars, else the active cell scalars), found without
+ * messages; null when there is none.
  */
-/// The array the filter would filter in `image` (its selection, else the scalars); null when none.
 vtkAbstractArray* SelectedArray(vtkAlgorithm* filter, vtkImageData* image)
 {
   vtkInformation* selection = filter->GetInputArrayInformation(0);
@@ -211,6 +210,7 @@ vtkAbstractArray* SelectedArray(vtkAlgorithm* filter, vtkImageData* image)
   return array;
 }
 
+/// Bytes per sample of SelectedArray; 0 when there is none.
 double SelectedBytesPerSample(vtkAlgorithm* filter, vtkImageData* image)
 {
   vtkAbstractArray* array = SelectedArray(filter, image);
@@ -574,7 +574,8 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
       target.wholeExtent = knowsWhole ? whole : nullptr;
       target.haloReach = &reach;
       target.layers = halo.used ? &halo : nullptr;
-      vtkLogF(TRACE, "shock: the halo %s", inPlace ? "read with the piece" : (halo.used ? "in layers" : "copied with the piece"));
+      vtkLogF(TRACE, "shock: the halo %s",
+        inPlace ? "read with the piece" : (halo.used ? "in layers" : "copied with the piece"));
       done = this->FilterSamples(withHalo, grownArray, association, target) != 0;
       if (replaced != array)
       {

@@ -31,7 +31,9 @@
  * In parallel (one piece per process, as in pvbatch or pvserver with MPI,
  * the filter's Controller set) each piece gets a halo of samples: read with
  * the piece when the source cuts any extent (GetLastHaloFromSource), else
- * from the processes that hold them. It is filtered with it (only its own samples are
+ * from the processes that hold them (into layers beside the piece, without a
+ * copy of it, when the halo lies along the piece's last axis:
+ * GetLastHaloInLayers). It is filtered with it (only its own samples are
  * traced) and keeps its own extent, so that the pieces tile the image; every
  * piece is normalised by the data range over all pieces (ParallelValueScale)
  * and measures lengths in the whole image's mean edge. With Method ADVECTION
