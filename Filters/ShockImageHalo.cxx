@@ -278,20 +278,25 @@ int LayersAxis(vtkDataArray* array, const Box& held, const Box& own, const Box& 
   {
     return -1;
   }
+  return HaloLayersAxis(own.data(), target.data());
+}
+}
+
+int HaloLayersAxis(const int piece[6], const int halo[6])
+{
   int axis = -1;
   for (int a = 0; a < 3; ++a)
   {
-    axis = target[2 * a + 1] > target[2 * a] ? a : axis;
+    axis = halo[2 * a + 1] > halo[2 * a] ? a : axis;
   }
   for (int a = 0; a < 3; ++a)
   {
-    if (a != axis && (target[2 * a] != own[2 * a] || target[2 * a + 1] != own[2 * a + 1]))
+    if (a != axis && (halo[2 * a] != piece[2 * a] || halo[2 * a + 1] != piece[2 * a + 1]))
     {
       return -1;
     }
   }
   return axis;
-}
 }
 
 vtkSmartPointer<vtkDataArray> GrowImageSamples(vtkMultiProcessController* controller, vtkDataArray* array,

@@ -82,6 +82,13 @@ struct ImageLayers
 };
 
 /**
+ * The axis along which the extent `halo` (points, or cells) adds layers to
+ * `piece` when it does so only along its last axis of more than one sample;
+ * -1 when it grows along another axis too.
+ */
+int HaloLayersAxis(const int piece[6], const int halo[6]);
+
+/**
  * GrowImageSamples, the halo in layers when `layered` is given and the piece
  * allows (ImageLayers; then nullptr is returned and `layered->used` is set).
  * The same exchange on every process, whichever way each one stores it.

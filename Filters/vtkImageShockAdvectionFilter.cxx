@@ -217,28 +217,6 @@ double SelectedBytesPerSample(vtkAlgorithm* filter, vtkImageData* image)
   return array ? static_cast<double>(array->GetDataTypeSize()) * array->GetNumberOfComponents() : 0.0;
 }
 
-/**
- * Whether the halo `halo` of the point extent `piece` lies only along its
- * last axis of more than one point: the piece's halo then comes in layers
- * (ShockParallel::ImageLayers).
- */
-bool HaloAlongLastAxis(const int piece[6], const int halo[6])
-{
-  int axis = -1;
-  for (int a = 0; a < 3; ++a)
-  {
-    axis = halo[2 * a + 1] > halo[2 * a] ? a : axis;
-  }
-  for (int a = 0; a < 3; ++a)
-  {
-    if (a != axis && (halo[2 * a] != piece[2 * a] || halo[2 * a + 1] != piece[2 * a + 1]))
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
 /// Whether `outer` contains `inner` (point extents; an empty `inner` is contained).
 bool Contains(const int outer[6], const int inner[6])
 {
@@ -947,7 +925,7 @@ bool vtkImageShockAdvectionFilter::PieceFromSource(
     int halo[6];
     inLayers = translator->PieceToExtentThreadSafe(p, pieces, 0, asked, piece, mode, 0) != 0;
     GrowWithin(piece, whole, layers, halo);
-    inLayers = inLayers && HaloAlongLastAxis(piece, halo);
+    inLayers = inLayers && ShockParallel::HaloLayersAxis(piece, halo) >= 0;
   }
   if (inLayers)
   {

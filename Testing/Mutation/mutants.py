@@ -485,7 +485,7 @@ MUTANTS = [
          replacement="      below[2 * axis + 1] = std::min(target[2 * axis + 1], own[2 * axis] - 1);",
          bug="the layers below a piece are sent without the piece's layers beside them, which the kernel reads there"),
     dict(id="halo-layers-any-axis", file="Filters/ShockImageHalo.cxx",
-         original="    if (a != axis && (target[2 * a] != own[2 * a] || target[2 * a + 1] != own[2 * a + 1]))",
+         original="    if (a != axis && (halo[2 * a] != piece[2 * a] || halo[2 * a + 1] != piece[2 * a + 1]))",
          replacement="    if (false)",
          bug="a halo on the other axes too is taken as layers along the last one"),
     dict(id="halo-layers-piece-asked-with-halo", file="Filters/vtkImageShockAdvectionFilter.cxx",
