@@ -655,7 +655,7 @@ TEST(GridSteps, TheAvx2ByteReadsLeaveTheLastCellToThePortableOnes)
     for (int far = 0; far <= 4; ++far)
     {
       double expected[4] = { -1, -1, -1, -1 }, got[4] = { -1, -1, -1, -1 };
-      CombineAllReads<2, unsigned char, true>(L, hood, bytes.data(), s, C, weights, inside, far, expected);
+      CombineAllReads<2, const unsigned char*, true>(L, hood, bytes.data(), s, C, weights, inside, far, expected);
       ASSERT_TRUE(CombineByteReadsAvx2<true>(L, hood, bytes.data(), s, C, lastLower, weights, inside, far, got));
       for (int k = 0; k < 4; ++k)
       {
@@ -663,7 +663,7 @@ TEST(GridSteps, TheAvx2ByteReadsLeaveTheLastCellToThePortableOnes)
       }
     }
     double expected[4] = { -1, -1, -1, -1 }, got[4] = { -1, -1, -1, -1 };
-    CombineAllReads<2, unsigned char, false>(L, hood, bytes.data(), s, C, nullptr, inside, 4, expected);
+    CombineAllReads<2, const unsigned char*, false>(L, hood, bytes.data(), s, C, nullptr, inside, 4, expected);
     ASSERT_TRUE(CombineByteReadsAvx2<false>(L, hood, bytes.data(), s, C, lastLower, nullptr, inside, 4, got));
     for (int k = 0; k < 4; ++k)
     {
