@@ -196,14 +196,6 @@ std::vector<Box> HaloBoxes(const std::vector<Box>& owns, const std::vector<Box>&
   return halos;
 }
 
-/**
- * Point to point, in one global order of (sender, receiver) pairs (no
- * deadlock): each process sends the part of its held samples in a receiver's
- * halo that the receiver does not hold itself (all of it when not contained),
- * and copies what it holds and what it receives into `grownBytes` (its halo
- * box's samples). Where held extents overlap, a sample may arrive from two
- * processes: the same value.
- */
 /// Where held and received samples go: the samples of `box`, row-major, at `bytes`.
 struct Destination
 {
@@ -211,6 +203,15 @@ struct Destination
   char* bytes;
 };
 
+/**
+ * Point to point, in one global order of (sender, receiver) pairs (no
+ * deadlock): each process sends the part of its held samples in a receiver's
+ * halo that the receiver does not hold itself (all of it when not contained),
+ * and copies what it holds and what it receives into each of the
+ * `destinations` (its halo box's samples as one array, or the layers below and
+ * above its piece). Where held extents overlap, a sample may arrive from two
+ * processes: the same value.
+ */
 void ExchangeHalos(vtkMultiProcessController* controller, const std::vector<Box>& helds,
   const std::vector<Box>& halos, const char* heldBytes, const std::vector<Destination>& destinations,
   size_t tupleBytes)
