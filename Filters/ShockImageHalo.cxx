@@ -273,14 +273,19 @@ void ExchangeHalos(vtkMultiProcessController* controller, const std::vector<Box>
  */
 int LayersAxis(vtkDataArray* array, const Box& held, const Box& own, const Box& target)
 {
-  const int type = array->GetDataType();
-  if (!array->HasStandardMemoryLayout() || (type != VTK_FLOAT && type != VTK_DOUBLE && type != VTK_UNSIGNED_CHAR) ||
-    held != own || target == own)
+  if (!ReadableInLayers(array) || held != own || target == own)
   {
     return -1;
   }
   return HaloLayersAxis(own.data(), target.data());
 }
+}
+
+bool ReadableInLayers(vtkDataArray* array)
+{
+  const int type = array ? array->GetDataType() : VTK_VOID;
+  return array && array->HasStandardMemoryLayout() &&
+    (type == VTK_FLOAT || type == VTK_DOUBLE || type == VTK_UNSIGNED_CHAR);
 }
 
 int HaloLayersAxis(const int piece[6], const int halo[6])

@@ -88,6 +88,10 @@ struct ImageLayers
  */
 int HaloLayersAxis(const int piece[6], const int halo[6]);
 
+/// Whether the kernel can read `array` in place as a piece beside its halo layers
+/// (ImageLayers): float, double or unsigned 8-bit, contiguous.
+bool ReadableInLayers(vtkDataArray* array);
+
 /**
  * GrowImageSamples, the halo in layers when `layered` is given and the piece
  * allows (ImageLayers; then nullptr is returned and `layered->used` is set).

@@ -515,7 +515,7 @@ int vtkImageShockAdvectionFilter::FilterPieceWithHalo(vtkMultiProcessController*
     // layers of their own (shock::LayeredSignal), when the halo lies only
     // along the piece's last axis: no copy of the piece.
     ShockParallel::ImageLayers halo;
-    const bool layered = this->Method == ADVECTION && this->Domain == VALUES && this->HierarchyLevels <= 1;
+    const bool layered = this->ReadsHaloInLayers();
     if (!inPlace)
     {
       vtkLogScopeF(TRACE, "shock: image halo exchange");
@@ -610,6 +610,11 @@ int vtkImageShockAdvectionFilter::HaloStencil()
   shock::AdvectionParameters parameters = ShockFilterInternals::MakeParameters(this);
   parameters.hierarchyLevels = this->HierarchyLevels;
   return shock::GridStencilLayers(parameters);
+}
+
+bool vtkImageShockAdvectionFilter::ReadsHaloInLayers() const
+{
+  return this->Method == ADVECTION && this->Domain == VALUES && this->HierarchyLevels <= 1;
 }
 
 int vtkImageShockAdvectionFilter::StartingHalo(
@@ -915,10 +920,8 @@ bool vtkImageShockAdvectionFilter::PieceFromSource(
   // (ShockParallel::ImageLayers): no copy of the piece, and no second
   // execution of the source with the halo. Exchanged then, when every piece's
   // halo lies so.
-  vtkDataArray* selected = vtkDataArray::SafeDownCast(SelectedArray(this, last));
-  const int type = selected ? selected->GetDataType() : VTK_VOID;
-  bool inLayers = layers > 0 && this->Method == ADVECTION && this->HierarchyLevels <= 1 && selected &&
-    selected->HasStandardMemoryLayout() && (type == VTK_FLOAT || type == VTK_DOUBLE || type == VTK_UNSIGNED_CHAR);
+  bool inLayers = layers > 0 && this->ReadsHaloInLayers() &&
+    ShockParallel::ReadableInLayers(vtkDataArray::SafeDownCast(SelectedArray(this, last)));
   for (int p = 0; p < pieces && inLayers; ++p)
   {
     int piece[6];

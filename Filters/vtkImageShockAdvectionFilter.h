@@ -313,6 +313,9 @@ protected:
 
   /// The flow's stencil in halo samples (shock::GridStencilLayers); -1 when the halo stays GhostLevels.
   int HaloStencil();
+  /// Whether the settings let the kernel read a piece's halo in layers
+  /// (GetLastHaloInLayers: Method ADVECTION, Domain VALUES, one hierarchy level).
+  bool ReadsHaloInLayers() const;
   /**
    * Whether a piece of a distributed image is asked of its source with its
    * halo (see GetLastHaloFromSource): then `own` is the piece this process
