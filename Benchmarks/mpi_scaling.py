@@ -143,6 +143,7 @@ def run(plugin, work, path):
     usage = resource.getrusage(resource.RUSAGE_SELF)
     faults = usage.ru_minflt
     cpu = usage.ru_utime + usage.ru_stime
+    system = usage.ru_stime
     start = time.perf_counter()
     filtered.UpdatePipeline()
     if controller:
@@ -151,6 +152,7 @@ def run(plugin, work, path):
     usage = resource.getrusage(resource.RUSAGE_SELF)
     faults = usage.ru_minflt - faults  # pages touched for the first time
     cpu = usage.ru_utime + usage.ru_stime - cpu  # the process's CPU time in the window (all its threads)
+    system = usage.ru_stime - system  # of which in the kernel (on these machines mostly clearing fresh pages)
     peak = memory("VmHWM") - before
     data = filtered.GetClientSideObject().GetOutputDataObject(0)
     ghosts = data.GetPointData().GetArray("vtkGhostType") if work != "image" else None
@@ -181,7 +183,7 @@ def run(plugin, work, path):
         if getter:
             phases[re.sub(r"(?<!^)(?=[A-Z])", "_", phase).lower()] = getter()
     print("RANKRESULT " + json.dumps(dict(rank=rank, ranks=ranks, seconds=seconds, peak_mib=peak,
-                                          points=points, owned=owned, page_faults=faults, cpu=cpu, **phases)), flush=True)
+                                          points=points, owned=owned, page_faults=faults, cpu=cpu, system=system, **phases)), flush=True)
 
 
 # --- drivers -----------------------------------------------------------------

@@ -321,6 +321,15 @@ MUTANTS = [
          original="return Advect(pass, run, fromInput, steps.current.data(), &steps.positions);",
          replacement="return Advect(pass, run, fromInput, steps.current.data(), nullptr);",
          bug="Composed flow does not compose: traces restart at every update"),
+    dict(id="mesh-flow-mesh-unsmoothed", file=K + "Mesh/MeshShockAdvection.cxx",
+         original="  PrepareSmoothing(flowRun ? *flowRun : run);",
+         replacement="  PrepareSmoothing(run);",
+         bug="the weights made for the advected mesh while another mesh (the connected one) carries the flow"),
+    dict(id="mesh-flow-field-scaled", file=K + "Mesh/MeshShockAdvection.cxx",
+         original="    velocity[static_cast<size_t>(i)] = -l * velocity[static_cast<size_t>(i)];\n  }\n  return potential;",
+         replacement="    velocity[static_cast<size_t>(i)] = -l * velocity[static_cast<size_t>(i)];\n  }\n"
+                     "  if (flow)\n  {\n    flow->assign(velocity.begin(), velocity.end());\n  }\n  return potential;",
+         bug="the flow field handed out is the back-trace velocity -l u, not u"),
     # --- the advection passes' loop ---------------------------------------------
     dict(id="items-abort-ignored", file=K + "Common/ParallelItems.h",
          original="    if (this->Aborted.load(std::memory_order_relaxed))\n    {\n      return false;\n    }\n    begin =",

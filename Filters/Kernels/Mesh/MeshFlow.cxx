@@ -164,20 +164,19 @@ void TrianglesToPoints(const TriangleMesh& mesh, int C, const double* cells,
   }
 }
 
-std::vector<double> TriangleFlow(const TriangleMesh& mesh, const std::vector<double>& potential,
+ValueVector TriangleFlow(const TriangleMesh& mesh, const std::vector<double>& potential,
   const std::vector<unsigned char>& validTriangle, double length, int threads)
 {
-  std::vector<double> flow(static_cast<size_t>(3 * mesh.NumberOfTriangles()), 0.0);
+  ValueVector flow(static_cast<size_t>(3 * mesh.NumberOfTriangles())); // every value written below
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
   {
-    if (validTriangle[static_cast<size_t>(f)])
+    const Vec3 g = validTriangle[static_cast<size_t>(f)]
+      ? TriangleGradient(mesh, potential.data(), 1, 0, f, length)
+      : Vec3{ 0.0, 0.0, 0.0 };
+    for (int k = 0; k < 3; ++k)
     {
-      const Vec3 g = TriangleGradient(mesh, potential.data(), 1, 0, f, length);
-      for (int k = 0; k < 3; ++k)
-      {
-        flow[static_cast<size_t>(3 * f + k)] = 0.5 * g[k];
-      }
+      flow[static_cast<size_t>(3 * f + k)] = 0.5 * g[k];
     }
   }
   return flow;

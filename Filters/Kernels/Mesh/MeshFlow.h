@@ -63,7 +63,7 @@ void TrianglesToPoints(const TriangleMesh& mesh, int C, const double* cells,
   const std::vector<unsigned char>& cellValid, std::vector<double>& points, int threads);
 
 /// The flow u = 1/2 grad P per triangle (3 values, mesh axes); 0 on invalid triangles.
-std::vector<double> TriangleFlow(const TriangleMesh& mesh, const std::vector<double>& potential,
+ValueVector TriangleFlow(const TriangleMesh& mesh, const std::vector<double>& potential,
   const std::vector<unsigned char>& validTriangle, double length, int threads);
 
 /**

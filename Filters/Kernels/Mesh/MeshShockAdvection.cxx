@@ -98,7 +98,7 @@ struct MeshRun
  * summed over channels, area-averaged to points, smoothed), u = 1/2 grad P.
  * Returns the potential; `flow` receives u per triangle (normalised units).
  */
-std::vector<double> ComputeFlow(const MeshRun& run, std::vector<double> signal, std::vector<double>& flow)
+std::vector<double> ComputeFlow(const MeshRun& run, std::vector<double> signal, ValueVector& flow)
 {
   UmbrellaSmooth(run.mesh, run.umbrellaWeight, run.validPoint, run.C, signal, run.p.smoothingPasses,
     run.threads);
@@ -117,10 +117,12 @@ std::vector<double> ComputeFlow(const MeshRun& run, std::vector<double> signal, 
 /**
  * The flow of `current` (one update): fills the back-trace velocity -l u, returns the potential.
  * `currentPoints`, when not empty, holds the per-point values of a cell signal
- * `current` (taken: a caller that keeps them passes a copy).
+ * `current` (taken: a caller that keeps them passes a copy). `flow`, when not
+ * null, receives u itself (the velocity is made from u in place: one array
+ * per triangle, not two, unless u is asked for).
  */
 std::vector<double> UpdateFlow(const MeshRun& run, const double* current,
-  std::vector<double> currentPoints, std::vector<double>& flow, ValueVector& velocity)
+  std::vector<double> currentPoints, std::vector<double>* flow, ValueVector& velocity)
 {
   std::vector<double> normalised =
     !currentPoints.empty() && run.CellSignal() ? std::move(currentPoints) : run.PointValues(current);
@@ -131,15 +133,18 @@ std::vector<double> UpdateFlow(const MeshRun& run, const double* current,
   {
     normalised[static_cast<size_t>(i)] /= range;
   }
-  std::vector<double> potential = ComputeFlow(run, std::move(normalised), flow);
+  std::vector<double> potential = ComputeFlow(run, std::move(normalised), velocity);
+  if (flow)
+  {
+    flow->assign(velocity.begin(), velocity.end());
+  }
   // Back-trace velocity in world units per unit normalised time: -u scaled by l-bar.
-  velocity.resize(flow.size());
   const double l = run.length;
-  const auto m = static_cast<std::int64_t>(flow.size());
+  const auto m = static_cast<std::int64_t>(velocity.size());
 #pragma omp parallel for num_threads(run.threads) schedule(static)
   for (std::int64_t i = 0; i < m; ++i)
   {
-    velocity[static_cast<size_t>(i)] = -l * flow[static_cast<size_t>(i)];
+    velocity[static_cast<size_t>(i)] = -l * velocity[static_cast<size_t>(i)];
   }
   return potential;
 }
@@ -152,7 +157,7 @@ bool Advect(AdvectionPass& pass, const MeshRun& run, const MeshSource& source, d
                           : AdvectVertices(pass, source, out, positions);
 }
 
-/// Validity masks, range and umbrella weights; returns false when there is nothing to filter.
+/// Validity masks and range; returns false when there is nothing to filter.
 bool Prepare(MeshRun& run)
 {
   const TriangleMesh& mesh = run.mesh;
@@ -218,9 +223,13 @@ bool Prepare(MeshRun& run)
     }
     run.validTriangle[static_cast<size_t>(f)] = valid ? 1 : 0;
   }
-
-  run.umbrellaWeight = UmbrellaWeights(mesh, run.length, run.threads);
   return true;
+}
+
+/// The umbrella weights of the run whose mesh the flow is computed on (ComputeFlow's smoothing).
+void PrepareSmoothing(MeshRun& run)
+{
+  run.umbrellaWeight = UmbrellaWeights(run.mesh, run.length, run.threads);
 }
 
 /// The state of a multi-step run: the signal the next flow is computed from.
@@ -321,7 +330,6 @@ void RunUpdates(const MeshRun& run, MeshSteps& steps, const MeshRun* flowRun, Me
   const TriangleMesh& mesh = run.mesh;
   const bool fixed = p.flowMode == FlowMode::Fixed;
   const int updates = fixed ? 1 : std::max(1, p.flowUpdates);
-  std::vector<double> flow;
   ValueVector velocity; // written whole by every flow update
   const std::int64_t traces = run.CellSignal() ? run.Triangles()
                                                : static_cast<std::int64_t>(mesh.PointTriangles().items.size());
@@ -333,15 +341,16 @@ void RunUpdates(const MeshRun& run, MeshSteps& steps, const MeshRun* flowRun, Me
     const double* current = fixed ? run.signal.values : steps.current.data();
     // The flow mesh's per-point values serve this update only (taken); the advected
     // mesh's are read again by the samples (copied).
+    // The last update's u goes to the fields, when asked for.
+    std::vector<double>* flow = fields && k == updates - 1 ? &fields->flow : nullptr;
     std::vector<double> potential = flowRun
       ? UpdateFlow(*flowRun, current, k == 0 ? std::move(flowSteps.inputPoints) : std::vector<double>(), flow,
           velocity)
       : UpdateFlow(run, current, k == 0 ? steps.inputPoints : std::vector<double>(), flow, velocity);
     report.flowSeconds += SecondsSince(flowStart);
-    if (fields && k == updates - 1)
+    if (flow)
     {
       fields->potential = std::move(potential);
-      fields->flow = flow;
     }
     const double progressStart = (k + 0.1) / updates;
     if (progress && !progress(progressStart))
@@ -412,6 +421,11 @@ Status RunMesh(const TriangleMesh& mesh, const MeshSignal& signal, double* outpu
       flowRun.reset(); // nothing carries flow there: the mesh's own flow
     }
   }
+  // Only the mesh the flow is computed on smooths: the advected mesh's weights
+  // are not made when another mesh carries the flow.
+  const auto smoothingStart = Clock::now();
+  PrepareSmoothing(flowRun ? *flowRun : run);
+  report.flowSeconds += SecondsSince(smoothingStart);
   RunUpdates(run, steps, flowRun.get(), flowSteps, advect, output, report, fields, progress);
   if (report.aborted || !advect)
   {

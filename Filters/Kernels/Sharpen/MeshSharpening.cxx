@@ -287,10 +287,17 @@ Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& param
   return {};
 }
 
-/// SharpenMeshGeometry on a mesh without repeated or degenerate triangles.
+/**
+ * SharpenMeshGeometry on a mesh without repeated or degenerate triangles.
+ * `keepFeatures`: the cache outlives the run (a caller's), so the smoothed
+ * normals and the feature split stay in it for the next run; otherwise they
+ * are released once the normals are advected, before the fit allocates its
+ * system (the split is a second copy of the mesh: about a fifth of the run's
+ * peak memory).
+ */
 Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& parameters,
   const unsigned char* triangleRing, double* positions, ValueVector& target, SharpeningReport& r,
-  MeshFlowFields* fields, const ProgressFunction& progress, SharpeningCache& cache)
+  MeshFlowFields* fields, const ProgressFunction& progress, SharpeningCache& cache, bool keepFeatures)
 {
   const int threads = ThreadsForWork(parameters.advection.numberOfThreads, mesh.NumberOfTriangles());
   Status status = SharpenedNormalsInput(mesh, parameters, threads, cache, r);
@@ -308,6 +315,13 @@ Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& pa
   if (!status.Ok() || r.advection.aborted)
   {
     return status;
+  }
+  if (!keepFeatures)
+  {
+    cache.split = FeatureSplitMesh();
+    cache.normals = std::vector<double>();
+    cache.smoothingPasses = -1; // nothing kept for these passes and this angle
+    cache.featureAngle = -1.0;
   }
   FitParameters fit = parameters.fit;
   fit.numberOfThreads = parameters.advection.numberOfThreads;
@@ -436,7 +450,7 @@ Status SharpenMeshGeometry(const TriangleMesh& mesh, const SharpeningParameters&
   ValueVector target;
   MeshFlowFields cleanFields;
   status = SharpenCleanMesh(clean, parameters, rings, positions, target, r,
-    fields ? (kept.removed ? &cleanFields : fields) : nullptr, progress, kept);
+    fields ? (kept.removed ? &cleanFields : fields) : nullptr, progress, kept, &kept != &localCache);
   if (!status.Ok() || r.advection.aborted)
   {
     keepInput();
