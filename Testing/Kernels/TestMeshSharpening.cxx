@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <string>
 #include <utility>
 
@@ -531,6 +532,51 @@ TEST(MeshSharpening, ACacheKeepsWhatTheParametersDoNotChange)
       previous = positions;
     }
   }
+}
+
+TEST(MeshSharpening, TheFeatureSplitsOneRingsAreNotMadeForTheFlowOnTheConnectedMesh)
+{
+  // The normals are traced on the mesh split at feature edges, their flow is
+  // computed on the connected mesh: the split mesh's one-rings (what the flow's
+  // smoothing and contrast read) are never collected. Asked for, they are those
+  // of the split's own triangles.
+  const shock::TriangleMesh mesh = Build(shocktest::RoundedBox(12, 2.0, 0.35));
+  shock::SharpeningParameters p = Parameters(512.0);
+  p.featureAngle = 5.0;
+  shock::SharpeningCache cache;
+  std::vector<double> positions(static_cast<size_t>(3 * mesh.NumberOfPoints()));
+  ASSERT_TRUE(shock::SharpenMeshGeometry(mesh, p, positions.data(), nullptr, nullptr, nullptr,
+    shock::ProgressFunction(), &cache).Ok());
+  EXPECT_EQ(positions, Sharpen(mesh, p, nullptr, nullptr));
+  const shock::TriangleMesh& split = cache.split.mesh;
+  ASSERT_GT(cache.split.featureEdges, 0);
+  ASSERT_GT(split.NumberOfPoints(), mesh.NumberOfPoints());
+  EXPECT_FALSE(split.Connectivity().OneRingsBuilt());
+  EXPECT_TRUE(mesh.Connectivity().OneRingsBuilt());
+  // Collected on demand: each point's ring is the set of the other corners of its triangles.
+  const shock::CompressedLists& ring = split.OneRing();
+  EXPECT_TRUE(split.Connectivity().OneRingsBuilt());
+  std::int64_t edges = 0;
+  for (std::int64_t q = 0; q < split.NumberOfPoints(); ++q)
+  {
+    std::set<std::int64_t> expected;
+    const shock::CompressedLists& around = split.PointTriangles();
+    for (std::int64_t k = around.Begin(q); k < around.End(q); ++k)
+    {
+      const std::int64_t* t = split.Corners(around.items[static_cast<size_t>(k)]);
+      for (int c = 0; c < 3; ++c)
+      {
+        if (t[c] != q)
+        {
+          expected.insert(t[c]);
+        }
+      }
+    }
+    const std::vector<std::int64_t> got(ring.items.begin() + ring.Begin(q), ring.items.begin() + ring.End(q));
+    ASSERT_EQ(got, std::vector<std::int64_t>(expected.begin(), expected.end())) << "point " << q;
+    edges += static_cast<std::int64_t>(got.size());
+  }
+  EXPECT_EQ(2 * split.NumberOfEdges(), edges);
 }
 
 TEST(MeshSharpening, AConesApexDoesNotTiltItsFaces)

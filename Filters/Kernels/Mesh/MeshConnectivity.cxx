@@ -280,6 +280,8 @@ Status MeshConnectivity::Build(
   std::int64_t numberOfPoints, IdVector ids, int threads)
 {
   this->derived = false;
+  this->pendingRings.reset(); // the one-rings are built below
+  this->ringsCollected = false;
   if (numberOfPoints < 0 || ids.size() % 3 != 0)
   {
     return { "invalid mesh arrays" };

@@ -24,6 +24,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -101,8 +102,12 @@ public:
    * they copy), and `triangles` are the source's, in the same order, with each
    * corner replaced by a copy of it (equal corners by the same copy). The
    * result is what Build(original.size(), triangles) gives; only the lists
-   * around split points and their neighbours are recomputed. Falls back to
-   * Build when the arguments are not such a split.
+   * around split points and their neighbours are recomputed. The one-rings
+   * (and the number of edges) are collected from the triangles around each
+   * point when first asked for: the advection on a split mesh reads its
+   * triangles, its lists of triangles around points and its neighbours, while
+   * the one-rings serve the flow, which a sharpening computes on the
+   * unsplit mesh. Falls back to Build when the arguments are not such a split.
    */
   Status BuildSplit(const MeshConnectivity& source, const std::vector<std::int64_t>& original,
     IdVector triangles, int threads);
@@ -121,7 +126,13 @@ public:
   /// Triangles that use point p, in increasing order.
   const CompressedLists& PointTriangles() const { return this->pointTriangles; }
   /// Points joined to p by an edge, each once, in increasing order.
-  const CompressedLists& OneRing() const { return this->oneRing; }
+  const CompressedLists& OneRing() const
+  {
+    this->CollectPendingOneRings();
+    return this->oneRing;
+  }
+  /// Whether the one-rings are there (false after BuildSplit until OneRing or NumberOfEdges is called).
+  bool OneRingsBuilt() const { return !this->pendingRings || this->ringsCollected; }
   /**
    * Triangle across edge e of triangle f (from corner e to corner (e+1)%3) when
    * exactly one other triangle has both its end points; -1 otherwise, and for
@@ -132,7 +143,11 @@ public:
     return this->neighbour[static_cast<size_t>(3 * f + e)];
   }
   /// Number of unique edges.
-  std::int64_t NumberOfEdges() const { return this->numberOfEdges; }
+  std::int64_t NumberOfEdges() const
+  {
+    this->CollectPendingOneRings();
+    return this->numberOfEdges;
+  }
   /// Neighbour(f, e) for all f and e, 3 per triangle.
   const std::int64_t* Neighbours() const { return this->neighbour.data(); }
 
@@ -148,16 +163,20 @@ private:
   struct SplitCopies; // the source and its points' copies (MeshConnectivity.cxx)
   void SplitPointTriangles(const SplitCopies& split);
   void SplitNeighbours(const SplitCopies& split);
-  void CountSplitOneRings(const SplitCopies& split, std::vector<unsigned char>& same);
-  std::int64_t FillSplitOneRings(const SplitCopies& split, const std::vector<unsigned char>& same);
+  /// After BuildSplit, on first use: the one-rings from the triangles around each point (once, thread-safe).
+  void CollectPendingOneRings() const;
 
   std::int64_t numberOfPoints = 0;
-  std::int64_t numberOfEdges = 0;
   bool derived = false;
   IdVector triangles;
   CompressedLists pointTriangles;
-  CompressedLists oneRing;
   IdVector neighbour;
+  // Built by Build; after BuildSplit collected on first use (CollectPendingOneRings).
+  mutable std::int64_t numberOfEdges = 0;
+  mutable CompressedLists oneRing;
+  std::unique_ptr<std::once_flag> pendingRings; ///< set by BuildSplit: the one-rings are not collected yet
+  mutable bool ringsCollected = false;
+  int ringThreads = 1;
 };
 
 } // namespace shock

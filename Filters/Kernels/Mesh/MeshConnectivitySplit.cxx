@@ -162,23 +162,6 @@ struct MeshConnectivity::SplitCopies
     const std::int64_t* t = this->source.Corners(f);
     return this->triangles[static_cast<size_t>(3 * f + (t[0] == p ? 0 : (t[1] == p ? 1 : 2)))];
   }
-  /// Whether p's one-ring is the source's renumbered: p has one copy, and so has every point of its ring.
-  bool KeepsOneRing(std::int64_t p) const
-  {
-    const CompressedLists& sourceRing = this->source.oneRing;
-    if (this->CopiesOf(p) > 1)
-    {
-      return false;
-    }
-    for (std::int64_t k = sourceRing.Begin(p); k < sourceRing.End(p); ++k)
-    {
-      if (this->CopiesOf(sourceRing.items[static_cast<size_t>(k)]) > 1)
-      {
-        return false;
-      }
-    }
-    return true;
-  }
 };
 
 Status MeshConnectivity::BuildSplit(const MeshConnectivity& source,
@@ -198,15 +181,12 @@ Status MeshConnectivity::BuildSplit(const MeshConnectivity& source,
   const SplitCopies split(source, original, this->triangles, team);
   this->SplitPointTriangles(split);
   this->SplitNeighbours(split);
-  // One-rings: the source's, renumbered, for a point with one copy and no split
-  // point in its ring (renumbering keeps the order); else collected anew.
-  CompressedLists& ring = this->oneRing;
-  ring.offsets.assign(static_cast<size_t>(copies) + 1, 0);
-  std::vector<unsigned char> same(static_cast<size_t>(source.numberOfPoints));
-  this->CountSplitOneRings(split, same);
-  std::partial_sum(ring.offsets.begin(), ring.offsets.end(), ring.offsets.begin());
-  ring.items.resize(static_cast<size_t>(ring.offsets.back()));
-  this->numberOfEdges = this->FillSplitOneRings(split, same);
+  // The one-rings wait until asked for (CollectPendingOneRings).
+  this->oneRing = CompressedLists();
+  this->numberOfEdges = 0;
+  this->ringsCollected = false;
+  this->pendingRings.reset(new std::once_flag);
+  this->ringThreads = team;
   return {};
 }
 
@@ -296,65 +276,39 @@ void MeshConnectivity::SplitNeighbours(const SplitCopies& split)
 }
 
 /**
- * BuildSplit's one-ring sizes (into the offsets, shifted by one), and per
- * source point whether its ring is the source's renumbered (`same`).
+ * The one-rings of a split mesh, collected on first use from the triangles
+ * around each point (what Build gives: the points joined by an edge, each
+ * once, in increasing order), and the number of edges. Sizes first, then the
+ * lists into their places; once, whatever the threads that ask.
  */
-void MeshConnectivity::CountSplitOneRings(const SplitCopies& split, std::vector<unsigned char>& same)
+void MeshConnectivity::CollectPendingOneRings() const
 {
-  const std::int64_t np = split.source.numberOfPoints;
-  const std::vector<std::int64_t>& firstCopy = split.firstCopy;
-  const CompressedLists& sourceRing = split.source.oneRing;
-  CompressedLists& ring = this->oneRing;
-#pragma omp parallel num_threads(split.team)
+  if (!this->pendingRings)
   {
-    std::vector<std::int64_t> scratch;
-#pragma omp for schedule(static)
-    for (std::int64_t p = 0; p < np; ++p)
+    return; // built with the rest (Build)
+  }
+  std::call_once(*this->pendingRings, [this]() {
+    const std::int64_t np = this->numberOfPoints;
+    CompressedLists& ring = this->oneRing;
+    ring.offsets.assign(static_cast<size_t>(np) + 1, 0);
+#pragma omp parallel num_threads(this->ringThreads)
     {
-      same[static_cast<size_t>(p)] = split.KeepsOneRing(p) ? 1 : 0;
-      if (same[static_cast<size_t>(p)])
-      {
-        ring.offsets[static_cast<size_t>(firstCopy[static_cast<size_t>(p)]) + 1] = sourceRing.End(p) - sourceRing.Begin(p);
-        continue;
-      }
-      for (std::int64_t q = firstCopy[static_cast<size_t>(p)]; q < firstCopy[static_cast<size_t>(p) + 1]; ++q)
+      std::vector<std::int64_t> scratch;
+#pragma omp for schedule(static)
+      for (std::int64_t q = 0; q < np; ++q)
       {
         CollectOneRing(*this, q, scratch);
         ring.offsets[static_cast<size_t>(q) + 1] = static_cast<std::int64_t>(scratch.size());
       }
     }
-  }
-}
-
-/// BuildSplit's one-rings into their places (CountSplitOneRings gave the offsets); returns
-/// the number of edges.
-std::int64_t MeshConnectivity::FillSplitOneRings(
-  const SplitCopies& split, const std::vector<unsigned char>& same)
-{
-  const std::int64_t np = split.source.numberOfPoints;
-  const std::vector<std::int64_t>& firstCopy = split.firstCopy;
-  const CompressedLists& sourceRing = split.source.oneRing;
-  CompressedLists& ring = this->oneRing;
-  std::int64_t edges = 0;
-#pragma omp parallel num_threads(split.team) reduction(+ : edges)
-  {
-    std::vector<std::int64_t> scratch;
-#pragma omp for schedule(static)
-    for (std::int64_t p = 0; p < np; ++p)
+    std::partial_sum(ring.offsets.begin(), ring.offsets.end(), ring.offsets.begin());
+    ring.items.resize(static_cast<size_t>(ring.offsets.back()));
+    std::int64_t edges = 0;
+#pragma omp parallel num_threads(this->ringThreads) reduction(+ : edges)
     {
-      if (same[static_cast<size_t>(p)])
-      {
-        const std::int64_t q = firstCopy[static_cast<size_t>(p)];
-        std::int64_t* out = ring.items.data() + ring.Begin(q);
-        for (std::int64_t k = sourceRing.Begin(p); k < sourceRing.End(p); ++k)
-        {
-          const std::int64_t r = firstCopy[static_cast<size_t>(sourceRing.items[static_cast<size_t>(k)])];
-          *out++ = r;
-          edges += r > q ? 1 : 0;
-        }
-        continue;
-      }
-      for (std::int64_t q = firstCopy[static_cast<size_t>(p)]; q < firstCopy[static_cast<size_t>(p) + 1]; ++q)
+      std::vector<std::int64_t> scratch;
+#pragma omp for schedule(static)
+      for (std::int64_t q = 0; q < np; ++q)
       {
         CollectOneRing(*this, q, scratch);
         std::copy(scratch.begin(), scratch.end(), ring.items.begin() + ring.Begin(q));
@@ -364,8 +318,9 @@ std::int64_t MeshConnectivity::FillSplitOneRings(
         }
       }
     }
-  }
-  return edges;
+    this->numberOfEdges = edges;
+    this->ringsCollected = true;
+  });
 }
 
 } // namespace shock
