@@ -152,7 +152,7 @@ def run(plugin, work, path):
     usage = resource.getrusage(resource.RUSAGE_SELF)
     faults = usage.ru_minflt - faults  # pages touched for the first time
     cpu = usage.ru_utime + usage.ru_stime - cpu  # the process's CPU time in the window (all its threads)
-    system = usage.ru_stime - system  # of which in the kernel (on these machines mostly clearing fresh pages)
+    system = usage.ru_stime - system  # of which in the kernel (page faults are counted here)
     peak = memory("VmHWM") - before
     data = filtered.GetClientSideObject().GetOutputDataObject(0)
     ghosts = data.GetPointData().GetArray("vtkGhostType") if work != "image" else None

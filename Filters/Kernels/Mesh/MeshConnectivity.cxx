@@ -281,7 +281,6 @@ Status MeshConnectivity::Build(
 {
   this->derived = false;
   this->pendingRings.reset(); // the one-rings are built below
-  this->ringsCollected = false;
   if (numberOfPoints < 0 || ids.size() % 3 != 0)
   {
     return { "invalid mesh arrays" };

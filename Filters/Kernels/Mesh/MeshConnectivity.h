@@ -132,7 +132,7 @@ public:
     return this->oneRing;
   }
   /// Whether the one-rings are there (false after BuildSplit until OneRing or NumberOfEdges is called).
-  bool OneRingsBuilt() const { return !this->pendingRings || this->ringsCollected; }
+  bool OneRingsBuilt() const { return !this->pendingRings || !this->oneRing.offsets.empty(); }
   /**
    * Triangle across edge e of triangle f (from corner e to corner (e+1)%3) when
    * exactly one other triangle has both its end points; -1 otherwise, and for
@@ -174,8 +174,7 @@ private:
   // Built by Build; after BuildSplit collected on first use (CollectPendingOneRings).
   mutable std::int64_t numberOfEdges = 0;
   mutable CompressedLists oneRing;
-  std::unique_ptr<std::once_flag> pendingRings; ///< set by BuildSplit: the one-rings are not collected yet
-  mutable bool ringsCollected = false;
+  std::unique_ptr<std::once_flag> pendingRings; ///< set by BuildSplit: the one-rings are collected on first use
   int ringThreads = 1;
 };
 

@@ -184,7 +184,6 @@ Status MeshConnectivity::BuildSplit(const MeshConnectivity& source,
   // The one-rings wait until asked for (CollectPendingOneRings).
   this->oneRing = CompressedLists();
   this->numberOfEdges = 0;
-  this->ringsCollected = false;
   this->pendingRings.reset(new std::once_flag);
   this->ringThreads = team;
   return {};
@@ -319,7 +318,6 @@ void MeshConnectivity::CollectPendingOneRings() const
       }
     }
     this->numberOfEdges = edges;
-    this->ringsCollected = true;
   });
 }
 

@@ -339,10 +339,10 @@ void RunUpdates(const MeshRun& run, MeshSteps& steps, const MeshRun* flowRun, Me
     const auto flowStart = Clock::now();
     // The first update of every mode starts from the input, whose per-point values are at hand.
     const double* current = fixed ? run.signal.values : steps.current.data();
-    // The flow mesh's per-point values serve this update only (taken); the advected
-    // mesh's are read again by the samples (copied).
     // The last update's u goes to the fields, when asked for.
     std::vector<double>* flow = fields && k == updates - 1 ? &fields->flow : nullptr;
+    // The flow mesh's per-point values serve this update only (taken); the advected
+    // mesh's are read again by the samples (copied).
     std::vector<double> potential = flowRun
       ? UpdateFlow(*flowRun, current, k == 0 ? std::move(flowSteps.inputPoints) : std::vector<double>(), flow,
           velocity)

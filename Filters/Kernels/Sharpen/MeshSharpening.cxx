@@ -292,8 +292,7 @@ Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& param
  * `keepFeatures`: the cache outlives the run (a caller's), so the smoothed
  * normals and the feature split stay in it for the next run; otherwise they
  * are released once the normals are advected, before the fit allocates its
- * system (the split is a second copy of the mesh: about a fifth of the run's
- * peak memory).
+ * system (the split is a second copy of the mesh's connectivity).
  */
 Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& parameters,
   const unsigned char* triangleRing, double* positions, ValueVector& target, SharpeningReport& r,
