@@ -509,6 +509,8 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   parameters.triangleRing = triangleRing;
   parameters.wholeTriangles = static_cast<std::int64_t>(wholeTriangles);
   parameters.fit.screeningWeight = this->ScreeningWeight;
+  parameters.fit.anchorWeight = this->AnchorWeight;
+  parameters.fit.anchorAngle = this->AnchorAngle;
   parameters.fit.solver = static_cast<shock::FitSolver>(this->Solver);
   parameters.fit.iterations = this->SolverIterations;
   parameters.fit.maxIterations = this->SolverIterations;
@@ -636,6 +638,8 @@ std::string vtkPolyDataShockSharpenFilter::ParametersText()
        << "FitTarget=" << this->FitTarget << ";"
        << "NormalSmoothingPasses=" << this->NormalSmoothingPasses << ";"
        << "ScreeningWeight=" << this->ScreeningWeight << ";"
+       << "AnchorWeight=" << this->AnchorWeight << ";"
+       << "AnchorAngle=" << this->AnchorAngle << ";"
        << "Solver=" << this->Solver << ";"
        << "SolverIterations=" << this->SolverIterations << ";"
        << "SolverTolerance=" << this->SolverTolerance << ";"
@@ -654,6 +658,8 @@ void vtkPolyDataShockSharpenFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FitTarget: " << targetNames[this->FitTarget] << "\n";
   os << indent << "NormalSmoothingPasses: " << this->NormalSmoothingPasses << "\n";
   os << indent << "ScreeningWeight: " << this->ScreeningWeight << "\n";
+  os << indent << "AnchorWeight: " << this->AnchorWeight << "\n";
+  os << indent << "AnchorAngle: " << this->AnchorAngle << "\n";
   os << indent << "Solver: " << solverNames[this->Solver] << "\n";
   os << indent << "SolverIterations: " << this->SolverIterations << "\n";
   os << indent << "SolverTolerance: " << this->SolverTolerance << "\n";

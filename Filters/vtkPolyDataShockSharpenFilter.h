@@ -14,7 +14,7 @@
  * S the cotangent stiffness matrix. Creases and corners come out sharp; flat and
  * smooth parts stay as they are.
  *
- * Three departures from the paper, each with a value that reproduces it
+ * Four departures from the paper, each with a value that reproduces it
  * (docs/sharpening.md has the evaluation): creases sharper than FeatureAngle are
  * kept as they are (the paper's per-point normals round them: 180 reproduces
  * it); the fit maps each triangle onto its target plane by a central
@@ -22,7 +22,9 @@
  * projection, so that sharpening does not shrink the shape (FitTarget
  * PROJECTION reproduces the paper); and the advection's potential keeps only
  * what stands out CurvatureContrast times above its surroundings, so that a
- * coarsely tessellated smooth shape is not sharpened (0 reproduces the paper).
+ * coarsely tessellated smooth shape is not sharpened (0 reproduces the paper);
+ * and the fit holds the points whose triangles the sharpening did not turn
+ * where they were (AnchorWeight, AnchorAngle; AnchorWeight 0 reproduces the paper).
  *
  * FlowTime (of the base class) defaults to 256 here, not 64: a crease rounded
  * over 4 rows of triangles is sharp again from t = 128, over 6 rows from 512,
@@ -32,7 +34,7 @@
  *
  * Parameters specific to this filter: FeatureAngle, CurvatureContrast, FitTarget,
  * NormalSmoothingPasses (pre-mollification of noisy normals), ScreeningWeight
- * (eps), Solver, SolverIterations, SolverTolerance, MergeCoincidentPoints,
+ * (eps), AnchorWeight, AnchorAngle, Solver, SolverIterations, SolverTolerance, MergeCoincidentPoints,
  * GenerateSharpenedNormals. Of the base
  * class, Sampling LINEAR (default) interpolates the per-point normals
  * barycentrically, which also smooths the normals (even at FlowTime 0, as the
@@ -227,6 +229,24 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Not the paper's: the fit holds in place the points whose triangles the
+   * sharpening did not turn. A point whose triangles' sharpened normals all lie
+   * within AnchorAngle degrees of their input normals gets an extra screening
+   * of AnchorWeight times its row's diagonal in the fit, fading linearly to
+   * none at AnchorAngle; so the fit no longer drifts the flat and smooth parts
+   * away from where they were while it moves the creases (docs/sharpening.md,
+   * "Points the sharpening did not turn stay"). AnchorWeight 0 or AnchorAngle
+   * 0 is the paper's fit. AnchorWeight: range [0, 1e6], default 1;
+   * AnchorAngle: degrees, range [0, 180], default 5.
+   */
+  vtkSetClampMacro(AnchorWeight, double, 0.0, 1e6);
+  vtkGetMacro(AnchorWeight, double);
+  vtkSetClampMacro(AnchorAngle, double, 0.0, 180.0);
+  vtkGetMacro(AnchorAngle, double);
+  ///@}
+
+  ///@{
   /// Solver of the fit: CONJUGATE_GRADIENT (default), CONJUGATE_GRADIENT_TOLERANCE or EXACT.
   vtkSetClampMacro(Solver, int, CONJUGATE_GRADIENT, EXACT);
   vtkGetMacro(Solver, int);
@@ -400,6 +420,8 @@ protected:
   int FitTarget = CENTRAL_PROJECTION;
   int NormalSmoothingPasses = 0;
   double ScreeningWeight = 1.0;
+  double AnchorWeight = 1.0;
+  double AnchorAngle = 5.0;
   int Solver = CONJUGATE_GRADIENT;
   int SolverIterations = 25;
   double SolverTolerance = 1e-6;

@@ -48,6 +48,8 @@ struct SharpenSettings
   std::optional<int> fitTarget;
   std::optional<int> normalSmoothingPasses;
   std::optional<double> screeningWeight;
+  std::optional<double> anchorWeight;
+  std::optional<double> anchorAngle;
   std::optional<int> solver;
   std::optional<int> iterations;
   std::optional<double> tolerance;
@@ -76,6 +78,12 @@ std::vector<OptionSpec> SharpenOptionSpecs(SharpenSettings& settings)
   specs.push_back(RangeOptionSpec("--screening", "EPS", "screening weight of the fit",
     settings.screeningWeight, d->GetScreeningWeightMinValue(), d->GetScreeningWeightMaxValue(),
     d->GetScreeningWeight()));
+  specs.push_back(RangeOptionSpec("--anchor-weight", "W",
+    "the fit holds the points whose triangles did not turn (0 = the paper)", settings.anchorWeight,
+    d->GetAnchorWeightMinValue(), d->GetAnchorWeightMaxValue(), d->GetAnchorWeight()));
+  specs.push_back(RangeOptionSpec("--anchor-angle", "DEG",
+    "turn below which a point is anchored, fading to none at DEG (0 = the paper)", settings.anchorAngle,
+    d->GetAnchorAngleMinValue(), d->GetAnchorAngleMaxValue(), d->GetAnchorAngle()));
   specs.push_back(ChoiceOptionSpec(
     "--solver", "NAME", "conjugate-gradient|conjugate-gradient-tolerance|exact", settings.solver, SolverChoices(), d->GetSolver()));
   specs.push_back(RangeOptionSpec("--iterations", "K", "CG iterations (cap of conjugate-gradient-tolerance)",
@@ -144,6 +152,8 @@ int RunSharpenCommand(const std::vector<std::string>& args)
   SetIfGiven(filter.Get(), &F::SetFitTarget, settings.fitTarget);
   SetIfGiven(filter.Get(), &F::SetNormalSmoothingPasses, settings.normalSmoothingPasses);
   SetIfGiven(filter.Get(), &F::SetScreeningWeight, settings.screeningWeight);
+  SetIfGiven(filter.Get(), &F::SetAnchorWeight, settings.anchorWeight);
+  SetIfGiven(filter.Get(), &F::SetAnchorAngle, settings.anchorAngle);
   if (settings.solver || settings.tolerance)
   {
     filter->SetSolver(settings.solver.value_or(tolerantSolver));

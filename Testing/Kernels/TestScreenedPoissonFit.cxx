@@ -95,9 +95,97 @@ TEST(ScreenedPoissonFit, RoundedBoxSharpensTowardsTheCube)
   const double before = MeanNormalError(m, m.points, cubeNormals);
   for (FitSolver solver : AllSolvers)
   {
-    const auto fitted = Fit(mesh, cubeNormals, WithSolver(solver));
-    EXPECT_LT(MeanNormalError(m, fitted, cubeNormals), 0.2 * before)
+    FitParameters paper = WithSolver(solver);
+    paper.anchorWeight = 0.0;
+    EXPECT_LT(MeanNormalError(m, Fit(mesh, cubeNormals, paper), cubeNormals), 0.2 * before)
       << "solver " << static_cast<int>(solver);
+    // The anchor holds the points of the faces' middles, which the blend
+    // bent by less than the anchor angle, so they flatten a little less.
+    EXPECT_LT(MeanNormalError(m, Fit(mesh, cubeNormals, WithSolver(solver)), cubeNormals), 0.25 * before)
+      << "solver " << static_cast<int>(solver);
+  }
+}
+
+/// The roof of FlatGridBendsTowardsTheTargetNormals over 0.3 < x < 0.7 only: the rest keeps its own normal.
+std::vector<double> RoofInTheMiddle(const TriangleMesh& mesh)
+{
+  std::vector<double> targets;
+  for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+  {
+    const double x = mesh.Centroid(f)[0];
+    const double slope = x < 0.3 || x > 0.7 ? 0.0 : (x < 0.5 ? 0.3 : -0.3);
+    const double length = std::sqrt(1.0 + slope * slope);
+    targets.insert(targets.end(), { -slope / length, 0.0, 1.0 / length });
+  }
+  return targets;
+}
+
+TEST(ScreenedPoissonFit, TheAnchorHoldsThePointsWhoseTrianglesDidNotTurn)
+{
+  // Outside 0.3 < x < 0.7 no triangle is asked to turn. The paper's fit (anchor
+  // weight 0) moves those points too: the screening alone holds them. The
+  // anchor holds them closer, and the roof still rises.
+  const Mesh m = FlatGrid(41, 33);
+  const TriangleMesh mesh = Build(m);
+  const auto targets = RoofInTheMiddle(mesh);
+  auto farMotion = [&](const std::vector<double>& fitted) {
+    double worst = 0.0;
+    for (std::int64_t p = 0; p < mesh.NumberOfPoints(); ++p)
+    {
+      const double x = m.points[static_cast<size_t>(3 * p)];
+      if (x < 0.25 || x > 0.75) // every triangle around p keeps its normal
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          worst = std::max(worst, std::abs(fitted[static_cast<size_t>(3 * p + k)] - m.points[static_cast<size_t>(3 * p + k)]));
+        }
+      }
+    }
+    return worst;
+  };
+  auto rise = [&](const std::vector<double>& fitted) {
+    return fitted[static_cast<size_t>(3 * (16 * 41 + 20) + 2)] - fitted[static_cast<size_t>(3 * (16 * 41 + 12) + 2)];
+  };
+  for (FitSolver solver : AllSolvers)
+  {
+    FitParameters paper = WithSolver(solver);
+    paper.anchorWeight = 0.0;
+    const auto unanchored = Fit(mesh, targets, paper);
+    const auto anchored = Fit(mesh, targets, WithSolver(solver)); // the defaults anchor
+    EXPECT_GT(farMotion(unanchored), 1e-3) << "the paper's fit moves the untouched parts";
+    EXPECT_LT(farMotion(anchored), 0.5 * farMotion(unanchored)) << "solver " << static_cast<int>(solver);
+    EXPECT_GT(rise(anchored), 0.5 * rise(unanchored));
+    EXPECT_GT(rise(unanchored), 0.02);
+    // Either zero is the paper's fit.
+    FitParameters noAngle = WithSolver(solver);
+    noAngle.anchorAngle = 0.0;
+    EXPECT_EQ(Fit(mesh, targets, noAngle), unanchored);
+  }
+}
+
+TEST(ScreenedPoissonFit, AKeptSystemGivesEachFitItsOwnAnchor)
+{
+  // The anchor is written into the kept system's diagonal: a fit with another
+  // anchor (or none) on the same system equals a fresh fit, in any order.
+  const Mesh m = FlatGrid(31, 23);
+  const TriangleMesh mesh = Build(m);
+  const auto roof = RoofInTheMiddle(mesh);
+  const auto perturbed = PerturbedNormals(mesh, 0.05);
+  FitParameters paper;
+  paper.anchorWeight = 0.0;
+  FitParameters strong;
+  strong.anchorWeight = 10.0;
+  strong.anchorAngle = 5.0;
+  const FitParameters runs[] = { FitParameters(), paper, strong, FitParameters(), paper };
+  const std::vector<double>* targetsOf[] = { &roof, &roof, &perturbed, &perturbed, &roof };
+  FitSystem kept;
+  for (int run = 0; run < 5; ++run)
+  {
+    std::vector<double> positions(static_cast<size_t>(3 * mesh.NumberOfPoints()));
+    FitReport report;
+    ASSERT_TRUE(FitPositionsToNormals(mesh, targetsOf[run]->data(), positions.data(), runs[run], &report, &kept).Ok());
+    EXPECT_EQ(report.reusedSystem, run > 0);
+    EXPECT_EQ(positions, Fit(mesh, *targetsOf[run], runs[run])) << "run " << run;
   }
 }
 
@@ -248,6 +336,19 @@ TEST(ScreenedPoissonFit, InvalidArgumentsAreRejectedAndKeepThePositions)
   p = FitParameters{};
   p.tolerance = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(FitPositionsToNormals(mesh, targets.data(), positions.data(), p).Ok());
+  for (double weight : { -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity() })
+  {
+    p = FitParameters{};
+    p.anchorWeight = weight;
+    EXPECT_FALSE(FitPositionsToNormals(mesh, targets.data(), positions.data(), p).Ok());
+  }
+  for (double angle : { -1.0, 180.5, std::numeric_limits<double>::quiet_NaN() })
+  {
+    p = FitParameters{};
+    p.anchorAngle = angle;
+    EXPECT_FALSE(FitPositionsToNormals(mesh, targets.data(), positions.data(), p).Ok());
+  }
+  EXPECT_EQ(positions, m.points);
   p = FitParameters{};
   p.solver = static_cast<FitSolver>(7);
   EXPECT_FALSE(FitPositionsToNormals(mesh, targets.data(), positions.data(), p).Ok());

@@ -60,8 +60,13 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
   // with T = I - N N^T (the paper's projection), the rotation about n x N by the
   // angle between them (axis-angle form), or (I - n N^T / c) / c^p for the shear
   // (p = 0) and the central projection (p = 1), c = <n, N> (tilts below 45 degrees).
+  // The anchor: with theta_p the largest angle between a triangle's own and target
+  // normals at point p, kappa_p = weight * a_pp * max(0, 1 - theta_p / angle) is
+  // added to the diagonal a_pp and kappa_p x0_p to the right-hand side (0 for
+  // the paper's fit: every fifth trial; small tilts make partial anchors).
   std::mt19937 random(12345);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  int partialAnchors = 0; // points held by a part of the anchor weight (0 < kappa < weight a_pp)
   for (int trial = 0; trial < 80; ++trial)
   {
     const FitTarget target = static_cast<FitTarget>(trial % 4);
@@ -73,15 +78,19 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
     m.triangles = { 0, 1, 2, 0, 2, 3 };
     const TriangleMesh mesh = Build(m);
     ASSERT_FALSE(mesh.Degenerate(0) || mesh.Degenerate(1));
-    // Targets tilted from the triangles' normals by less than 45 degrees.
+    // Targets tilted from the triangles' normals by less than 45 degrees; every
+    // third trial by less than 2 degrees, for a partial anchor.
+    const double tilt = trial % 3 == 0 ? 0.015 : 0.4;
     std::vector<double> targets;
     for (int f = 0; f < 2; ++f)
     {
       for (int k = 0; k < 3; ++k)
       {
-        targets.push_back(mesh.Normal(f)[k] + 0.4 * uniform(random));
+        targets.push_back(mesh.Normal(f)[k] + tilt * uniform(random));
       }
     }
+    const double anchorWeight = trial % 5 == 0 ? 0.0 : 0.1 + 5.0 * (uniform(random) + 1.0);
+    const double anchorAngle = trial % 3 == 0 ? 1.0 + 2.0 * (uniform(random) + 1.0) : 60.0;
     const double weight = trial % 2 ? 1.0 : 0.1 + 10.0 * (uniform(random) + 1.0);
 
     auto point = [&](std::int64_t p) {
@@ -91,6 +100,7 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
     std::vector<std::vector<double>> mass = stiffness;
     std::vector<std::vector<double>> divergence(4, std::vector<double>(3, 0.0));
     double totalArea = 0.0;
+    std::vector<double> turn(4, 0.0); // degrees: the largest at each point
     for (int f = 0; f < 2; ++f)
     {
       const std::int64_t* t = &m.triangles[static_cast<size_t>(3 * f)];
@@ -137,6 +147,10 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
         return Vec3{ c[0] / l, c[1] / l, c[2] / l };
       }();
       const double cosine = Dot(own, n);
+      for (int c = 0; c < 3; ++c)
+      {
+        turn[t[c]] = std::max(turn[t[c]], std::acos(std::min(1.0, cosine)) * 180.0 / 3.14159265358979323846);
+      }
       double map[3][3];
       const Vec3 axis = Cross(own, n);
       const double sine = std::sqrt(Dot(axis, axis));
@@ -203,9 +217,19 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
         a[i][j] = screening * mass[i][j] + stiffness[i][j];
       }
     }
+    std::vector<double> anchor(4);
+    for (int i = 0; i < 4; ++i)
+    {
+      const double share = std::max(0.0, 1.0 - turn[i] / anchorAngle);
+      anchor[i] = anchorWeight * a[i][i] * share;
+      a[i][i] += anchor[i];
+      partialAnchors += anchorWeight > 0.0 && share > 0.0 && share < 1.0 ? 1 : 0;
+    }
     FitParameters p = WithSolver(FitSolver::Exact);
     p.screeningWeight = weight;
     p.target = target;
+    p.anchorWeight = anchorWeight;
+    p.anchorAngle = anchorAngle;
     const auto fitted = Fit(mesh, targets, p);
     for (int k = 0; k < 3; ++k)
     {
@@ -216,7 +240,7 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
         {
           b[i] += screening * mass[i][j] * m.points[3 * j + k];
         }
-        b[i] += divergence[i][k];
+        b[i] += divergence[i][k] + anchor[i] * m.points[3 * i + k];
       }
       const auto expected = SolveDense(a, b);
       for (int i = 0; i < 4; ++i)
@@ -225,6 +249,7 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
       }
     }
   }
+  EXPECT_GT(partialAnchors, 20);
 }
 
 } // namespace

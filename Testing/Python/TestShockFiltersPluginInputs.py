@@ -82,6 +82,8 @@ clamps = [
     (image_probe, "TracingMode", 9, 1),
     (image_probe, "GhostLevels", -1, 0),
     (sharpen_probe, "ScreeningWeight", 0.0, 1e-6),
+    (sharpen_probe, "AnchorWeight", -1.0, 0.0),
+    (sharpen_probe, "AnchorAngle", 200.0, 180.0),
     (sharpen_probe, "SolverTolerance", 2.0, 1.0),
     (sharpen_probe, "SolverTolerance", -1.0, 0.0),
     (sharpen_probe, "SolverIterations", -5, 0),

@@ -48,6 +48,17 @@ struct FitParameters
   /// (eps / total area in the mesh's own units). Larger values keep the positions
   /// closer to the original ones; the paper uses 1.
   double screeningWeight = 1.0;
+  /**
+   * Not the paper's: the anchor of the points the sharpening did not turn
+   * (ScreenedPoissonFit.h, step 4). A point whose triangles' target normals all
+   * lie within anchorAngle degrees of their own normals is held at its
+   * original position by anchorWeight times its row's diagonal, fading to
+   * nothing at anchorAngle. 0 (either) is the paper's fit: the screening
+   * weight alone anchors the surface. anchorWeight >= 0 and finite,
+   * anchorAngle in [0, 180].
+   */
+  double anchorWeight = 1.0;
+  double anchorAngle = 5.0;
   FitSolver solver = FitSolver::ConjugateGradient;
   /// Iterations of FitSolver::ConjugateGradient (>= 0; the paper uses 25).
   int iterations = 25;

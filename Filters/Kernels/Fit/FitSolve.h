@@ -103,6 +103,10 @@ struct FitSystemData
   /// The points in the order the assembly visits them (each fills its own row).
   std::vector<std::int64_t> visit;
   std::vector<char> fitted;        ///< per row: its point is used by a non-degenerate triangle
+  /// Per row, the diagonal entry without an anchor: empty until a fit anchors
+  /// (AnchorUnturnedPoints), which writes base + its own anchor each time.
+  std::vector<double> baseDiagonal;
+  bool anchored = false; ///< the diagonal holds the last fit's anchor
 };
 
 namespace fit
@@ -114,6 +118,24 @@ namespace fit
  */
 void AddTargetDivergence(const TriangleMesh& mesh, const double* normals, FitTarget target,
   std::int64_t f, const double gp[3], double out[3]);
+
+/**
+ * The cosine of the angle between triangle f's own normal and its target
+ * normal (the valid one: 1 when the target is replaced by the own normal).
+ */
+double TargetTurnCosine(const TriangleMesh& mesh, const double* normals, std::int64_t f);
+
+/**
+ * Step 4 of ScreenedPoissonFit.h, the anchor of the points the sharpening did
+ * not turn: for each row's point p, with theta_p the largest angle between a
+ * non-degenerate triangle's own and target normals around p,
+ * kappa_p = weight * A_pp * max(0, 1 - theta_p / angle) (A_pp the diagonal
+ * without anchor) is added to the diagonal and kappa_p c0_p to b. Writes the
+ * diagonal (and inverse diagonal) of every row: a weight of 0 restores the
+ * unanchored system. Rows without a non-degenerate triangle are left alone.
+ */
+void AnchorUnturnedPoints(const TriangleMesh& mesh, const double* normals, double weight,
+  double angle, FitSystemData& system, Coordinates& b, int threads);
 
 /// The target gradients w (FitTargetGradients, 9 values) of triangle f for its target normal.
 void TargetGradients(const TriangleMesh& mesh, const double* normals, FitTarget target,

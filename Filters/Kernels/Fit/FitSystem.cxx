@@ -396,6 +396,8 @@ void FillRows(const TriangleMesh& mesh, int threads, const fit::Targets* targets
   system.massTerm.resize(np, 3);
   system.inverseDiagonal.resize(static_cast<size_t>(np));
   system.fitted.assign(static_cast<size_t>(np), 0);
+  system.baseDiagonal.clear(); // taken from the diagonal by the first anchor
+  system.anchored = false;
   rhs.resize(targets ? np : 0, 3);
   const double weight = system.beta * s;
 #pragma omp parallel num_threads(threads)

@@ -8,7 +8,9 @@
  * eps M c0 and the normalisation to unit area depend on the positions, the
  * triangles and eps, not on the target normals: a FitSystem holds them, so a
  * second fit of the same mesh (another flow time in ParaView, other normals)
- * assembles only D w. The rows are numbered breadth-first over the
+ * assembles only D w. The anchor of the points the normals did not turn
+ * (ScreenedPoissonFit.h, step 4) depends on the normals: each fit writes its
+ * own into the kept diagonal, from the diagonal as assembled. The rows are numbered breadth-first over the
  * one-rings (a renumbering that keeps each row's neighbours close in memory:
  * meshes made by subdivision number new points far from their neighbours, and
  * the conjugate gradients' products then wait on memory), except for a piece
@@ -34,7 +36,8 @@ struct FitSystemData; // FitSolve.h: the matrix, the mass term, the row order
 /// A built system and what it was built for (see the file comment).
 struct FitSystem
 {
-  std::shared_ptr<const FitSystemData> data; ///< empty until built
+  /// Empty until built. Each fit writes its anchor (FitParameters::anchorWeight) into the diagonal.
+  std::shared_ptr<FitSystemData> data;
   const TriangleMesh* mesh = nullptr;        ///< the mesh it was built for
   std::int64_t points = 0;                   ///< that mesh's size when built
   std::int64_t triangles = 0;

@@ -111,6 +111,76 @@ void fit::TargetGradients(const TriangleMesh& mesh, const double* normals, FitTa
   FitTargetGradients(mesh, f, n, target, w);
 }
 
+double fit::TargetTurnCosine(const TriangleMesh& mesh, const double* normals, std::int64_t f)
+{
+  double n[3];
+  if (!TargetNormal(mesh, normals, f, n))
+  {
+    return 1.0; // replaced by the own normal: not turned
+  }
+  return std::max(-1.0, std::min(1.0, Dot(Load(n), Load(mesh.Normal(f)))));
+}
+
+void fit::AnchorUnturnedPoints(const TriangleMesh& mesh, const double* normals, double weight,
+  double angle, FitSystemData& system, Coordinates& b, int threads)
+{
+  const bool anchoring = weight > 0.0 && angle > 0.0;
+  if (!anchoring && !system.anchored)
+  {
+    return; // the paper's system, as assembled
+  }
+  RowMatrix& A = system.matrix;
+  const auto np = static_cast<std::int64_t>(system.order.size());
+  if (system.baseDiagonal.empty())
+  {
+    system.baseDiagonal.resize(static_cast<size_t>(np));
+  }
+  const bool firstAnchor = !system.anchored;
+  const CompressedLists& around = mesh.PointTriangles();
+  const double degrees = 180.0 / 3.14159265358979323846;
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t r = 0; r < np; ++r)
+  {
+    if (!system.fitted[static_cast<size_t>(r)])
+    {
+      continue; // an identity row: the point keeps its position anyway
+    }
+    // The row's diagonal entry (columns are sorted within a row).
+    const int* begin = A.innerIndexPtr() + A.outerIndexPtr()[r];
+    const int* end = A.innerIndexPtr() + A.outerIndexPtr()[r + 1];
+    double& diagonal = A.valuePtr()[A.outerIndexPtr()[r] + (std::lower_bound(begin, end, static_cast<int>(r)) - begin)];
+    double& base = system.baseDiagonal[static_cast<size_t>(r)];
+    if (firstAnchor)
+    {
+      base = diagonal;
+    }
+    double kappa = 0.0;
+    if (anchoring)
+    {
+      // The largest turn the fit asks of a triangle around the point.
+      const std::int64_t p = system.order[static_cast<size_t>(r)];
+      double leastCosine = 1.0;
+      for (std::int64_t a = around.Begin(p); a < around.End(p); ++a)
+      {
+        const std::int64_t f = around.items[static_cast<size_t>(a)];
+        if (!mesh.Degenerate(f))
+        {
+          leastCosine = std::min(leastCosine, TargetTurnCosine(mesh, normals, f));
+        }
+      }
+      const double turn = std::acos(leastCosine) * degrees;
+      kappa = weight * base * std::max(0.0, 1.0 - turn / angle);
+    }
+    diagonal = base + kappa;
+    system.inverseDiagonal[static_cast<size_t>(r)] = 1.0 / diagonal;
+    for (int k = 0; k < 3; ++k)
+    {
+      b(r, k) += kappa * system.original(r, k);
+    }
+  }
+  system.anchored = anchoring;
+}
+
 void fit::AddTargetDivergence(const TriangleMesh& mesh, const double* normals, FitTarget target,
   std::int64_t f, const double gp[3], double out[3])
 {
@@ -127,6 +197,11 @@ Status CheckFitParameters(const TriangleMesh& mesh, const FitParameters& paramet
   if (!(std::isfinite(parameters.screeningWeight) && parameters.screeningWeight > 0.0))
   {
     return { "the screening weight must be finite and > 0" };
+  }
+  if (!(std::isfinite(parameters.anchorWeight) && parameters.anchorWeight >= 0.0) ||
+    !(parameters.anchorAngle >= 0.0 && parameters.anchorAngle <= 180.0))
+  {
+    return { "the anchor weight must be finite and >= 0, the anchor angle in [0, 180]" };
   }
   if (parameters.target != FitTarget::Projection && parameters.target != FitTarget::Rotation &&
     parameters.target != FitTarget::Shear && parameters.target != FitTarget::CentralProjection)
@@ -323,6 +398,8 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
     out.setupSeconds = SecondsSince(setupStart);
     return status;
   }
+  fit::AnchorUnturnedPoints(
+    mesh, targetNormals, parameters.anchorWeight, parameters.anchorAngle, *system.data, b, threads);
   const FitSystemData& data = *system.data;
   out.setupSeconds = SecondsSince(setupStart);
 

@@ -43,7 +43,16 @@
  *         (eps M + S) c1 = eps M c0 + D w,
  *     with M the consistent finite-element mass matrix (A/12 [2 1 1; 1 2 1; 1 1 2]
  *     per triangle), S the cotangent stiffness matrix
- *     (S_ij = sum_f A_f grad(phi_i) . grad(phi_j)) and (D w)_i = sum_f A_f grad(phi_i) . w_f.
+ *     (S_ij = sum_f A_f grad(phi_i) . grad(phi_j)) and (D w)_i = sum_f A_f grad(phi_i) . w_f;
+ *  4. not the paper's (FitParameters::anchorWeight, 0 gives the paper's fit):
+ *     the points the sharpening did not turn are held where they were. With
+ *     theta_p the largest angle between a triangle's own normal and its target
+ *     around point p, kappa_p = anchorWeight * A_pp * max(0, 1 - theta_p / anchorAngle)
+ *     (A_pp the diagonal of eps M + S) is added to the diagonal and kappa_p c0_p
+ *     to the right-hand side: the energy gains sum_p kappa_p |c_p - c0_p|^2 / 2.
+ *     The uniform screening of step 3 lets the whole surface drift while the
+ *     creases move; the anchor keeps flat and smooth parts whose normals stayed
+ *     (docs/sharpening.md, "Points the sharpening did not turn stay").
  *
  * Scale and position: before assembling, the mesh is translated so that its
  * area-weighted centroid is at the origin and scaled uniformly so that its total
