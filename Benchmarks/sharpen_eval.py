@@ -12,6 +12,7 @@ parts").
     nice -n 19 /usr/bin/python3 Benchmarks/sharpen_eval.py times [same options] [--times 64,128,...]
     nice -n 19 /usr/bin/python3 Benchmarks/sharpen_eval.py widths [--set ...] [--times 16,32,...]
     /usr/bin/python3 Benchmarks/sharpen_eval.py cases [--set ...]
+    nice -n 19 /usr/bin/python3 Benchmarks/sharpen_eval.py slivers [--set ...]
 
 Models: ten closed CAD parts of CGAL's data (get_cad_meshes.sh), cleaned,
 triangulated, linearly subdivided (vtkLinearSubdivisionFilter: creases and
@@ -87,6 +88,11 @@ normal ratio. OUT/sharpen_widths.md and .csv.
 (6475 points) blurred by windowed sinc (20 iterations, pass band 0.05) at the
 default FlowTime and 2048, normal error and RMS distance against the blurred
 input's; vtkSphereSource at resolutions 8, 12, 16: the largest move.
+
+`slivers` (about a minute): a box of sides 1, 0.8, 0.6 in cells of 16 x 12 x 10,
+2 x 16 x 12 and 1 x 24 x 18 (square-ish, then long thin cells along x), linearly
+subdivided 3 times, blurred sinc1, laplace1 and gauss1: the goal at the best t
+of TIMES, per tessellation.
 """
 import argparse
 import csv
@@ -162,7 +168,7 @@ STUDY = [
 
 def arguments():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("mode", choices=["table", "study", "times", "widths", "cases"])
+    parser.add_argument("mode", choices=["table", "study", "times", "widths", "cases", "slivers"])
     parser.add_argument("--build", default=os.path.join(ROOT, "build"),
                         help="build tree (its lib/python3.*/site-packages has shockfilters)")
     parser.add_argument("--cad", default=os.environ.get("SHOCK_CAD_DIR", os.path.join(
@@ -709,16 +715,17 @@ def study(cases, shapes):
 
 
 # ---------------------------------------------------------------- default flow time, blur widths
-def box_mesh():
-    """The faces of a box of BOX_SIZE cells of side 1/BOX_CELLS, two triangles per square,
-    centred (a uniform mesh whose sharp original is known)."""
-    size = BOX_SIZE
+def box_mesh(size=BOX_SIZE, lengths=None):
+    """The faces of a box of `size` cells, two triangles per cell, centred: by
+    default cells of side 1/BOX_CELLS (a uniform mesh whose sharp original is
+    known); with `lengths`, the box's sides, whose cells may be long and thin."""
+    lengths = lengths or [s / float(BOX_CELLS) for s in size]
     ids, points, faces = {}, [], []
 
     def point(g):
         if g not in ids:
             ids[g] = len(points)
-            points.append([(g[a] - size[a] / 2.0) / BOX_CELLS for a in range(3)])
+            points.append([(g[a] / float(size[a]) - 0.5) * lengths[a] for a in range(3)])
         return ids[g]
 
     for axis in range(3):
@@ -883,6 +890,44 @@ def widths(settings):
         out.write("\n".join(lines) + "\n")
 
 
+# slivers: the box of sides SLIVER_BOX in cells of these counts per axis, linearly
+# subdivided 3 times: square-ish cells, then cells 10 and about 24 times longer
+# than wide along x (a CAD tessellation's long thin triangles), on a shape
+# without curved faces.
+SLIVER_BOX = [1.0, 0.8, 0.6]
+SLIVER_CELLS = [(16, 12, 10), (2, 16, 12), (1, 24, 18)]
+
+
+def slivers(settings):
+    """The same box tessellated with square-ish and with long thin cells,
+    blurred sinc1, laplace1 and gauss1: whether the tessellation alone makes
+    the sinc and Laplacian blurs fail (docs/sharpening.md)."""
+    print("| cells (x, y, z) | points | triangle aspect (area-weighted median of longest / shortest edge) | blur "
+          "| input: normal (deg), RMS (% diag) | best t | normal ratio | RMS ratio | exact shape: normal ratio | goal |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    passed = total = 0
+    for cells in SLIVER_CELLS:
+        mesh = normalised(box_mesh(cells, SLIVER_BOX).polydata, 3)
+        ref = Reference(mesh)
+        p, f = mesh.points, mesh.faces
+        edges = np.stack([np.linalg.norm(p[f[:, k]] - p[f[:, (k + 1) % 3]], axis=1) for k in range(3)], 1)
+        ratio = edges.max(1) / edges.min(1)
+        _, area = face_normals(p, f)
+        order = np.argsort(ratio)
+        aspect = float(ratio[order][np.searchsorted(np.cumsum(area[order]), 0.5 * area.sum())])
+        for b in ("sinc1", "laplace1", "gauss1"):
+            blurred = blur(mesh, b, seed=7)
+            case = {"mesh": mesh, "ref": ref, "blurred": blurred, "input": ref.measure(blurred)}
+            row, ok = best(measure_case(case, sharpen(mesh, blurred, settings, TIMES), "none"))
+            passed += ok
+            total += 1
+            print("| %s | %d | %.1f | %s | %.2f, %.3f | %g | %.2f | %.2f | %.2f | %s |" % (
+                cells, len(p), aspect, b, case["input"]["normal_deg"], case["input"]["rms_pct"], row["t"],
+                row["normal_ratio"], row["rms_ratio"], ref.exact_shape_error(blurred) / case["input"]["normal_deg"],
+                "pass" if ok else "fail"), flush=True)
+    print("\ngoal met on %d of %d" % (passed, total))
+
+
 def issue_cases(settings):
     """Issue 34's two cases: CGAL's fandisk as it comes (6475 points, no
     subdivision) blurred by windowed sinc (20 iterations, pass band 0.05),
@@ -915,6 +960,9 @@ def main():
     t0 = time.time()
     if ARGS.mode == "cases":
         issue_cases(parse_settings(ARGS.set))
+        return
+    if ARGS.mode == "slivers":
+        slivers(parse_settings(ARGS.set))
         return
     if ARGS.mode == "widths":
         widths(parse_settings(ARGS.set))
