@@ -445,6 +445,7 @@ void Sharp()
         if (angle == 180.0 && target == vtkPolyDataShockSharpenFilter::PROJECTION)
         {
           filter->SetCurvatureContrast(0.0); // the paper's potential
+          filter->SetAnchorWeight(0.0);      // and fit
         }
         filter->Update();
         std::printf(" %.3f %% |", 100.0 * filter->GetLastMaxDisplacement());
