@@ -263,12 +263,12 @@ bool ComesBackAtSomeFlowTime(vtkPolyData* blurred, vtkPolyData* original, double
   return met;
 }
 
-TEST(SharpenTrust, ABoxBlurredByWindowedSincComesBackAtDefaults)
+/**
+ * A CAD-like part (a box, subdivided so that a blur of a few edges leaves its
+ * faces flat) and the same blurred as the evaluation's sinc blurs do.
+ */
+std::pair<Mesh, Mesh> SincBlurredBox()
 {
-  // A CAD-like part (a box, subdivided so that a blur of a few edges leaves its
-  // faces flat) blurred as the evaluation's sinc blurs do: at some flow time the
-  // defaults bring the normals back (error <= 0.7 x the blurred input's)
-  // without moving the points further from the original (RMS <= 1.0 x).
   vtkNew<vtkCubeSource> cube;
   const Mesh box = Prepared(cube, 4);
   vtkNew<vtkWindowedSincPolyDataFilter> blur;
@@ -276,7 +276,17 @@ TEST(SharpenTrust, ABoxBlurredByWindowedSincComesBackAtDefaults)
   blur->SetNumberOfIterations(20);
   blur->SetPassBand(0.05);
   blur->NormalizeCoordinatesOn();
-  const Mesh blurred = Output(blur);
+  return { box, Output(blur) };
+}
+
+TEST(SharpenTrust, ABoxBlurredByWindowedSincComesBackAtDefaults)
+{
+  // The sinc-blurred box: at some flow time the
+  // defaults bring the normals back (error <= 0.7 x the blurred input's)
+  // without moving the points further from the original (RMS <= 1.0 x).
+  const std::pair<Mesh, Mesh> boxes = SincBlurredBox();
+  const Mesh& box = boxes.first;
+  const Mesh& blurred = boxes.second;
   ASSERT_GT(Errors(blurred, box).first, 1.0); // degrees: the blur rounds the creases
   EXPECT_TRUE(ComesBackAtSomeFlowTime(blurred, box, 1.0));
 }
@@ -288,14 +298,9 @@ TEST(SharpenTrust, TheFitHoldsWhatTheSharpeningDidNotTurn)
   // are; the paper's fit (AnchorWeight 0) still moves those points, drifting
   // with the creases it sharpens. The defaults hold them where the blur left
   // them, end closer to the original point for point, and sharpen as much.
-  vtkNew<vtkCubeSource> cube;
-  const Mesh box = Prepared(cube, 4);
-  vtkNew<vtkWindowedSincPolyDataFilter> blur;
-  blur->SetInputData(box);
-  blur->SetNumberOfIterations(20);
-  blur->SetPassBand(0.05);
-  blur->NormalizeCoordinatesOn();
-  const Mesh blurred = Output(blur);
+  const std::pair<Mesh, Mesh> boxes = SincBlurredBox();
+  const Mesh& box = boxes.first;
+  const Mesh& blurred = boxes.second;
   vtkNew<Filter> defaults;
   defaults->SetInputData(blurred);
   const Mesh anchored = Output(defaults);
