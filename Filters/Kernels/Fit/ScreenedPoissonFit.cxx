@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <vector>
 
 namespace shock
@@ -148,7 +149,8 @@ void fit::AnchorUnturnedPoints(const TriangleMesh& mesh, const double* normals, 
     // The row's diagonal entry (columns are sorted within a row).
     const int* begin = A.innerIndexPtr() + A.outerIndexPtr()[r];
     const int* end = A.innerIndexPtr() + A.outerIndexPtr()[r + 1];
-    double& diagonal = A.valuePtr()[A.outerIndexPtr()[r] + (std::lower_bound(begin, end, static_cast<int>(r)) - begin)];
+    const std::ptrdiff_t slot = std::lower_bound(begin, end, static_cast<int>(r)) - begin;
+    double& diagonal = A.valuePtr()[A.outerIndexPtr()[r] + slot];
     double& base = system.baseDiagonal[static_cast<size_t>(r)];
     if (firstAnchor)
     {
