@@ -456,8 +456,10 @@ class Reference:
         shape would still have where the blur slid triangles across a crease: each
         triangle is given the normal of the original triangle nearest to its
         blurred centroid (the part of the surface it now covers), against its own
-        original normal. A lower bound of what any filter that restores the
-        shape, without knowing the original numbering, reaches in this measure."""
+        original normal (the nearest triangle found through the nearest of ten
+        points spread over each original triangle). About the least any filter
+        that restores the shape, without knowing the original numbering,
+        scores in this measure."""
         m = self.mesh
         if self.samples is None:
             bary = self.SAMPLES / self.SAMPLES.sum(1)[:, None]
