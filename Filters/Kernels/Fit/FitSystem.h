@@ -10,8 +10,9 @@
  * second fit of the same mesh (another flow time in ParaView, other normals)
  * assembles only D w. The anchor of the points the normals did not turn
  * (ScreenedPoissonFit.h, step 4) depends on the normals: each fit writes its
- * own into the kept diagonal, from the diagonal as assembled. The rows are numbered breadth-first over the
- * one-rings (a renumbering that keeps each row's neighbours close in memory:
+ * own into the kept diagonal, from the diagonal as assembled.
+ *
+ * The rows are numbered breadth-first over the one-rings (a renumbering that keeps each row's neighbours close in memory:
  * meshes made by subdivision number new points far from their neighbours, and
  * the conjugate gradients' products then wait on memory), except for a piece
  * of a distributed mesh, whose rows are its points, and a mesh whose numbering
