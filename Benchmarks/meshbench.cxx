@@ -725,6 +725,7 @@ void SharpenBenchmark(const Options& options)
   filter->SetFeatureAngle(180.0);     // the paper: no feature split
   filter->SetFitTargetToProjection(); // the paper's fit target
   filter->SetAnchorWeight(0.0);       // the paper's fit: no anchor
+  filter->SetDriftRadius(0.0);        // nor drift removal
   std::cout << "\n### Mesh\n\n"
             << "- " << bench.description << "\n"
             << "- filter: vtkPolyDataShockSharpenFilter, t = " << Fixed(t, 0)

@@ -202,6 +202,7 @@ from vtkmodules.vtkFiltersModeling import vtkLinearSubdivisionFilter  # noqa: E4
 from vtkmodules.vtkFiltersSources import (vtkParametricFunctionSource,  # noqa: E402
                                           vtkPlatonicSolidSource, vtkSphereSource)
 import scipy.sparse as sparse  # noqa: E402
+from scipy.sparse.linalg import factorized  # noqa: E402
 from scipy.spatial import cKDTree  # noqa: E402
 
 DEFAULT_T = vtkPolyDataShockSharpenFilter().GetFlowTime()
@@ -377,6 +378,30 @@ def smooth_field(mesh, values, passes):
     return values
 
 
+def lumped_mass(points, faces):
+    """A third of the area of the triangles around each point."""
+    _, area = face_normals(points, faces)
+    out = np.zeros(len(points))
+    for k in range(3):
+        np.add.at(out, faces[:, k], area / 3.0)
+    return out
+
+
+def cotangent_stiffness(points, faces):
+    """The cotangent Laplacian (S_ij = -(cot a + cot b) / 2), positive semi-definite."""
+    rows, cols, values = [], [], []
+    for k in range(3):
+        i, j, o = faces[:, k], faces[:, (k + 1) % 3], faces[:, (k + 2) % 3]
+        u, v = points[i] - points[o], points[j] - points[o]
+        w = 0.5 * (u * v).sum(1) / np.maximum(np.linalg.norm(np.cross(u, v), axis=1), 1e-300)
+        rows += [i, j, i, j]
+        cols += [j, i, i, j]
+        values += [-w, -w, w, w]
+    n = len(points)
+    return sparse.coo_matrix((np.concatenate(values), (np.concatenate(rows), np.concatenate(cols))),
+                             shape=(n, n)).tocsr()
+
+
 def correct(name, mesh, blurred, sharpened):
     """A Python post-fit correction of the sharpened points (knows only the blurred input)."""
     if name == "none":
@@ -403,6 +428,14 @@ def correct(name, mesh, blurred, sharpened):
         passes = int(name[len("lowpass"):] or 50)
         d = sharpened - blurred
         return sharpened - smooth_field(mesh, d, passes)
+    if name.startswith("heat"):
+        # remove the displacement's local mean: its heat diffusion over sigma mean edges
+        # ((M + sigma^2 l^2 S) d_low = M d on the blurred input, lumped M, cotangent S)
+        sigma = float(name[len("heat"):] or 2) * mesh.edge_length
+        d = sharpened - blurred
+        mass = sparse.diags(lumped_mass(blurred, mesh.faces))
+        solve = factorized((mass + sigma * sigma * cotangent_stiffness(blurred, mesh.faces)).tocsc())
+        return sharpened - np.stack([solve(mass @ d[:, k]) for k in range(3)], 1)
     if name.startswith("blend"):
         # move only where the normals turned: weight min(1, turn / 10 deg), spread by 2 passes
         n0, _ = face_normals(blurred, mesh.faces)

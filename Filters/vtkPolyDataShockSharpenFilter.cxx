@@ -511,6 +511,7 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   parameters.fit.screeningWeight = this->ScreeningWeight;
   parameters.fit.anchorWeight = this->AnchorWeight;
   parameters.fit.anchorAngle = this->AnchorAngle;
+  parameters.fit.driftRadius = this->DriftRadius;
   parameters.fit.solver = static_cast<shock::FitSolver>(this->Solver);
   parameters.fit.iterations = this->SolverIterations;
   parameters.fit.maxIterations = this->SolverIterations;
@@ -640,6 +641,7 @@ std::string vtkPolyDataShockSharpenFilter::ParametersText()
        << "ScreeningWeight=" << this->ScreeningWeight << ";"
        << "AnchorWeight=" << this->AnchorWeight << ";"
        << "AnchorAngle=" << this->AnchorAngle << ";"
+       << "DriftRadius=" << this->DriftRadius << ";"
        << "Solver=" << this->Solver << ";"
        << "SolverIterations=" << this->SolverIterations << ";"
        << "SolverTolerance=" << this->SolverTolerance << ";"
@@ -660,6 +662,7 @@ void vtkPolyDataShockSharpenFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ScreeningWeight: " << this->ScreeningWeight << "\n";
   os << indent << "AnchorWeight: " << this->AnchorWeight << "\n";
   os << indent << "AnchorAngle: " << this->AnchorAngle << "\n";
+  os << indent << "DriftRadius: " << this->DriftRadius << "\n";
   os << indent << "Solver: " << solverNames[this->Solver] << "\n";
   os << indent << "SolverIterations: " << this->SolverIterations << "\n";
   os << indent << "SolverTolerance: " << this->SolverTolerance << "\n";

@@ -50,6 +50,7 @@ struct SharpenSettings
   std::optional<double> screeningWeight;
   std::optional<double> anchorWeight;
   std::optional<double> anchorAngle;
+  std::optional<double> driftRadius;
   std::optional<int> solver;
   std::optional<int> iterations;
   std::optional<double> tolerance;
@@ -84,6 +85,9 @@ std::vector<OptionSpec> SharpenOptionSpecs(SharpenSettings& settings)
   specs.push_back(RangeOptionSpec("--anchor-angle", "DEG",
     "turn below which a point is anchored, fading to none at DEG (0 = the paper)", settings.anchorAngle,
     d->GetAnchorAngleMinValue(), d->GetAnchorAngleMaxValue(), d->GetAnchorAngle()));
+  specs.push_back(RangeOptionSpec("--drift-radius", "EDGES",
+    "the displacement smoother than EDGES edge lengths is removed (0 = the paper)", settings.driftRadius,
+    d->GetDriftRadiusMinValue(), d->GetDriftRadiusMaxValue(), d->GetDriftRadius()));
   specs.push_back(ChoiceOptionSpec(
     "--solver", "NAME", "conjugate-gradient|conjugate-gradient-tolerance|exact", settings.solver, SolverChoices(), d->GetSolver()));
   specs.push_back(RangeOptionSpec("--iterations", "K", "CG iterations (cap of conjugate-gradient-tolerance)",
@@ -154,6 +158,7 @@ int RunSharpenCommand(const std::vector<std::string>& args)
   SetIfGiven(filter.Get(), &F::SetScreeningWeight, settings.screeningWeight);
   SetIfGiven(filter.Get(), &F::SetAnchorWeight, settings.anchorWeight);
   SetIfGiven(filter.Get(), &F::SetAnchorAngle, settings.anchorAngle);
+  SetIfGiven(filter.Get(), &F::SetDriftRadius, settings.driftRadius);
   if (settings.solver || settings.tolerance)
   {
     filter->SetSolver(settings.solver.value_or(tolerantSolver));

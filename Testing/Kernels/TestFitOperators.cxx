@@ -257,6 +257,7 @@ TEST(FitOperators, TheExactFitSolvesTheScreenedPoissonSystem)
   FitParameters p;
   UsePaperTarget(p, 0);
   p.anchorWeight = 0.0; // the paper's fit: no anchor of the unturned points
+  p.driftRadius = 0.0;  // nor drift removal
   p.solver = FitSolver::Exact;
   p.screeningWeight = 0.7;
   std::vector<double> fitted(c.points.size());

@@ -68,7 +68,11 @@ TEST(ScreenedPoissonFit, FlatGridBendsTowardsTheTargetNormals)
   const double before = MeanNormalError(m, m.points, targets);
   for (FitSolver solver : AllSolvers)
   {
-    const auto fitted = Fit(mesh, targets, WithSolver(solver));
+    // The whole grid bends: a displacement smoother than any drift radius,
+    // which step 5 takes away by design (TheDriftIsRemovedAndTheCreaseKept).
+    FitParameters p = WithSolver(solver);
+    p.driftRadius = 0.0;
+    const auto fitted = Fit(mesh, targets, p);
     const double after = MeanNormalError(m, fitted, targets);
     EXPECT_LT(after, 0.1 * before) << "solver " << static_cast<int>(solver);
     // The ridge rises above the sides.
@@ -97,11 +101,15 @@ TEST(ScreenedPoissonFit, RoundedBoxSharpensTowardsTheCube)
   {
     FitParameters paper = WithSolver(solver);
     paper.anchorWeight = 0.0;
+    paper.driftRadius = 0.0;
     EXPECT_LT(MeanNormalError(m, Fit(mesh, cubeNormals, paper), cubeNormals), 0.2 * before)
       << "solver " << static_cast<int>(solver);
     // The anchor holds the points of the faces' middles, which the blend
     // bent by less than the anchor angle, so they flatten a little less.
-    EXPECT_LT(MeanNormalError(m, Fit(mesh, cubeNormals, WithSolver(solver)), cubeNormals), 0.25 * before)
+    // (The blend bends the whole box: no drift radius fits inside it.)
+    FitParameters anchored = WithSolver(solver);
+    anchored.driftRadius = 0.0;
+    EXPECT_LT(MeanNormalError(m, Fit(mesh, cubeNormals, anchored), cubeNormals), 0.25 * before)
       << "solver " << static_cast<int>(solver);
   }
 }
@@ -150,8 +158,11 @@ TEST(ScreenedPoissonFit, TheAnchorHoldsThePointsWhoseTrianglesDidNotTurn)
   {
     FitParameters paper = WithSolver(solver);
     paper.anchorWeight = 0.0;
+    paper.driftRadius = 0.0;
     const auto unanchored = Fit(mesh, targets, paper);
-    const auto anchored = Fit(mesh, targets, WithSolver(solver)); // the defaults anchor
+    FitParameters anchor = WithSolver(solver); // the defaults anchor
+    anchor.driftRadius = 0.0;                  // (the anchor alone: the roof is 16 edges wide)
+    const auto anchored = Fit(mesh, targets, anchor);
     EXPECT_GT(farMotion(unanchored), 1e-3) << "the paper's fit moves the untouched parts";
     EXPECT_LT(farMotion(anchored), 0.5 * farMotion(unanchored)) << "solver " << static_cast<int>(solver);
     EXPECT_GT(rise(anchored), 0.5 * rise(unanchored));
@@ -159,27 +170,105 @@ TEST(ScreenedPoissonFit, TheAnchorHoldsThePointsWhoseTrianglesDidNotTurn)
     // Either zero is the paper's fit.
     FitParameters noAngle = WithSolver(solver);
     noAngle.anchorAngle = 0.0;
+    noAngle.driftRadius = 0.0;
     EXPECT_EQ(Fit(mesh, targets, noAngle), unanchored);
   }
+}
+
+TEST(ScreenedPoissonFit, TheDriftIsRemovedAndTheCreaseKept)
+{
+  // A narrow roof (0.45 < x < 0.55, four edges wide) on a flat grid. Without
+  // step 5 the ridge rises and the mean height with it; with it the lumped
+  // mass's mean displacement is 0 (the rows of S sum to 0, so the removal takes
+  // exactly the area-weighted mean), and the ridge still stands out.
+  const Mesh m = FlatGrid(41, 33);
+  const TriangleMesh mesh = Build(m);
+  std::vector<double> targets;
+  for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+  {
+    const double x = mesh.Centroid(f)[0];
+    const double slope = x < 0.45 || x > 0.55 ? 0.0 : (x < 0.5 ? 0.3 : -0.3);
+    const double length = std::sqrt(1.0 + slope * slope);
+    targets.insert(targets.end(), { -slope / length, 0.0, 1.0 / length });
+  }
+  std::vector<double> lumped(static_cast<size_t>(mesh.NumberOfPoints()), 0.0);
+  for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      lumped[static_cast<size_t>(mesh.Corners(f)[c])] += mesh.Area(f) / 3.0;
+    }
+  }
+  auto meanMove = [&](const std::vector<double>& fitted, int k) {
+    double sum = 0.0;
+    for (size_t p = 0; p < lumped.size(); ++p)
+    {
+      sum += lumped[p] * (fitted[3 * p + k] - m.points[3 * p + k]);
+    }
+    return sum;
+  };
+  auto ridge = [&](const std::vector<double>& fitted) { // the ridge over a point 8 edges away
+    return fitted[static_cast<size_t>(3 * (16 * 41 + 20) + 2)] - fitted[static_cast<size_t>(3 * (16 * 41 + 12) + 2)];
+  };
+  for (FitSolver solver : AllSolvers)
+  {
+    FitParameters kept = WithSolver(solver);
+    kept.driftRadius = 0.0;
+    const auto drifting = Fit(mesh, targets, kept);
+    FitParameters removed = WithSolver(solver);
+    removed.driftRadius = 4.0;
+    removed.solver = solver == FitSolver::ConjugateGradient ? FitSolver::ConjugateGradientTolerance : solver;
+    removed.tolerance = 1e-12;
+    const auto fitted = Fit(mesh, targets, removed);
+    EXPECT_GT(meanMove(drifting, 2), 1e-4) << "solver " << static_cast<int>(solver);
+    for (int k = 0; k < 3; ++k)
+    {
+      EXPECT_NEAR(meanMove(fitted, k), 0.0, 1e-9) << "solver " << static_cast<int>(solver) << ", coordinate " << k;
+    }
+    EXPECT_GT(ridge(drifting), 0.01);
+    EXPECT_GT(ridge(fitted), 0.7 * ridge(drifting)) << "solver " << static_cast<int>(solver);
+    EXPECT_GT(MaxDifference(fitted, drifting), 1e-3);
+  }
+  FitParameters kept0;
+  kept0.driftRadius = 0.0;
+  // A wider radius takes away less of the roof's own shape, leaving the fit
+  // without step 5 shifted more nearly as a whole.
+  FitParameters paper;
+  paper.driftRadius = 0.0;
+  FitParameters wide;
+  wide.driftRadius = 40.0;
+  FitParameters narrow;
+  narrow.driftRadius = 4.0;
+  const auto drifting = Fit(mesh, targets, paper);
+  EXPECT_LT(std::abs(ridge(Fit(mesh, targets, wide)) - ridge(drifting)),
+    std::abs(ridge(Fit(mesh, targets, narrow)) - ridge(drifting)));
+  // Off by default: the default fit is the fit without step 5.
+  EXPECT_EQ(Fit(mesh, targets, FitParameters()), Fit(mesh, targets, kept0));
 }
 
 TEST(ScreenedPoissonFit, AKeptSystemGivesEachFitItsOwnAnchor)
 {
   // The anchor is written into the kept system's diagonal: a fit with another
-  // anchor (or none) on the same system equals a fresh fit, in any order.
+  // anchor (or none) on the same system equals a fresh fit, in any order. So
+  // does a fit with another drift radius (step 5 keeps a system of its own).
   const Mesh m = FlatGrid(31, 23);
   const TriangleMesh mesh = Build(m);
   const auto roof = RoofInTheMiddle(mesh);
   const auto perturbed = PerturbedNormals(mesh, 0.05);
   FitParameters paper;
   paper.anchorWeight = 0.0;
+  paper.driftRadius = 0.0;
   FitParameters strong;
   strong.anchorWeight = 10.0;
   strong.anchorAngle = 5.0;
-  const FitParameters runs[] = { FitParameters(), paper, strong, FitParameters(), paper };
-  const std::vector<double>* targetsOf[] = { &roof, &roof, &perturbed, &perturbed, &roof };
+  FitParameters drift;
+  drift.driftRadius = 3.0;
+  FitParameters wider;
+  wider.driftRadius = 6.0;
+  const FitParameters runs[] = { FitParameters(), paper, strong, drift, FitParameters(), wider, drift, paper };
+  const std::vector<double>* targetsOf[] = { &roof, &roof, &perturbed, &roof, &perturbed, &roof, &perturbed, &roof };
   FitSystem kept;
-  for (int run = 0; run < 5; ++run)
+  for (int run = 0; run < 8; ++run)
   {
     std::vector<double> positions(static_cast<size_t>(3 * mesh.NumberOfPoints()));
     FitReport report;

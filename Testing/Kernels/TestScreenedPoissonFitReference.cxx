@@ -64,9 +64,12 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
   // normals at point p, kappa_p = weight * a_pp * max(0, 1 - theta_p / angle) is
   // added to the diagonal a_pp and kappa_p x0_p to the right-hand side (0 for
   // the paper's fit: every fifth trial; small tilts make partial anchors).
+  // The drift's removal (step 5 of ScreenedPoissonFit.h) after it, with random
+  // radii (none every fourth trial).
   std::mt19937 random(12345);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   int partialAnchors = 0; // points held by a part of the anchor weight (0 < kappa < weight a_pp)
+  int driftMoves = 0;     // coordinates the drift's removal moved by more than 1e-6
   for (int trial = 0; trial < 80; ++trial)
   {
     const FitTarget target = static_cast<FitTarget>(trial % 4);
@@ -92,6 +95,7 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
     const double anchorWeight = trial % 5 == 0 ? 0.0 : 0.1 + 5.0 * (uniform(random) + 1.0);
     const double anchorAngle = trial % 3 == 0 ? 1.0 + 2.0 * (uniform(random) + 1.0) : 60.0;
     const double weight = trial % 2 ? 1.0 : 0.1 + 10.0 * (uniform(random) + 1.0);
+    const double driftRadius = trial % 4 == 1 ? 0.0 : 0.3 + 3.0 * (uniform(random) + 1.0);
 
     auto point = [&](std::int64_t p) {
       return Vec3{ m.points[3 * p], m.points[3 * p + 1], m.points[3 * p + 2] };
@@ -230,7 +234,23 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
     p.target = target;
     p.anchorWeight = anchorWeight;
     p.anchorAngle = anchorAngle;
+    p.driftRadius = driftRadius;
     const auto fitted = Fit(mesh, targets, p);
+    // The drift's removal: d = c1 - c0, (eps_d M + S) y = eps_d M_L d with
+    // eps_d = 1 / (r l)^2 on the unit-area mesh, l the side of an equilateral
+    // triangle of the mean area (1 / 2 there), M_L the rows' sums of M; c = c1 - y.
+    const double side = std::sqrt(4.0 / (std::sqrt(3.0) * 2.0));
+    const double drift = driftRadius > 0.0 ? 1.0 / (driftRadius * side * driftRadius * side) / totalArea : 0.0;
+    std::vector<std::vector<double>> heat(4, std::vector<double>(4));
+    std::vector<double> lumped(4, 0.0);
+    for (int i = 0; i < 4; ++i)
+    {
+      for (int j = 0; j < 4; ++j)
+      {
+        heat[i][j] = drift * mass[i][j] + stiffness[i][j];
+        lumped[i] += mass[i][j];
+      }
+    }
     for (int k = 0; k < 3; ++k)
     {
       std::vector<double> b(4, 0.0);
@@ -242,7 +262,21 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
         }
         b[i] += divergence[i][k] + anchor[i] * m.points[3 * i + k];
       }
-      const auto expected = SolveDense(a, b);
+      auto expected = SolveDense(a, b);
+      if (drift > 0.0)
+      {
+        std::vector<double> mean(4);
+        for (int i = 0; i < 4; ++i)
+        {
+          mean[i] = drift * lumped[i] * (expected[i] - m.points[3 * i + k]);
+        }
+        const auto low = SolveDense(heat, mean);
+        for (int i = 0; i < 4; ++i)
+        {
+          expected[i] -= low[i];
+          driftMoves += std::abs(low[i]) > 1e-6 ? 1 : 0;
+        }
+      }
       for (int i = 0; i < 4; ++i)
       {
         EXPECT_NEAR(fitted[3 * i + k], expected[i], 1e-9) << "trial " << trial << ", target " << static_cast<int>(target);
@@ -250,6 +284,7 @@ TEST(ScreenedPoissonFit, MatchesAnIndependentCotangentSolution)
     }
   }
   EXPECT_GT(partialAnchors, 20);
+  EXPECT_GT(driftMoves, 300);
 }
 
 } // namespace

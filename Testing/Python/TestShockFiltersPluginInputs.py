@@ -84,6 +84,8 @@ clamps = [
     (sharpen_probe, "ScreeningWeight", 0.0, 1e-6),
     (sharpen_probe, "AnchorWeight", -1.0, 0.0),
     (sharpen_probe, "AnchorAngle", 200.0, 180.0),
+    (sharpen_probe, "DriftRadius", -1.0, 0.0),
+    (sharpen_probe, "DriftRadius", 5000.0, 1000.0),
     (sharpen_probe, "SolverTolerance", 2.0, 1.0),
     (sharpen_probe, "SolverTolerance", -1.0, 0.0),
     (sharpen_probe, "SolverIterations", -5, 0),

@@ -59,6 +59,15 @@ struct FitParameters
    */
   double anchorWeight = 1.0;
   double anchorAngle = 5.0;
+  /**
+   * Not the paper's: the drift removed after the fit (ScreenedPoissonFit.h,
+   * step 5), in edge lengths (the side of an equilateral triangle of the
+   * mesh's mean triangle area). The part of the displacement smoother than
+   * this radius (its heat diffusion over driftRadius^2 squared edge lengths)
+   * is taken away, so that the sharpening keeps the surface's local mean
+   * position. 0 (the default) is the paper's fit. Finite and >= 0.
+   */
+  double driftRadius = 0.0;
   FitSolver solver = FitSolver::ConjugateGradient;
   /// Iterations of FitSolver::ConjugateGradient (>= 0; the paper uses 25).
   int iterations = 25;
@@ -103,6 +112,8 @@ struct FitReport
   /// The matrix and mass term came from the FitSystem given (built for an earlier fit).
   bool reusedSystem = false;
   double solveSeconds = 0.0; ///< solve (factorisation for Exact) and the residual check
+  /// Conjugate-gradient iterations of the drift's removal (step 5; 0 when not removed or Exact).
+  int driftIterations = 0;
   /// Non-degenerate triangles whose target normal was invalid (replaced by their own normal).
   std::int64_t invalidTargets = 0;
 };

@@ -344,13 +344,12 @@ Vectors AllocateVectors(std::int64_t n, const MeshPartition* partition)
  * returns the sums of r.r, r.z and b.b (the three columns of each).
  */
 std::array<double, 9> StartingResidual(const FitSystemData& system, const Coordinates& b,
-  int threads, const MeshPartition* partition, Vectors& v, Coordinates& x)
+  const Coordinates& x0, int threads, const MeshPartition* partition, Vectors& v, Coordinates& x)
 {
   const RowMatrix& A = system.matrix;
   const std::vector<double>& diag = system.inverseDiagonal;
   const std::int64_t n = A.rows();
   x.resize(n, 3);
-  const Coordinates& x0 = system.original;
   return BlockSums<9>(n, threads, nullptr, partition, [&](std::int64_t i, std::array<double, 9>& s) {
     for (int k = 0; k < 3; ++k)
     {
@@ -406,7 +405,7 @@ void LastStepOfX(
 }
 
 /**
- * Jacobi-preconditioned conjugate gradients from x = system.original, the
+ * Jacobi-preconditioned conjugate gradients from x = start, the
  * three coordinates side by side: each pass over the matrix serves the three
  * columns and every vector operation is parallel. Two passes over the rows
  * per iteration: the step of x and the direction's update fused with the
@@ -416,21 +415,21 @@ void LastStepOfX(
  * residual is below tolerance x ||b|| (tolerance 0 runs all the iterations);
  * returns the number of iterations done.
  */
-int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int maxIterations,
-  double tolerance, int threads, const MeshPartition* partition, Coordinates& x)
+int ConjugateGradients(const FitSystemData& system, const Coordinates& b, const Coordinates& start,
+  int maxIterations, double tolerance, int threads, const MeshPartition* partition, Coordinates& x)
 {
   const RowMatrix& A = system.matrix;
   const std::vector<double>& diag = system.inverseDiagonal;
   Vectors v = AllocateVectors(A.rows(), partition);
-  const auto start = StartingResidual(system, b, threads, partition, v, x);
+  const auto sums0 = StartingResidual(system, b, start, threads, partition, v, x);
   bool active[3];
   double threshold[3], rz[3];
   for (int k = 0; k < 3; ++k)
   {
-    threshold[k] = tolerance > 0.0 ? std::max(tolerance * tolerance * start[k + 6], std::numeric_limits<double>::min())
+    threshold[k] = tolerance > 0.0 ? std::max(tolerance * tolerance * sums0[k + 6], std::numeric_limits<double>::min())
                                    : std::numeric_limits<double>::min(); // all the iterations
-    active[k] = start[k] >= threshold[k];
-    rz[k] = start[k + 3];
+    active[k] = sums0[k] >= threshold[k];
+    rz[k] = sums0[k + 3];
   }
   const RowRanges ranges(A, threads);
   const PieceRows rows(partition);
@@ -467,7 +466,7 @@ int ConjugateGradients(const FitSystemData& system, const Coordinates& b, int ma
 } // namespace
 
 Status Solve(const FitSystemData& system, const Coordinates& b, const FitParameters& parameters,
-  int threads, Coordinates& x, FitReport& report)
+  int threads, Coordinates& x, FitReport& report, const Coordinates* start)
 {
   report.iterations = 0;
   if (parameters.solver == FitSolver::Exact)
@@ -481,7 +480,7 @@ Status Solve(const FitSystemData& system, const Coordinates& b, const FitParamet
     return {};
   }
   const bool fixed = parameters.solver == FitSolver::ConjugateGradient;
-  report.iterations = ConjugateGradients(system, b,
+  report.iterations = ConjugateGradients(system, b, start ? *start : system.original,
     fixed ? parameters.iterations : parameters.maxIterations,
     fixed ? 0.0 : parameters.tolerance, threads, parameters.partition, x);
   if (parameters.partition)

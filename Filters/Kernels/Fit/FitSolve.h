@@ -169,12 +169,12 @@ Status BuildFitSystem(const TriangleMesh& mesh, double screeningWeight,
 
 /**
  * Solve A x = b for the three coordinates with the chosen solver, from
- * x = system.original for conjugate gradients. On a piece (parameters.partition)
- * only the owned rows are computed and the halo takes its owners' values.
- * Fills report.iterations.
+ * x = start (system.original when null) for conjugate gradients. On a piece
+ * (parameters.partition) only the owned rows are computed and the halo takes
+ * its owners' values; start must hold the halo's values too. Fills report.iterations.
  */
 Status Solve(const FitSystemData& system, const Coordinates& b, const FitParameters& parameters,
-  int threads, Coordinates& x, FitReport& report);
+  int threads, Coordinates& x, FitReport& report, const Coordinates* start = nullptr);
 
 /// Largest relative residual ||b - A x|| / ||b|| over the coordinates (absolute when b = 0).
 double RelativeResidual(const FitSystemData& system, const Coordinates& b, const Coordinates& x,

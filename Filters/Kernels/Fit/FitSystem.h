@@ -44,6 +44,10 @@ struct FitSystem
   std::int64_t triangles = 0;
   double screeningWeight = 0.0;
   bool rowsInMeshOrder = false; ///< rows in the mesh's numbering (FitParameters::rowsInMeshOrder), not breadth-first
+  /// The system of the drift's removal (ScreenedPoissonFit.h, step 5): the same
+  /// mesh and row order, screening weight driftWeight; empty until a fit removes drift.
+  std::shared_ptr<FitSystemData> drift;
+  double driftWeight = 0.0;
 
   /// Built for `mesh` (the same object, unchanged since: the caller's promise), eps and row order.
   bool Matches(const TriangleMesh& target, double eps, bool meshOrder = false) const

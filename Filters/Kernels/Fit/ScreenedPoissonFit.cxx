@@ -5,6 +5,7 @@
 #include "Vec3.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -205,6 +206,10 @@ Status CheckFitParameters(const TriangleMesh& mesh, const FitParameters& paramet
   {
     return { "the anchor weight must be finite and >= 0, the anchor angle in [0, 180]" };
   }
+  if (!(std::isfinite(parameters.driftRadius) && parameters.driftRadius >= 0.0))
+  {
+    return { "the drift radius must be finite and >= 0" };
+  }
   if (parameters.target != FitTarget::Projection && parameters.target != FitTarget::Rotation &&
     parameters.target != FitTarget::Shear && parameters.target != FitTarget::CentralProjection)
   {
@@ -364,6 +369,87 @@ void WriteFittedPositions(
     }
   }
 }
+/**
+ * The edge length of the normalised mesh (unit area): the side of an
+ * equilateral triangle of its mean triangle area, over all pieces.
+ */
+double EdgeLengthOfUnitArea(const TriangleMesh& mesh, const MeshPartition* partition, int threads)
+{
+  const auto count = fit::BlockSums<1>(mesh.NumberOfTriangles(), threads,
+    partition ? &partition->ownedTriangles : nullptr, partition,
+    [&](std::int64_t f, std::array<double, 1>& s) { s[0] += mesh.Degenerate(f) ? 0.0 : 1.0; });
+  return count[0] > 0.0 ? std::sqrt(4.0 / (std::sqrt(3.0) * count[0])) : 0.0;
+}
+
+/**
+ * Step 5 of ScreenedPoissonFit.h, the drift's removal: with d = x - c0 the
+ * fitted displacement (normalised rows of `fitted`), solves
+ * (eps_d M + S) d_low = eps_d M_L d, eps_d = 1 / (driftRadius l)^2 (l: the edge
+ * length of unit area, M_L the lumped mass), and returns x - d_low. The drift
+ * system is kept in `system` beside the fit's. d_low of a constant d is d, so
+ * the area-weighted mean (the lumped mass's) of the displacement becomes 0.
+ */
+Status RemoveDrift(const TriangleMesh& mesh, const FitParameters& parameters, int threads,
+  FitSystem& system, Coordinates& x, FitReport& out)
+{
+  const MeshPartition* partition = parameters.partition;
+  const double length = parameters.driftRadius * EdgeLengthOfUnitArea(mesh, partition, threads);
+  if (!(length > 0.0))
+  {
+    return {};
+  }
+  const double weight = 1.0 / (length * length);
+  if (!system.drift || system.driftWeight != weight)
+  {
+    FitSystem drift;
+    Status status = BuildFitSystem(mesh, weight, partition, threads, drift, parameters.rowsInMeshOrder);
+    if (!status.Ok() || !drift.data)
+    {
+      return status;
+    }
+    system.drift = drift.data;
+    system.driftWeight = weight;
+  }
+  const FitSystemData& fitted = *system.data;
+  const FitSystemData& drift = *system.drift;
+  const auto rows = static_cast<std::int64_t>(drift.order.size());
+  // d in the drift system's rows, and b = alpha M_L d: the rows of S sum to 0,
+  // so a row of A = alpha M + beta S sums to alpha times its lumped mass.
+  Coordinates d(rows, 3), b(rows, 3);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t r = 0; r < rows; ++r)
+  {
+    const auto f = fitted.rank[static_cast<size_t>(drift.order[static_cast<size_t>(r)])];
+    double mass = 0.0;
+    for (fit::RowMatrix::InnerIterator it(drift.matrix, r); it; ++it)
+    {
+      mass += it.value();
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      d(r, k) = drift.fitted[static_cast<size_t>(r)] ? x(f, k) - fitted.original(f, k) : 0.0;
+      b(r, k) = mass * d(r, k);
+    }
+  }
+  Coordinates low;
+  FitReport report;
+  Status status = fit::Solve(drift, b, parameters, threads, low, report, &d);
+  out.driftIterations = report.iterations;
+  if (!status.Ok())
+  {
+    return status;
+  }
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t r = 0; r < rows; ++r)
+  {
+    const auto f = fitted.rank[static_cast<size_t>(drift.order[static_cast<size_t>(r)])];
+    for (int k = 0; k < 3; ++k)
+    {
+      x(f, k) -= drift.fitted[static_cast<size_t>(r)] ? low(r, k) : 0.0;
+    }
+  }
+  return {};
+}
 } // namespace
 
 Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNormals,
@@ -422,6 +508,17 @@ Status FitPositionsToNormals(const TriangleMesh& mesh, const double* targetNorma
   {
     out.converged = false;
     return { "the solve produced non-finite positions" };
+  }
+  if (parameters.driftRadius > 0.0)
+  {
+    const auto driftStart = Clock::now();
+    status = RemoveDrift(mesh, parameters, threads, system, x, out);
+    out.solveSeconds += SecondsSince(driftStart);
+    if (!status.Ok() || !x.allFinite())
+    {
+      out.converged = false;
+      return status.Ok() ? Status{ "the drift's removal produced non-finite positions" } : status;
+    }
   }
   WriteFittedPositions(data, x, positions, threads);
   return {};

@@ -52,7 +52,17 @@
  *     to the right-hand side: the energy gains sum_p kappa_p |c_p - c0_p|^2 / 2.
  *     The uniform screening of step 3 lets the whole surface drift while the
  *     creases move; the anchor keeps flat and smooth parts whose normals stayed
- *     (docs/sharpening.md, "Points the sharpening did not turn stay").
+ *     (docs/sharpening.md, "Points the sharpening did not turn stay");
+ *  5. not the paper's either, and off by default (FitParameters::driftRadius
+ *     > 0 turns it on): the drift is removed. With d = c1 - c0 the fitted displacement,
+ *     d_low solves (eps_d M + S) d_low = eps_d M_L d (M_L the lumped mass,
+ *     eps_d = 1 / (driftRadius l)^2, l the side of an equilateral triangle of
+ *     the mean triangle area): d's heat diffusion over driftRadius edges, its
+ *     part smoother than that. The result is c1 - d_low: the sharpening moves
+ *     points against each other within a few edges (a crease forms) but no
+ *     region moves as a whole, and the area-weighted mean position
+ *     (sum M_L c) is kept exactly, as volume-keeping blurs keep it
+ *     (docs/sharpening.md, "Keeping the local mean: DriftRadius").
  *
  * Scale and position: before assembling, the mesh is translated so that its
  * area-weighted centroid is at the origin and scaled uniformly so that its total
