@@ -511,6 +511,7 @@ bool vtkPolyDataShockSharpenFilter::Sharpen(const shock::TriangleMesh& mesh,
   parameters.fit.screeningWeight = this->ScreeningWeight;
   parameters.fit.anchorWeight = this->AnchorWeight;
   parameters.fit.anchorAngle = this->AnchorAngle;
+  parameters.keepUnmovedNormals = this->KeepUnmovedNormals != 0;
   parameters.fit.driftRadius = this->DriftRadius;
   parameters.fit.solver = static_cast<shock::FitSolver>(this->Solver);
   parameters.fit.iterations = this->SolverIterations;
@@ -638,6 +639,7 @@ std::string vtkPolyDataShockSharpenFilter::ParametersText()
        << "CurvatureContrast=" << this->CurvatureContrast << ";"
        << "FitTarget=" << this->FitTarget << ";"
        << "NormalSmoothingPasses=" << this->NormalSmoothingPasses << ";"
+       << "KeepUnmovedNormals=" << this->KeepUnmovedNormals << ";"
        << "ScreeningWeight=" << this->ScreeningWeight << ";"
        << "AnchorWeight=" << this->AnchorWeight << ";"
        << "AnchorAngle=" << this->AnchorAngle << ";"
@@ -659,6 +661,7 @@ void vtkPolyDataShockSharpenFilter::PrintSelf(ostream& os, vtkIndent indent)
   static const char* targetNames[] = { "Projection", "Rotation", "Shear", "CentralProjection" };
   os << indent << "FitTarget: " << targetNames[this->FitTarget] << "\n";
   os << indent << "NormalSmoothingPasses: " << this->NormalSmoothingPasses << "\n";
+  os << indent << "KeepUnmovedNormals: " << (this->KeepUnmovedNormals ? "On" : "Off") << "\n";
   os << indent << "ScreeningWeight: " << this->ScreeningWeight << "\n";
   os << indent << "AnchorWeight: " << this->AnchorWeight << "\n";
   os << indent << "AnchorAngle: " << this->AnchorAngle << "\n";

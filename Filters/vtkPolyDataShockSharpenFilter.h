@@ -36,7 +36,7 @@
  * "Choosing the flow time").
  *
  * Parameters specific to this filter: FeatureAngle, CurvatureContrast, FitTarget,
- * NormalSmoothingPasses (pre-mollification of noisy normals), ScreeningWeight
+ * NormalSmoothingPasses (pre-mollification of noisy normals), KeepUnmovedNormals, ScreeningWeight
  * (eps), AnchorWeight, AnchorAngle, DriftRadius, Solver, SolverIterations, SolverTolerance, MergeCoincidentPoints,
  * GenerateSharpenedNormals. Of the base
  * class, Sampling LINEAR (default) interpolates the per-point normals
@@ -215,10 +215,29 @@ public:
    * Laplacian smoothing passes of the face normals before the advection, with
    * the positions fixed (the paper's Figure 11, for noisy scans). Each pass
    * replaces a normal by the renormalised area-weighted mean of itself and its
-   * edge neighbours. Range [0, 100], default 0.
+   * edge neighbours. With KeepUnmovedNormals (the default) the triangles the
+   * flow does not move keep their own normals. Range [0, 100], default 0.
    */
   vtkSetClampMacro(NormalSmoothingPasses, int, 0, 100);
   vtkGetMacro(NormalSmoothingPasses, int);
+  ///@}
+
+  ///@{
+  /**
+   * Not the paper's: a triangle on which the flow is zero (the advection does
+   * not move it) keeps its own input normal as its target, instead of the
+   * Linear sampling's interpolated average (and instead of its smoothed normal
+   * after NormalSmoothingPasses). So a smooth shape the flow leaves alone
+   * (CurvatureContrast) does not move at all, and the normal smoothing acts
+   * where the flow does (docs/sharpening.md, "What the flow does not move
+   * keeps its normal"). Applies with FlowMode FIXED (the default); the other
+   * modes recompute the flow and sample every triangle. Off: the paper's
+   * sampling everywhere, and the normal smoothing calms the noise of flat
+   * parts too (for noisy scans). Default on.
+   */
+  vtkSetMacro(KeepUnmovedNormals, vtkTypeBool);
+  vtkGetMacro(KeepUnmovedNormals, vtkTypeBool);
+  vtkBooleanMacro(KeepUnmovedNormals, vtkTypeBool);
   ///@}
 
   ///@{
@@ -441,6 +460,7 @@ protected:
   double CurvatureContrast = 16.0;
   int FitTarget = CENTRAL_PROJECTION;
   int NormalSmoothingPasses = 0;
+  vtkTypeBool KeepUnmovedNormals = 1;
   double ScreeningWeight = 1.0;
   double AnchorWeight = 1.0;
   double AnchorAngle = 5.0;

@@ -47,6 +47,7 @@ struct SharpenSettings
   std::optional<double> curvatureContrast;
   std::optional<int> fitTarget;
   std::optional<int> normalSmoothingPasses;
+  std::optional<int> keepUnmovedNormals;
   std::optional<double> screeningWeight;
   std::optional<double> anchorWeight;
   std::optional<double> anchorAngle;
@@ -76,6 +77,9 @@ std::vector<OptionSpec> SharpenOptionSpecs(SharpenSettings& settings)
   specs.push_back(RangeOptionSpec("--normal-smoothing", "N", "smoothing passes of the normals before",
     settings.normalSmoothingPasses, d->GetNormalSmoothingPassesMinValue(),
     d->GetNormalSmoothingPassesMaxValue(), d->GetNormalSmoothingPasses()));
+  specs.push_back(RangeOptionSpec("--keep-unmoved-normals", "0|1",
+    "a triangle the flow does not move keeps its own normal (0 = the paper's sampling)",
+    settings.keepUnmovedNormals, 0, 1, static_cast<int>(d->GetKeepUnmovedNormals())));
   specs.push_back(RangeOptionSpec("--screening", "EPS", "screening weight of the fit",
     settings.screeningWeight, d->GetScreeningWeightMinValue(), d->GetScreeningWeightMaxValue(),
     d->GetScreeningWeight()));
@@ -155,6 +159,7 @@ int RunSharpenCommand(const std::vector<std::string>& args)
   SetIfGiven(filter.Get(), &F::SetCurvatureContrast, settings.curvatureContrast);
   SetIfGiven(filter.Get(), &F::SetFitTarget, settings.fitTarget);
   SetIfGiven(filter.Get(), &F::SetNormalSmoothingPasses, settings.normalSmoothingPasses);
+  SetIfGiven(filter.Get(), &F::SetKeepUnmovedNormals, settings.keepUnmovedNormals);
   SetIfGiven(filter.Get(), &F::SetScreeningWeight, settings.screeningWeight);
   SetIfGiven(filter.Get(), &F::SetAnchorWeight, settings.anchorWeight);
   SetIfGiven(filter.Get(), &F::SetAnchorAngle, settings.anchorAngle);

@@ -325,8 +325,15 @@ TEST(MeshSharpening, TimeZeroNearestExactReturnsTheInput)
   {
     EXPECT_NEAR(after[i], box.points[i], 1e-9);
   }
-  // Linear sampling smooths the normals even at t = 0 (the paper's Figure 7).
+  // Linear sampling smooths the normals even at t = 0 (the paper's Figure 7),
+  // unless every triangle keeps its own normal at t = 0 (keepUnmovedNormals).
   p.advection.sampling = shock::Sampling::Linear;
+  const std::vector<double> same = Sharpen(mesh, p);
+  for (size_t i = 0; i < same.size(); ++i)
+  {
+    EXPECT_NEAR(same[i], box.points[i], 1e-9);
+  }
+  p.keepUnmovedNormals = false;
   const std::vector<double> smoothed = Sharpen(mesh, p);
   double moved = 0.0;
   for (size_t i = 0; i < smoothed.size(); ++i)
@@ -405,6 +412,7 @@ TEST(MeshSharpening, NormalSmoothingCalmsNoise)
   const shock::TriangleMesh mesh = Build(noisy);
   shock::SharpeningParameters p = Parameters(0.0);
   p.advection.sampling = shock::Sampling::Nearest;
+  p.keepUnmovedNormals = false; // the paper's sampling: at t = 0 every triangle takes its smoothed normal
   std::vector<double> raw, smoothed;
   Sharpen(mesh, p, nullptr, &raw);
   p.normalSmoothingPasses = 5;
@@ -603,7 +611,72 @@ TEST(MeshSharpening, AConesApexDoesNotTiltItsFaces)
   // The paper's averages everywhere (FeatureAngle 180) move it: the measure can fail.
   shock::SharpeningParameters paper = Parameters(256.0);
   paper.featureAngle = 180.0;
+  paper.keepUnmovedNormals = false; // and the paper's sampling where the flow is zero
   shock::SharpeningReport paperReport;
   Sharpen(mesh, paper, &paperReport);
   EXPECT_GT(paperReport.maxDisplacement, 0.01);
+}
+
+TEST(MeshSharpening, TrianglesTheFlowDoesNotMoveKeepTheirNormals)
+{
+  // A rounded box at the default flow time: the flat faces' middles have no
+  // potential, so no flow, and their traces stay at their centres. Those
+  // triangles keep their own normals exactly, the others are advected
+  // (ACoarseSphereTheFlowLeavesAloneDoesNotMove: where the paper's sampling
+  // differs).
+  const MeshData box = shocktest::RoundedBox(16, 2.0, 0.35);
+  const shock::TriangleMesh mesh = Build(box);
+  for (bool keep : { true, false })
+  {
+    shock::SharpeningParameters p = Parameters(256.0);
+    p.keepUnmovedNormals = keep;
+    std::vector<double> positions(static_cast<size_t>(3 * mesh.NumberOfPoints()));
+    std::vector<double> normals(static_cast<size_t>(3 * mesh.NumberOfTriangles()));
+    shock::MeshFlowFields fields;
+    ASSERT_TRUE(shock::SharpenMeshGeometry(mesh, p, positions.data(), normals.data(), nullptr, &fields).Ok());
+    int still = 0, movingChanged = 0;
+    for (std::int64_t f = 0; f < mesh.NumberOfTriangles(); ++f)
+    {
+      const double* u = &fields.flow[static_cast<size_t>(3 * f)];
+      const double* own = mesh.Normal(f);
+      const double* n = &normals[static_cast<size_t>(3 * f)];
+      const double change = std::abs(n[0] - own[0]) + std::abs(n[1] - own[1]) + std::abs(n[2] - own[2]);
+      if (u[0] == 0.0 && u[1] == 0.0 && u[2] == 0.0)
+      {
+        ++still;
+        if (keep)
+        {
+          ASSERT_EQ(change, 0.0) << "triangle " << f;
+        }
+      }
+      else
+      {
+        movingChanged += change > 1e-3 ? 1 : 0;
+      }
+    }
+    EXPECT_GT(still, 20) << keep;
+    EXPECT_GT(movingChanged, 100) << keep; // the rounded creases are sharpened either way
+  }
+}
+
+TEST(MeshSharpening, ACoarseSphereTheFlowLeavesAloneDoesNotMove)
+{
+  // An icosphere of 80 triangles: the contrast leaves no potential, so no
+  // triangle moves and each keeps its normal; the fit to the input's own
+  // normals is the input. The paper's sampling moves it.
+  const MeshData sphere = shocktest::Icosphere(1);
+  const shock::TriangleMesh mesh = Build(sphere);
+  shock::SharpeningParameters p = Parameters(2048.0);
+  p.fit.solver = shock::FitSolver::Exact;
+  const std::vector<double> kept = Sharpen(mesh, p);
+  p.keepUnmovedNormals = false;
+  const std::vector<double> paper = Sharpen(mesh, p);
+  double keptMove = 0.0, paperMove = 0.0;
+  for (size_t i = 0; i < kept.size(); ++i)
+  {
+    keptMove = std::max(keptMove, std::abs(kept[i] - sphere.points[i]));
+    paperMove = std::max(paperMove, std::abs(paper[i] - sphere.points[i]));
+  }
+  EXPECT_LT(keptMove, 1e-12);
+  EXPECT_GT(paperMove, 1e-3);
 }

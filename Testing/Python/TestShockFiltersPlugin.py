@@ -81,7 +81,7 @@ EXPECTED_NAMES = {"ImageShockAdvection": COMMON_NAMES | {"LastGhostLevels", "Las
 EXPECTED_NAMES["SurfaceShockAdvection"] = COMMON_NAMES | {"LastGhostLevels", "LastRingAttempts"}
 EXPECTED_NAMES["SurfaceShockSharpen"] = (COMMON_NAMES - {"InputArray"}) | {
     "FeatureAngle", "CurvatureContrast", "FitTarget", "LastRepeatedTriangles", "LastDegenerateTriangles", "LastFeatureEdges",
-    "NormalSmoothingPasses", "ScreeningWeight", "AnchorWeight", "AnchorAngle", "DriftRadius", "Solver", "SolverIterations",
+    "NormalSmoothingPasses", "KeepUnmovedNormals", "ScreeningWeight", "AnchorWeight", "AnchorAngle", "DriftRadius", "Solver", "SolverIterations",
     "SolverTolerance",
     "MergeCoincidentPoints", "GenerateSharpenedNormals", "LastFitSetupSeconds",
     "LastFitSolveSeconds", "LastSolverIterations", "LastSolverResidual", "LastFlippedTriangles",

@@ -288,6 +288,32 @@ Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& param
 }
 
 /**
+ * A triangle on which the fixed flow is zero (below StillFlow) is not moved by the advection
+ * (its trace stays at its centre), nor is any at time 0: it keeps its own
+ * normal, not the interpolated average of the point normals its centre
+ * samples (SharpeningParameters::keepUnmovedNormals).
+ */
+/// A flow this small (normalised units: unit-range values, mean edge lengths)
+/// is zero up to the rounding of the potential's differences: the triangle does not move.
+constexpr double StillFlow = 1e-12;
+
+void KeepUnmovedNormals(const TriangleMesh& mesh, const MeshFlowFields& fields, bool timeZero,
+  ValueVector& target, int threads)
+{
+  const std::int64_t nt = mesh.NumberOfTriangles();
+  const bool flowKnown = fields.flow.size() == static_cast<size_t>(3 * nt);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t f = 0; f < nt; ++f)
+  {
+    const double* u = flowKnown ? &fields.flow[static_cast<size_t>(3 * f)] : nullptr;
+    if (timeZero || (u && Dot(Load(u), Load(u)) <= StillFlow * StillFlow))
+    {
+      std::copy(mesh.Normal(f), mesh.Normal(f) + 3, &target[static_cast<size_t>(3 * f)]);
+    }
+  }
+}
+
+/**
  * SharpenMeshGeometry on a mesh without repeated or degenerate triangles.
  * `keepFeatures`: the cache outlives the run (a caller's), so the smoothed
  * normals and the feature split stay in it for the next run; otherwise they
@@ -300,10 +326,19 @@ Status SharpenCleanMesh(const TriangleMesh& mesh, const SharpeningParameters& pa
 {
   const int threads = ThreadsForWork(parameters.advection.numberOfThreads, mesh.NumberOfTriangles());
   Status status = SharpenedNormalsInput(mesh, parameters, threads, cache, r);
+  // The flow tells which triangles the advection did not move (a fixed flow only).
+  const bool keepUnmoved = parameters.keepUnmovedNormals && parameters.advection.flowMode == FlowMode::Fixed;
+  MeshFlowFields ownFields;
+  MeshFlowFields* used = fields ? fields : (keepUnmoved ? &ownFields : nullptr);
   if (status.Ok())
   {
     status = AdvectNormals(mesh, parameters, InputNormals(mesh, cache), triangleRing, cache.split, target, r,
-      fields, progress, threads);
+      used, progress, threads);
+  }
+  if (status.Ok() && keepUnmoved && !r.advection.aborted)
+  {
+    KeepUnmovedNormals(mesh, *used, !(parameters.advection.time > 0.0), target, threads);
+    ownFields = MeshFlowFields(); // released before the fit
   }
   const MeshPartition* partition = parameters.fit.partition;
   if (partition && partition->anyStopped &&

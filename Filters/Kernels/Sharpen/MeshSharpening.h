@@ -30,6 +30,14 @@
  * the per-point normals, which smooths the normals even at t = 0 (the paper's
  * Figure 7); Sampling::Nearest copies the normal of the triangle reached, so
  * t = 0 with the exact solver returns the input positions.
+ *
+ * Not the paper's (SharpeningParameters::keepUnmovedNormals, off gives the
+ * paper's sampling): a triangle on which the flow is zero is not moved by the
+ * advection (its trace stays at its centre), so it keeps its own normal
+ * instead of the interpolated average, which would bend a smooth shape that
+ * the flow leaves alone (with the flow fixed, FlowMode Fixed, the default; the
+ * other modes recompute the flow and sample every triangle). At t = 0 no
+ * triangle moves: every one keeps its own normal and the input comes back.
  */
 #ifndef MeshSharpening_h
 #define MeshSharpening_h
@@ -62,6 +70,8 @@ struct SharpeningParameters
    */
   double curvatureContrast = 16.0;
   int contrastRings = 6; ///< rings of the contrast's minimum (>= 1)
+  /// Not the paper's: a triangle the flow does not move keeps its own normal (file comment).
+  bool keepUnmovedNormals = true;
   /**
    * A piece of a distributed mesh: each triangle's ghost ring (0: the
    * triangles whose sharpened normals must be the whole mesh's), or null.
