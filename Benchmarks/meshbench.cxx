@@ -726,6 +726,7 @@ void SharpenBenchmark(const Options& options)
   filter->SetFitTargetToProjection(); // the paper's fit target
   filter->SetAnchorWeight(0.0);       // the paper's fit: no anchor
   filter->SetDriftRadius(0.0);        // nor drift removal
+  filter->KeepUnmovedNormalsOff();    // the paper's sampling everywhere
   std::cout << "\n### Mesh\n\n"
             << "- " << bench.description << "\n"
             << "- filter: vtkPolyDataShockSharpenFilter, t = " << Fixed(t, 0)

@@ -447,6 +447,7 @@ void Sharp()
           filter->SetCurvatureContrast(0.0); // the paper's potential
           filter->SetAnchorWeight(0.0);      // and fit
           filter->SetDriftRadius(0.0);
+          filter->KeepUnmovedNormalsOff();
         }
         filter->Update();
         std::printf(" %.3f %% |", 100.0 * filter->GetLastMaxDisplacement());
