@@ -294,6 +294,20 @@ TEST(SharpenTrust, ABoxBlurredByWindowedSincComesBackAtDefaults)
   EXPECT_TRUE(ComesBackAtSomeFlowTime(blurred, box, 1.0));
 }
 
+/// RMS distance of the points of `result` to the same points of `original`.
+double RmsDistance(vtkPolyData* original, vtkPolyData* result)
+{
+  double sum = 0.0;
+  for (vtkIdType p = 0; p < original->GetNumberOfPoints(); ++p)
+  {
+    double x[3], y[3];
+    original->GetPoint(p, x);
+    result->GetPoint(p, y);
+    sum += vtkMath::Distance2BetweenPoints(x, y);
+  }
+  return std::sqrt(sum / original->GetNumberOfPoints());
+}
+
 TEST(SharpenTrust, TheFitHoldsWhatTheSharpeningDidNotTurn)
 {
   // The windowed-sinc box of the previous test at the default flow time. Its
@@ -332,17 +346,7 @@ TEST(SharpenTrust, TheFitHoldsWhatTheSharpeningDidNotTurn)
     }
     return worst;
   };
-  auto rms = [&](vtkPolyData* result) {
-    double sum = 0.0;
-    for (vtkIdType p = 0; p < box->GetNumberOfPoints(); ++p)
-    {
-      double x[3], y[3];
-      box->GetPoint(p, x);
-      result->GetPoint(p, y);
-      sum += vtkMath::Distance2BetweenPoints(x, y);
-    }
-    return std::sqrt(sum / box->GetNumberOfPoints());
-  };
+  auto rms = [&](vtkPolyData* result) { return RmsDistance(box, result); };
   std::cout << "middle of the faces moved: paper's fit " << middleMove(unanchored) << ", defaults "
             << middleMove(anchored) << "; RMS to the original: blurred " << rms(blurred) << ", paper's fit "
             << rms(unanchored) << ", defaults " << rms(anchored) << "\n";
@@ -418,17 +422,7 @@ TEST(SharpenTrust, ADriftRadiusKeepsTheLocalMeanOfTheSincBlurredBox)
     }
     return vtkMath::Norm(shift);
   };
-  auto rms = [&](vtkPolyData* result) {
-    double sum = 0.0;
-    for (vtkIdType p = 0; p < box->GetNumberOfPoints(); ++p)
-    {
-      double x[3], y[3];
-      box->GetPoint(p, x);
-      result->GetPoint(p, y);
-      sum += vtkMath::Distance2BetweenPoints(x, y);
-    }
-    return std::sqrt(sum / box->GetNumberOfPoints());
-  };
+  auto rms = [&](vtkPolyData* result) { return RmsDistance(box, result); };
   std::cout << "mean shift: defaults " << meanShift(plain) << ", DriftRadius 4 " << meanShift(local)
             << "; volume: box " << volume(box) << ", blurred " << volume(blurred) << ", defaults "
             << volume(plain) << ", DriftRadius 4 " << volume(local) << "; RMS to the original: blurred " << rms(blurred) << ", defaults " << rms(plain)
