@@ -369,6 +369,7 @@ void WriteFittedPositions(
     }
   }
 }
+
 /**
  * The edge length of the normalised mesh (unit area): the side of an
  * equilateral triangle of its mean triangle area, over all pieces.

@@ -287,16 +287,16 @@ Status AdvectNormals(const TriangleMesh& mesh, const SharpeningParameters& param
   return {};
 }
 
-/**
- * A triangle on which the fixed flow is zero (below StillFlow) is not moved by the advection
- * (its trace stays at its centre), nor is any at time 0: it keeps its own
- * normal, not the interpolated average of the point normals its centre
- * samples (SharpeningParameters::keepUnmovedNormals).
- */
 /// A flow this small (normalised units: unit-range values, mean edge lengths)
 /// is zero up to the rounding of the potential's differences: the triangle does not move.
 constexpr double StillFlow = 1e-12;
 
+/**
+ * A triangle on which the fixed flow is zero (below StillFlow) is not moved
+ * by the advection (its trace stays at its centre), nor is any at time 0: it
+ * keeps its own normal, not the interpolated average of the point normals its
+ * centre samples (SharpeningParameters::keepUnmovedNormals).
+ */
 void KeepUnmovedNormals(const TriangleMesh& mesh, const MeshFlowFields& fields, bool timeZero,
   ValueVector& target, int threads)
 {
