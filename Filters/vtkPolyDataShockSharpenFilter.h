@@ -276,11 +276,10 @@ public:
    * equilateral triangle of the mesh's mean triangle area) is removed after
    * the fit: points move against each other within a few edges, so creases
    * form, but no region moves as a whole, and the area-weighted mean position
-   * is kept. Suits blurs that keep the local mean (windowed sinc, Taubin):
-   * with 4, the windowed-sinc fandisk of docs/sharpening.md ends at 0.97 x
-   * the blurred input's distance to the original (1.07 x without); not blurs that shrink creases
-   * (Laplacian, Gaussian), whose lost volume it keeps lost, so it is off by
-   * default (docs/sharpening.md, "Keeping the local mean: DriftRadius").
+   * is kept. Suits blurs that keep the local mean (windowed sinc, Taubin;
+   * 4 is the radius measured in docs/sharpening.md), not blurs that shrink
+   * creases (Laplacian, Gaussian), whose lost volume it keeps lost, so it is
+   * off by default (docs/sharpening.md, "Keeping the local mean: DriftRadius").
    * 0 (the default) is the paper's fit. Range [0, 1000].
    */
   vtkSetClampMacro(DriftRadius, double, 0.0, 1000.0);

@@ -229,21 +229,19 @@ TEST(ScreenedPoissonFit, TheDriftIsRemovedAndTheCreaseKept)
     EXPECT_GT(ridge(fitted), 0.7 * ridge(drifting)) << "solver " << static_cast<int>(solver);
     EXPECT_GT(MaxDifference(fitted, drifting), 1e-3);
   }
-  FitParameters kept0;
-  kept0.driftRadius = 0.0;
   // A wider radius takes away less of the roof's own shape, leaving the fit
   // without step 5 shifted more nearly as a whole.
-  FitParameters paper;
-  paper.driftRadius = 0.0;
+  FitParameters withoutDrift;
+  withoutDrift.driftRadius = 0.0;
   FitParameters wide;
   wide.driftRadius = 40.0;
   FitParameters narrow;
   narrow.driftRadius = 4.0;
-  const auto drifting = Fit(mesh, targets, paper);
+  const auto drifting = Fit(mesh, targets, withoutDrift);
   EXPECT_LT(std::abs(ridge(Fit(mesh, targets, wide)) - ridge(drifting)),
     std::abs(ridge(Fit(mesh, targets, narrow)) - ridge(drifting)));
   // Off by default: the default fit is the fit without step 5.
-  EXPECT_EQ(Fit(mesh, targets, FitParameters()), Fit(mesh, targets, kept0));
+  EXPECT_EQ(Fit(mesh, targets, FitParameters()), drifting);
 }
 
 TEST(ScreenedPoissonFit, AKeptSystemGivesEachFitItsOwnAnchor)
