@@ -173,6 +173,11 @@ def arguments():
                         help="build tree (its lib/python3.*/site-packages has shockfilters)")
     parser.add_argument("--cad", default=os.environ.get("SHOCK_CAD_DIR", os.path.join(
         os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "shockfilters", "cad")))
+    parser.add_argument("--scan", default=os.environ.get("SHOCK_SCAN_DIR", os.path.join(
+        os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "shockfilters", "scan")))
+    parser.add_argument("--meshes", choices=["cad", "scan"], default="cad",
+                        help="the CAD tessellations (--cad, subdivided) or the scan set "
+                        "(--scan, get_scan_meshes.sh: the same parts remeshed evenly)")
     parser.add_argument("--models", default=",".join(m for m, _ in MODELS))
     parser.add_argument("--blurs", default=",".join(BLURS))
     parser.add_argument("--out", default=os.path.join(ROOT, "build", "sharpen-eval"))
@@ -290,10 +295,11 @@ def normalised(polydata, levels=0):
     return Mesh(Mesh(pd).with_points(p))
 
 
-def load_model(name, levels):
-    path = os.path.join(ARGS.cad, name + ".off")
+def load_model(name, levels, directory=None):
+    path = os.path.join(directory or ARGS.cad, name + ".off")
     if not os.path.exists(path):
-        sys.exit("sharpen_eval.py: no %s (run Benchmarks/get_cad_meshes.sh)" % path)
+        sys.exit("sharpen_eval.py: no %s (run Benchmarks/get_%s_meshes.sh)" % (
+            path, "scan" if directory == ARGS.scan else "cad"))
     reader = vtkOFFReader()
     reader.SetFileName(path)
     reader.Update()
@@ -533,14 +539,16 @@ class Reference:
 def prepare(model_names, blur_names):
     """Originals and blurred inputs (computed once per process)."""
     cases = []
-    levels = dict(MODELS)
+    scan = ARGS.meshes == "scan"
+    # the scan set is even already: no subdivision
+    levels = {} if scan else dict(MODELS)
     for mi, name in enumerate(model_names):
-        mesh = load_model(name, levels.get(name, 0))
+        mesh = load_model(name, 0, ARGS.scan) if scan else load_model(name, levels.get(name, 0))
         ref = Reference(mesh)
         for bi, b in enumerate(blur_names):
             # the blurred points are kept in OUT/blurred (the Gaussian takes a while)
-            cache = os.path.join(ARGS.out, "blurred", "%s-%d-%s-%g-%g-%d.npy" % (
-                name, levels.get(name, 0), b, BLUR_PARAMETERS[b][1], NOISE, 1000 * mi + bi))
+            cache = os.path.join(ARGS.out, "blurred", "%s%s-%d-%s-%g-%g-%d.npy" % (
+                "scan-" if scan else "", name, levels.get(name, 0), b, BLUR_PARAMETERS[b][1], NOISE, 1000 * mi + bi))
             if os.path.exists(cache):
                 points = np.load(cache)
             else:
