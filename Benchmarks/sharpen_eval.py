@@ -3,9 +3,9 @@
 designed around (issue 34; docs/sharpening.md, "An evaluation set of real CAD
 parts").
 
-    Benchmarks/get_cad_meshes.sh
+    Benchmarks/get_cad_meshes.sh; Benchmarks/get_scan_meshes.sh
     nice -n 19 /usr/bin/python3 Benchmarks/sharpen_eval.py table [--build build]
-        [--cad DIR] [--out DIR] [--models a,b] [--blurs sinc1,gauss2]
+        [--meshes cad|scan] [--cad DIR] [--scan DIR] [--out DIR] [--models a,b] [--blurs sinc1,gauss2]
         [--set Name=Value ...] [--correct NAME] [--no-smooth]
     nice -n 19 /usr/bin/python3 Benchmarks/sharpen_eval.py study [same options]
         [--variants "defaults,FeatureAngle 60"] [--correct all|NAME,...]
@@ -17,7 +17,11 @@ parts").
 Models: ten closed CAD parts of CGAL's data (get_cad_meshes.sh), cleaned,
 triangulated, linearly subdivided (vtkLinearSubdivisionFilter: creases and
 facets stay as they are) the fewest times that give at least 15 000 points,
-centred and scaled to a unit diagonal. Each is blurred six ways, with the same
+centred and scaled to a unit diagonal (--meshes cad, the default). With
+--meshes scan, the scan set: the same parts as a scanner samples them
+(get_scan_meshes.sh: remeshed evenly by CGAL's isotropic remeshing to about
+24 000 points on the original surface, the creases of more than 30 degrees
+kept as edges; no subdivision). Each is blurred six ways, with the same
 parameters for every model (in units of the mesh: iterations, edge lengths):
 
 - sinc1, sinc2: vtkWindowedSincPolyDataFilter, 20 iterations, pass band 0.05
