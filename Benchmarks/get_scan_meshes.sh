@@ -50,6 +50,7 @@ if [ ! -x "$dir/scan_cad" ]; then
   mv "$dir/scan_cad.tmp" "$dir/scan_cad"
 fi
 for model in $missing; do
+  printf '%s: ' "$dir/$model.off"
   "$dir/scan_cad" "$cad/$model.off" "$dir/$model.off.tmp" "$POINTS" "$FEATURE_ANGLE"
   mv "$dir/$model.off.tmp" "$dir/$model.off"
 done

@@ -96,7 +96,7 @@ int main(int argc, char** argv)
   {
     return Fail(std::string("cannot write ") + argv[2]);
   }
-  std::cout << argv[2] << ": " << mesh.number_of_vertices() << " points, edge length " << h
+  std::cout << mesh.number_of_vertices() << " points, edge length " << h
             << ", " << creaseEdges.size() << " crease edges kept\n";
   return 0;
 }
