@@ -25,9 +25,9 @@
  * coarsely tessellated smooth shape is not sharpened (0 reproduces the paper);
  * the fit holds the points whose triangles the sharpening did not turn
  * where they were (AnchorWeight, AnchorAngle; AnchorWeight 0 reproduces the paper);
- * and, when DriftRadius > 0 (not by default), the part of the fitted
- * displacement smoother than DriftRadius edges is removed, so that no region
- * moves as a whole.
+ * and the part of the fitted displacement smoother than DriftRadius edges
+ * is removed, so that no region moves as a whole (DriftRadius 0 reproduces
+ * the paper).
  *
  * FlowTime (of the base class) defaults to 256 here, not 64: a crease rounded
  * over 4 rows of triangles is sharp again from t = 128, over 6 rows from 512,
@@ -276,11 +276,10 @@ public:
    * equilateral triangle of the mesh's mean triangle area) is removed after
    * the fit: points move against each other within a few edges, so creases
    * form, but no region moves as a whole, and the area-weighted mean position
-   * is kept. Suits blurs that keep the local mean (windowed sinc, Taubin;
-   * 4 is the radius measured in docs/sharpening.md), not blurs that shrink
-   * creases (Laplacian, Gaussian), whose lost volume it keeps lost, so it is
-   * off by default (docs/sharpening.md, "Keeping the local mean: DriftRadius").
-   * 0 (the default) is the paper's fit. Range [0, 1000].
+   * is kept, as blurs that keep the local mean (windowed sinc, Taubin) keep
+   * it; on blurs that shrink creases (Laplacian, Gaussian) it keeps a little
+   * of their lost volume lost (docs/sharpening.md, "Keeping the local mean:
+   * DriftRadius"). Default 8; 0 is the paper's fit. Range [0, 1000].
    */
   vtkSetClampMacro(DriftRadius, double, 0.0, 1000.0);
   vtkGetMacro(DriftRadius, double);
@@ -463,7 +462,7 @@ protected:
   double ScreeningWeight = 1.0;
   double AnchorWeight = 1.0;
   double AnchorAngle = 5.0;
-  double DriftRadius = 0.0;
+  double DriftRadius = 8.0;
   int Solver = CONJUGATE_GRADIENT;
   int SolverIterations = 25;
   double SolverTolerance = 1e-6;

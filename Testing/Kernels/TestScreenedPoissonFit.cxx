@@ -240,8 +240,12 @@ TEST(ScreenedPoissonFit, TheDriftIsRemovedAndTheCreaseKept)
   const auto drifting = Fit(mesh, targets, withoutDrift);
   EXPECT_LT(std::abs(ridge(Fit(mesh, targets, wide)) - ridge(drifting)),
     std::abs(ridge(Fit(mesh, targets, narrow)) - ridge(drifting)));
-  // Off by default: the default fit is the fit without step 5.
-  EXPECT_EQ(Fit(mesh, targets, FitParameters()), drifting);
+  // On by default, with the radius of 8 edges.
+  FitParameters eight;
+  eight.driftRadius = 8.0;
+  EXPECT_EQ(FitParameters().driftRadius, 8.0);
+  EXPECT_EQ(Fit(mesh, targets, FitParameters()), Fit(mesh, targets, eight));
+  EXPECT_GT(MaxDifference(Fit(mesh, targets, FitParameters()), drifting), 1e-3);
 }
 
 TEST(ScreenedPoissonFit, AKeptSystemGivesEachFitItsOwnAnchor)

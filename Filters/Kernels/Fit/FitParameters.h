@@ -65,9 +65,10 @@ struct FitParameters
    * mesh's mean triangle area). The part of the displacement smoother than
    * this radius (its heat diffusion over driftRadius^2 squared edge lengths)
    * is taken away, so that the sharpening keeps the surface's local mean
-   * position. 0 (the default) is the paper's fit. Finite and >= 0.
+   * position. 0 is the paper's fit; the default 8 is the filter's
+   * (docs/sharpening.md, "Keeping the local mean: DriftRadius"). Finite and >= 0.
    */
-  double driftRadius = 0.0;
+  double driftRadius = 8.0;
   FitSolver solver = FitSolver::ConjugateGradient;
   /// Iterations of FitSolver::ConjugateGradient (>= 0; the paper uses 25).
   int iterations = 25;

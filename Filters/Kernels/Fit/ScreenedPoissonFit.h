@@ -53,8 +53,8 @@
  *     The uniform screening of step 3 lets the whole surface drift while the
  *     creases move; the anchor keeps flat and smooth parts whose normals stayed
  *     (docs/sharpening.md, "Points the sharpening did not turn stay");
- *  5. not the paper's either, and off by default (FitParameters::driftRadius
- *     > 0 turns it on): the drift is removed. With d = c1 - c0 the fitted displacement,
+ *  5. not the paper's either (FitParameters::driftRadius > 0, 8 by default;
+ *     0 skips it): the drift is removed. With d = c1 - c0 the fitted displacement,
  *     d_low solves (eps_d M + S) d_low = eps_d M_L d (M_L the lumped mass,
  *     eps_d = 1 / (driftRadius l)^2, l the side of an equilateral triangle of
  *     the mean triangle area): d's heat diffusion over driftRadius edges, its
