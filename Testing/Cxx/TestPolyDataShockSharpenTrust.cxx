@@ -311,11 +311,30 @@ double RmsDistance(vtkPolyData* original, vtkPolyData* result)
   return std::sqrt(sum / original->GetNumberOfPoints());
 }
 
+/// The volume a closed triangle mesh encloses (positive when its triangles face outwards).
+double EnclosedVolume(vtkPolyData* mesh)
+{
+  double sum = 0.0;
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  vtkCellArray* polys = mesh->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
+  {
+    double a[3], b[3], c[3], bc[3];
+    mesh->GetPoint(ids[0], a);
+    mesh->GetPoint(ids[1], b);
+    mesh->GetPoint(ids[2], c);
+    vtkMath::Cross(b, c, bc);
+    sum += vtkMath::Dot(a, bc) / 6.0;
+  }
+  return sum;
+}
+
 /**
- * An L-shaped block, as a scan samples a machined part: the union of unit
- * cubes (0..2, 0, 0), (0, 1, 0) and their boundary faces, each square face of
- * a cube split into `cells` x `cells` squares of two triangles, the points
- * shared. It has convex creases and a concave one (inside the L), and corners
+ * An L-shaped block, as a scan samples a machined part: the union of four
+ * unit cubes (at x = 0, 1, 2 in the row y = 0, and at x = 0, y = 1), each
+ * square face of the surface split into `cells` x `cells` squares of two
+ * triangles, the points shared. It has convex creases and a concave one (inside the L), and corners
  * where three creases meet.
  */
 Mesh LBlock(int cells)
@@ -414,20 +433,7 @@ TEST(SharpenTrust, AnLShapedBlockBlurredTwoWaysComesBackAtDefaults)
   open->ManifoldEdgesOff();
   open->Update();
   ASSERT_EQ(open->GetOutput()->GetNumberOfCells(), 0);
-  double volume = 0.0;
-  for (vtkIdType c = 0; c < block->GetNumberOfCells(); ++c)
-  {
-    vtkIdType size;
-    const vtkIdType* ids;
-    block->GetCellPoints(c, size, ids);
-    double a[3], b[3], d[3], bd[3];
-    block->GetPoint(ids[0], a);
-    block->GetPoint(ids[1], b);
-    block->GetPoint(ids[2], d);
-    vtkMath::Cross(b, d, bd);
-    volume += vtkMath::Dot(a, bd) / 6.0;
-  }
-  ASSERT_NEAR(volume, 4.0, 1e-9);
+  ASSERT_NEAR(EnclosedVolume(block), 4.0, 1e-9);
 
   vtkNew<vtkWindowedSincPolyDataFilter> sinc;
   sinc->SetInputData(block);
@@ -521,22 +527,7 @@ TEST(SharpenTrust, TheDefaultDriftRemovalKeepsTheLocalMeanOfTheSincBlurredBox)
   // The mean displacement from the blurred box, each point weighted by a third
   // of the area of its triangles (0 without step 5 too, by symmetry), and the
   // volume (the sinc blur kept the box's; the fit without step 5 adds some at the creases).
-  auto volume = [&](vtkPolyData* result) {
-    double sum = 0.0;
-    vtkIdType n = 0;
-    const vtkIdType* ids = nullptr;
-    vtkCellArray* polys = result->GetPolys();
-    for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
-    {
-      double a[3], b[3], c[3], bc[3];
-      result->GetPoint(ids[0], a);
-      result->GetPoint(ids[1], b);
-      result->GetPoint(ids[2], c);
-      vtkMath::Cross(b, c, bc);
-      sum += vtkMath::Dot(a, bc) / 6.0;
-    }
-    return sum;
-  };
+  auto volume = [](vtkPolyData* result) { return EnclosedVolume(result); };
   auto meanShift = [&](vtkPolyData* result) {
     double shift[3] = { 0.0, 0.0, 0.0 };
     vtkIdType n = 0;
