@@ -30,7 +30,6 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
 #include "vtkSmartPointer.h"
-#include "vtkSmoothPolyDataFilter.h"
 #include "vtkTriangle.h"
 #include "vtkTriangleFilter.h"
 #include "vtkWindowedSincPolyDataFilter.h"
@@ -39,8 +38,10 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 #include <tuple>
+#include <vector>
 
 namespace
 {
@@ -417,6 +418,64 @@ Mesh LBlock(int cells)
   return block;
 }
 
+/**
+ * Laplacian smoothing of the kind of ParaView's Smooth (written here: VTK
+ * 9.2's vtkSmoothPolyDataFilter frees with the wrong delete under
+ * AddressSanitizer): `iterations` times, every point moves `relaxation` of
+ * the way to the mean of its edge neighbours, all from the previous
+ * iteration's positions.
+ */
+Mesh LaplacianSmoothed(vtkPolyData* mesh, int iterations, double relaxation)
+{
+  const vtkIdType n = mesh->GetNumberOfPoints();
+  std::vector<std::set<vtkIdType>> neighbours(static_cast<size_t>(n));
+  vtkIdType size = 0;
+  const vtkIdType* ids = nullptr;
+  vtkCellArray* polys = mesh->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(size, ids);)
+  {
+    for (vtkIdType k = 0; k < size; ++k)
+    {
+      neighbours[static_cast<size_t>(ids[k])].insert(ids[(k + 1) % size]);
+      neighbours[static_cast<size_t>(ids[(k + 1) % size])].insert(ids[k]);
+    }
+  }
+  std::vector<double> x(static_cast<size_t>(3 * n));
+  for (vtkIdType p = 0; p < n; ++p)
+  {
+    mesh->GetPoint(p, &x[static_cast<size_t>(3 * p)]);
+  }
+  for (int iteration = 0; iteration < iterations; ++iteration)
+  {
+    std::vector<double> next(x);
+    for (vtkIdType p = 0; p < n; ++p)
+    {
+      const auto& around = neighbours[static_cast<size_t>(p)];
+      for (int k = 0; k < 3; ++k)
+      {
+        double mean = 0.0;
+        for (const vtkIdType q : around)
+        {
+          mean += x[static_cast<size_t>(3 * q + k)];
+        }
+        mean /= static_cast<double>(around.size());
+        next[static_cast<size_t>(3 * p + k)] += relaxation * (mean - x[static_cast<size_t>(3 * p + k)]);
+      }
+    }
+    x.swap(next);
+  }
+  vtkNew<vtkPoints> points;
+  points->SetNumberOfPoints(n);
+  for (vtkIdType p = 0; p < n; ++p)
+  {
+    points->SetPoint(p, &x[static_cast<size_t>(3 * p)]);
+  }
+  Mesh smoothed = Mesh::New();
+  smoothed->DeepCopy(mesh);
+  smoothed->SetPoints(points);
+  return smoothed;
+}
+
 TEST(SharpenTrust, AnLShapedBlockBlurredTwoWaysComesBackAtDefaults)
 {
   // A part with a concave crease, sampled evenly, blurred as the evaluation's
@@ -440,15 +499,12 @@ TEST(SharpenTrust, AnLShapedBlockBlurredTwoWaysComesBackAtDefaults)
   sinc->SetNumberOfIterations(20);
   sinc->SetPassBand(0.05);
   sinc->NormalizeCoordinatesOn();
-  vtkNew<vtkSmoothPolyDataFilter> laplace;
-  laplace->SetInputData(block);
-  laplace->SetNumberOfIterations(40);
-  laplace->SetRelaxationFactor(0.1);
-  for (vtkAlgorithm* blur : { static_cast<vtkAlgorithm*>(sinc), static_cast<vtkAlgorithm*>(laplace) })
+  const std::pair<const char*, Mesh> blurs[] = { { "windowed sinc", Output(sinc) },
+    { "Laplacian", LaplacianSmoothed(block, 40, 0.1) } };
+  for (const auto& [name, blurred] : blurs)
   {
-    const Mesh blurred = Output(blur);
-    ASSERT_GT(Errors(blurred, block).first, 1.0) << blur->GetClassName(); // degrees: the creases are rounded
-    EXPECT_TRUE(ComesBackAtSomeFlowTime(blurred, block, 1.0)) << blur->GetClassName();
+    ASSERT_GT(Errors(blurred, block).first, 1.0) << name; // degrees: the creases are rounded
+    EXPECT_TRUE(ComesBackAtSomeFlowTime(blurred, block, 1.0)) << name;
   }
 }
 
